@@ -1,0 +1,82 @@
+!> Helpers shared by the regdae drivers: `key=value` arguments, number
+!! formatting for the summary line, wall-clock time.
+module driver_support
+    use, intrinsic :: iso_fortran_env, only: int64, error_unit
+    use regdae, only: wp
+    implicit none
+    private
+
+    public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage
+
+contains
+
+    !> The i-th command-line argument.
+    function argument(i) result(arg)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: arg
+        integer :: length
+        call get_command_argument(i, length=length)
+        allocate (character(len=length) :: arg)
+        if (length > 0) call get_command_argument(i, arg)
+    end function argument
+
+    !> Split `key=value`; `ok` is false when there is no '=' or the key is empty.
+    subroutine split_key_value(arg, key, value, ok)
+        character(len=*), intent(in) :: arg
+        character(len=:), allocatable, intent(out) :: key, value
+        logical, intent(out) :: ok
+        integer :: eq
+        eq = index(arg, '=')
+        ok = eq > 1
+        if (ok) then
+            key = arg(1:eq - 1)
+            value = arg(eq + 1:)
+        else
+            key = arg
+            value = ''
+        end if
+    end subroutine split_key_value
+
+    !> A real for the summary line, 4 significant digits (NaN and Inf as such).
+    function num(x) result(s)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: s
+        character(len=32) :: buf
+        write (buf, '(es12.4e3)') x
+        s = trim(adjustl(buf))
+        call trim_exponent(s)
+    end function num
+
+    !> Start a wall-clock measurement.
+    function clock_start() result(count)
+        integer(int64) :: count
+        call system_clock(count)
+    end function clock_start
+
+    !> Seconds since `start` (from `clock_start`).
+    function elapsed_seconds(start) result(sec)
+        integer(int64), intent(in) :: start
+        real(wp) :: sec
+        integer(int64) :: now, rate
+        call system_clock(now, rate)
+        sec = real(now - start, wp)/real(rate, wp)
+    end function elapsed_seconds
+
+    !> Print a usage error naming the problem and stop with status 2.
+    subroutine die_usage(program_name, text)
+        character(len=*), intent(in) :: program_name, text
+        write (error_unit, '(a)') program_name//': '//text
+        stop 2
+    end subroutine die_usage
+
+    !> Drop the leading zero of a three-digit exponent: 1.5E-008 -> 1.5E-08.
+    pure subroutine trim_exponent(s)
+        character(len=:), allocatable, intent(inout) :: s
+        integer :: e
+        e = scan(s, 'E')
+        if (e > 0 .and. len(s) - e == 4) then
+            if (s(e + 2:e + 2) == '0') s = s(1:e + 1)//s(e + 3:)
+        end if
+    end subroutine trim_exponent
+
+end module driver_support

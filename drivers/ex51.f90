@@ -1,0 +1,125 @@
+!> Driver for Example 5.1 of Petzold, Ren & Maly (1997):
+!! x' = 2 + t y, 0 = t x - t(t+1), t in [-1, 1], x(-1) = 0; singular at t = 0.
+!!
+!! Usage: ex51 [key=value ...]
+!!   method=baumgarte|trust_region|direct   (trust_region)
+!!   gamma=1e3 eps=1e-6 rtol=1e-5 atol=1e-5 nout=200
+!!   formulation=multiplier|eliminated      (multiplier)
+!!   lsq=auto|normal|stacked                (auto)
+!!   orientation=psd|paper                  (psd: B = t; paper: B = -t)
+!!   exclusion=suppress|weights|off         (suppress)
+!!   stop_at_output=yes|no                  (yes)
+!!   x0=0 (x(-1); anything else is inconsistent), max_steps, h_init, h_max, ic_tol
+!! Output: '#' lines, the table 't x y x_exact y_exact' at nout+1 equally spaced
+!! times, and the last line
+!!   summary method=... status=ok|failed t_end=... max_err_x=... steps=... res_evals=...
+!!           jac_evals=... err_test_fails=... conv_fails=... seconds=...
+!! Exit status: 0 ok, 1 solver failure, 2 bad arguments.
+program ex51_driver
+    use, intrinsic :: iso_fortran_env, only: int64
+    use regdae
+    use ex51_problem, only: ex51, new_ex51, orientation_psd, orientation_paper
+    use driver_support, only: argument, split_key_value, num, clock_start, elapsed_seconds, die_usage
+    implicit none
+
+    character(len=*), parameter :: prog = 'ex51'
+    real(wp), parameter :: t0 = -1.0_wp, tf = 1.0_wp
+    type(solver_options) :: opts
+    type(regdae_solver) :: solver
+    type(solver_stats) :: st
+    type(ex51) :: problem
+    character(len=:), allocatable :: key, value, msg, status_text
+    integer :: i, k, nout, orientation, stat, ios
+    logical :: ok
+    real(wp) :: x0(1), x(1), y(1), t, max_err_x, seconds
+    integer(int64) :: start
+
+    nout = 200
+    orientation = orientation_psd
+    x0 = 0.0_wp
+    opts%stop_at_output = .true.
+    do i = 1, command_argument_count()
+        call split_key_value(argument(i), key, value, ok)
+        if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
+        select case (key)
+        case ('nout')
+            read (value, *, iostat=ios) nout
+            if (ios /= 0 .or. verify(value, '0123456789') /= 0 .or. nout < 1) &
+                call die_usage(prog, 'bad value "'//value//'" for nout (an integer >= 1)')
+        case ('orientation')
+            select case (value)
+            case ('psd'); orientation = orientation_psd
+            case ('paper'); orientation = orientation_paper
+            case default; call die_usage(prog, 'bad value "'//value//'" for orientation (psd|paper)')
+            end select
+        case ('x0')
+            read (value, *, iostat=ios) x0(1)
+            if (ios /= 0 .or. verify(value, '0123456789+-.eEdD') /= 0) &
+                call die_usage(prog, 'bad value "'//value//'" for x0')
+        case default
+            call set_option(opts, key, value, stat, msg)
+            if (stat /= regdae_success) call die_usage(prog, msg)
+        end select
+    end do
+
+    problem = new_ex51(orientation)
+    write (*, '(a)') '# regdae ex51: Example 5.1 of Petzold, Ren & Maly (1997)'
+    write (*, '(a)') '#   x'' = 2 + t y, 0 = t x - t(t+1), t in [-1, 1]; exact x = t + 1'
+    write (*, '(a)') '#   orientation='//trim(merge('psd  ', 'paper', orientation == orientation_psd))// &
+        trim(merge(' (B = t, y = 1/t)  ', ' (B = -t, y = -1/t)', orientation == orientation_psd))
+    write (*, '(a)') '# method='//method_name(opts%method)//' formulation='//formulation_name(opts%formulation)// &
+        ' lsq='//lsq_name(opts%lsq)//' exclusion='//exclusion_name(opts%exclusion)// &
+        ' stop_at_output='//trim(merge('yes', 'no ', opts%stop_at_output))
+    write (*, '(a)') '# gamma='//num(opts%gamma)//' eps='//num(opts%eps)//' rtol='//num(opts%rtol)// &
+        ' atol='//num(opts%atol)//' nout='//itoa(nout)//' x0='//num(x0(1))
+    write (*, '(a)') '# y_exact is undefined at t = 0 (printed NaN)'
+
+    start = clock_start()
+    max_err_x = 0.0_wp
+    call solver%init(problem, t0, x0, opts, stat)
+    if (stat == regdae_success) then
+        write (*, '(a)') '# lsq resolved to '//lsq_name(solver%lsq_method())
+        write (*, '(a1,a23,4a24)') '#', 't', 'x', 'y', 'x_exact', 'y_exact'
+        do k = 0, nout
+            t = t0 + (tf - t0)*real(k, wp)/real(nout, wp)
+            call solver%advance(t, x, y, stat)
+            if (stat < 0) exit
+            ! A singular multiplier equation at an output time (Baumgarte at t = 0)
+            ! leaves x valid and y undefined (NaN): say so and go on.
+            if (stat == regdae_warn_multiplier_undefined) write (*, '(a)') '# warning: '//solver%message()
+            max_err_x = max(max_err_x, abs(x(1) - problem%x_exact(t)))
+            write (*, '(5es24.15e3)') t, x(1), y(1), problem%x_exact(t), problem%y_exact(t)
+        end do
+        if (stat > 0) stat = regdae_success
+    end if
+    seconds = elapsed_seconds(start)
+    st = solver%statistics()
+    if (stat /= regdae_success) then
+        write (*, '(a)') '# error: '//solver%message()
+        status_text = 'failed'
+    else
+        status_text = 'ok'
+    end if
+    write (*, '(a)') '# steps, residual evaluations (IDA + Jacobian), Jacobians, linear setups, Newton iterations: '// &
+        itoa(int(st%steps))//' '//itoa(int(st%res_evals))//' ('//itoa(int(st%res_evals - st%jac_res_evals))// &
+        ' + '//itoa(int(st%jac_res_evals))//') '//itoa(int(st%jac_evals))//' '//itoa(int(st%lin_setups))// &
+        ' '//itoa(int(st%nonlin_iters))
+    write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text// &
+        ' t_end='//num(st%t)//' max_err_x='//num(max_err_x)//' steps='//itoa(int(st%steps))// &
+        ' res_evals='//itoa(int(st%res_evals))//' jac_evals='//itoa(int(st%jac_evals))// &
+        ' err_test_fails='//itoa(int(st%err_test_fails))//' conv_fails='//itoa(int(st%conv_fails))// &
+        ' seconds='//num(seconds)
+    call solver%destroy()
+    if (stat /= regdae_success) stop 1
+
+contains
+
+    function itoa(n) result(s)
+        integer, intent(in) :: n
+        character(len=:), allocatable :: s
+        character(len=16) :: buf
+        write (buf, '(i0)') n
+        s = trim(buf)
+    end function itoa
+
+end program ex51_driver

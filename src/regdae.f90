@@ -1,0 +1,29 @@
+!> regdae: regularization of higher-index DAEs with rank-deficient or singular
+!! constraints (Petzold, Ren & Maly, SIAM J. Sci. Comput. 18(3), 1997) on
+!! SUNDIALS IDA.
+!!
+!! `use regdae` gives the whole public API: the working precision `wp`, the
+!! problem type to extend, the options, the solver and the status codes.
+module regdae
+    use regdae_kinds, only: wp
+    use regdae_status
+    use regdae_problem, only: dae_problem
+    use regdae_options
+    use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
+    use regdae_ida_solver, only: regdae_solver, solver_stats
+    implicit none
+    private
+
+    public :: wp, dae_problem, regdae_solver, solver_stats
+    public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
+    ! regdae_status
+    public :: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, regdae_err_inconsistent_ic, &
+              regdae_err_user_callback, &
+              regdae_err_not_psd, regdae_err_singular, regdae_err_lapack, regdae_err_sundials, &
+              regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, status_message
+    ! regdae_options
+    public :: solver_options, set_option, validate_options, method_name, formulation_name, lsq_name, &
+              exclusion_name, method_baumgarte, method_trust_region, method_direct, formulation_multiplier, &
+              formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, exclusion_suppress, exclusion_weights, &
+              exclusion_off
+end module regdae

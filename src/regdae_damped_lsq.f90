@@ -1,0 +1,190 @@
+!> Dense damped least-squares and shifted solves with LAPACK.
+!!
+!! The multiplier of the trust-region regularization (paper, eq. 2.10) is the
+!! damped least-squares (Levenberg-Marquardt) solution
+!! $$ y = \arg\min_y \|A y - r\|_2^2 + \epsilon \|y\|_2^2
+!!      = (A^T A + \epsilon I)^{-1} A^T r, \qquad A = GB. $$
+!! Two ways are offered:
+!! - `lsq_normal`: the normal equations with `dposv` (Cholesky); cheap, but the
+!!   condition number is squared, so the relative error grows like
+!!   u * (sigma_max^2 + eps) / (sigma_min^2 + eps);
+!! - `lsq_stacked`: the stacked system [A; sqrt(eps) I] y ~ [r; 0] with
+!!   `dgelsd` (SVD); as accurate as the problem allows, also for eps = 0
+!!   (minimum-norm solution) and rank-deficient A.
+!! The direct regularization (eq. 2.12) solves (A + eps I) y = r by Cholesky
+!! (`shifted_spd_solve`), and Baumgarte's (eq. 2.7) solves A y = r by LU
+!! (`square_solve`).
+!!
+!! All scratch space lives in a `damped_lsq_workspace`, sized once by `init`,
+!! so no routine here allocates in the integration loop.
+module regdae_damped_lsq
+    use regdae_kinds, only: wp
+    use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_singular, &
+                             regdae_err_not_psd, regdae_err_lapack
+    use regdae_lapack, only: dposv, dgelsd, dgesv
+    implicit none
+    private
+
+    integer, parameter, public :: lsq_normal = 1   !! normal equations, `dposv`
+    integer, parameter, public :: lsq_stacked = 2  !! stacked system, `dgelsd`
+
+    !> Scratch space for solves with a p x q matrix (p rows, q unknowns).
+    type, public :: damped_lsq_workspace
+        private
+        integer :: p = 0, q = 0
+        real(wp), allocatable :: mat(:, :)   ! (p+q) x q copy of the matrix
+        real(wp), allocatable :: vec(:)      ! p+q right-hand side / solution
+        real(wp), allocatable :: sv(:)       ! singular values from dgelsd
+        real(wp), allocatable :: work(:)
+        integer, allocatable :: iwork(:)
+        integer, allocatable :: ipiv(:)
+        integer :: last_rank = 0
+    contains
+        !> Size the workspace for p x q matrices (queries dgelsd's workspace).
+        procedure :: init => workspace_init
+        !> Numerical rank of the stacked matrix in the last `lsq_stacked` solve.
+        procedure :: rank => workspace_rank
+    end type damped_lsq_workspace
+
+    public :: damped_lsq_solve, shifted_spd_solve, square_solve
+
+contains
+
+    subroutine workspace_init(self, p, q)
+        class(damped_lsq_workspace), intent(inout) :: self
+        integer, intent(in) :: p   !! rows of the matrices to be solved with
+        integer, intent(in) :: q   !! columns (unknowns)
+        real(wp) :: work_query(1), a_dummy(1, 1), b_dummy(1, 1), s_dummy(1)
+        integer :: iwork_query(1), rank, info, lwork, liwork, rows
+
+        self%p = p
+        self%q = q
+        rows = max(p + q, 1)
+        if (allocated(self%mat)) deallocate (self%mat, self%vec, self%sv, self%work, self%iwork, self%ipiv)
+        allocate (self%mat(rows, max(q, 1)), self%vec(rows), self%sv(max(q, 1)), self%ipiv(max(q, 1)))
+        ! Workspace query for the stacked (p+q) x q problem with one right-hand side.
+        call dgelsd(p + q, q, 1, a_dummy, rows, b_dummy, rows, s_dummy, -1.0_wp, rank, &
+                    work_query, -1, iwork_query, info)
+        lwork = max(1, int(work_query(1)))
+        liwork = max(1, iwork_query(1))
+        allocate (self%work(lwork), self%iwork(liwork))
+    end subroutine workspace_init
+
+    pure integer function workspace_rank(self)
+        class(damped_lsq_workspace), intent(in) :: self
+        workspace_rank = self%last_rank
+    end function workspace_rank
+
+    !> Damped least-squares solution y = (A^T A + eps I)^{-1} A^T r.
+    !!
+    !! `stat` is `regdae_success`, `regdae_err_singular` (normal equations with
+    !! a singular matrix, possible only for eps = 0), `regdae_err_bad_input`
+    !! (shapes or eps < 0) or `regdae_err_lapack`.
+    subroutine damped_lsq_solve(ws, a, r, eps, method, y, stat)
+        type(damped_lsq_workspace), intent(inout) :: ws
+        real(wp), intent(in) :: a(:, :)   !! p x q matrix (GB)
+        real(wp), intent(in) :: r(:)      !! right-hand side, length p
+        real(wp), intent(in) :: eps       !! damping, eps >= 0
+        integer, intent(in) :: method     !! `lsq_normal` or `lsq_stacked`
+        real(wp), intent(out) :: y(:)     !! solution, length q
+        integer, intent(out) :: stat
+        integer :: p, q, i, info, rows
+
+        p = size(a, 1)
+        q = size(a, 2)
+        if (p /= ws%p .or. q /= ws%q .or. size(r) /= p .or. size(y) /= q .or. .not. (eps >= 0.0_wp)) then
+            stat = regdae_err_bad_input
+            return
+        end if
+        stat = regdae_success
+        if (q == 0) return
+        select case (method)
+        case (lsq_normal)
+            ws%mat(1:q, 1:q) = matmul(transpose(a), a)
+            do i = 1, q
+                ws%mat(i, i) = ws%mat(i, i) + eps
+            end do
+            y = matmul(r, a)
+            call dposv('L', q, 1, ws%mat, size(ws%mat, 1), y, q, info)
+            if (info > 0) stat = regdae_err_singular
+        case (lsq_stacked)
+            rows = p + q
+            ws%mat(1:p, 1:q) = a
+            ws%mat(p + 1:rows, 1:q) = 0.0_wp
+            do i = 1, q
+                ws%mat(p + i, i) = sqrt(eps)
+            end do
+            ws%vec(1:p) = r
+            ws%vec(p + 1:rows) = 0.0_wp
+            call dgelsd(rows, q, 1, ws%mat, size(ws%mat, 1), ws%vec, size(ws%vec), ws%sv, -1.0_wp, &
+                        ws%last_rank, ws%work, size(ws%work), ws%iwork, info)
+            if (info > 0) stat = regdae_err_singular   ! SVD did not converge
+            y = ws%vec(1:q)
+        case default
+            stat = regdae_err_bad_input
+            return
+        end select
+        if (info < 0) stat = regdae_err_lapack
+    end subroutine damped_lsq_solve
+
+    !> Solve (A + eps I) y = r by Cholesky, A symmetric positive semidefinite.
+    !!
+    !! A is first checked for symmetry (to a relative 1e-8 of its largest
+    !! entry); a non-symmetric A or a failed Cholesky factorization gives
+    !! `regdae_err_not_psd`.
+    subroutine shifted_spd_solve(ws, a, r, eps, y, stat)
+        type(damped_lsq_workspace), intent(inout) :: ws
+        real(wp), intent(in) :: a(:, :)   !! q x q symmetric PSD matrix (GB)
+        real(wp), intent(in) :: r(:)      !! right-hand side, length q
+        real(wp), intent(in) :: eps       !! shift, eps >= 0
+        real(wp), intent(out) :: y(:)     !! solution, length q
+        integer, intent(out) :: stat
+        real(wp), parameter :: symmetry_tol = 1.0e-8_wp
+        integer :: q, i, info
+
+        q = size(a, 2)
+        if (size(a, 1) /= q .or. q /= ws%q .or. size(r) /= q .or. size(y) /= q .or. .not. (eps >= 0.0_wp)) then
+            stat = regdae_err_bad_input
+            return
+        end if
+        stat = regdae_success
+        if (q == 0) return
+        if (maxval(abs(a - transpose(a))) > symmetry_tol*maxval(abs(a))) then
+            stat = regdae_err_not_psd
+            return
+        end if
+        ws%mat(1:q, 1:q) = a
+        do i = 1, q
+            ws%mat(i, i) = ws%mat(i, i) + eps
+        end do
+        y = r
+        call dposv('L', q, 1, ws%mat, size(ws%mat, 1), y, q, info)
+        if (info > 0) stat = regdae_err_not_psd
+        if (info < 0) stat = regdae_err_lapack
+    end subroutine shifted_spd_solve
+
+    !> Solve A y = r by LU with partial pivoting (Baumgarte, eq. 2.7).
+    !! A singular A (an exactly zero pivot) gives `regdae_err_singular`.
+    subroutine square_solve(ws, a, r, y, stat)
+        type(damped_lsq_workspace), intent(inout) :: ws
+        real(wp), intent(in) :: a(:, :)   !! q x q matrix (GB)
+        real(wp), intent(in) :: r(:)      !! right-hand side, length q
+        real(wp), intent(out) :: y(:)     !! solution, length q
+        integer, intent(out) :: stat
+        integer :: q, info
+
+        q = size(a, 2)
+        if (size(a, 1) /= q .or. q /= ws%q .or. size(r) /= q .or. size(y) /= q) then
+            stat = regdae_err_bad_input
+            return
+        end if
+        stat = regdae_success
+        if (q == 0) return
+        ws%mat(1:q, 1:q) = a
+        y = r
+        call dgesv(q, 1, ws%mat, size(ws%mat, 1), ws%ipiv, y, q, info)
+        if (info > 0) stat = regdae_err_singular
+        if (info < 0) stat = regdae_err_lapack
+    end subroutine square_solve
+
+end module regdae_damped_lsq

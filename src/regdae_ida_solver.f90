@@ -1,0 +1,584 @@
+!> The regdae solver: a regularized index-2 DAE integrated by SUNDIALS IDA.
+!!
+!! ```fortran
+!! type(regdae_solver) :: solver
+!! call solver%init(problem, t0, x0, opts, stat)
+!! do k = 1, nout
+!!     call solver%advance(tout(k), x, y, stat)
+!! end do
+!! call solver%destroy()
+!! ```
+!! All state lives in the solver object (IDA memory, vectors, options, the
+!! problem's copy, counters), so any number of solvers can exist in one
+!! program. A solver must not be copied by assignment; `init` may be called
+!! again to start a new problem on the same object.
+module regdae_ida_solver
+    use, intrinsic :: iso_c_binding
+    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+    use fida_mod
+    use fsundials_context_mod
+    use fsundials_nvector_mod
+    use fnvector_serial_mod
+    use fsundials_matrix_mod
+    use fsunmatrix_dense_mod
+    use fsundials_linearsolver_mod
+    use fsunlinsol_dense_mod
+    use regdae_kinds, only: wp
+    use regdae_status
+    use regdae_problem, only: dae_problem
+    use regdae_options
+    use regdae_regularization, only: regularized_dae, format_real
+    implicit none
+    private
+
+    !> Integration statistics, in IDA's terms.
+    type, public :: solver_stats
+        integer(int64) :: steps = 0            !! steps taken
+        integer(int64) :: res_evals = 0        !! all residual evaluations (IDA's + Jacobian's)
+        integer(int64) :: jac_res_evals = 0    !! residual evaluations in difference-quotient Jacobians
+        integer(int64) :: jac_evals = 0        !! Jacobian evaluations
+        integer(int64) :: lin_setups = 0       !! linear solver setups (factorizations)
+        integer(int64) :: nonlin_iters = 0     !! Newton iterations
+        integer(int64) :: err_test_fails = 0   !! local error test failures
+        integer(int64) :: conv_fails = 0       !! nonlinear convergence failures
+        real(wp) :: t = 0.0_wp                 !! time reached
+        real(wp) :: h_last = 0.0_wp            !! last step size used
+    end type solver_stats
+
+    ! Everything IDA's callbacks reach through user_data; allocated once per init
+    ! so that its address stays fixed.
+    type :: solver_core
+        type(regularized_dae) :: model
+        type(solver_options) :: opts
+        integer :: n = 0, m = 0, neq = 0
+        real(wp) :: t = 0.0_wp
+        type(c_ptr) :: sunctx = c_null_ptr
+        type(c_ptr) :: ida_mem = c_null_ptr
+        type(N_Vector), pointer :: uu => null(), up => null(), idv => null()
+        type(SUNMatrix), pointer :: jmat => null()
+        type(SUNLinearSolver), pointer :: ls => null()
+        real(wp), allocatable :: u_pert(:), up_pert(:), r_pert(:), y_work(:)
+        integer(int64) :: jac_res_evals = 0
+        integer :: pending_stat = regdae_success   ! last failure seen in a callback
+        logical :: pending_recoverable = .true.
+        character(len=:), allocatable :: pending_message, ida_message
+    end type solver_core
+
+    !> A regularized DAE solver on IDA (see the module documentation).
+    type, public :: regdae_solver
+        private
+        type(solver_core), pointer :: core => null()
+        real(wp) :: t = 0.0_wp   ! time reached
+        integer :: last_stat = regdae_err_not_initialized
+        character(len=:), allocatable :: last_message
+    contains
+        !> Set up a problem: check the input, compute consistent initial values
+        !! and create the IDA objects.
+        procedure :: init => solver_init
+        !> Integrate to `tout`; return x(tout) and the multiplier y(tout).
+        procedure :: advance => solver_advance
+        !> Statistics of the integration so far.
+        procedure :: statistics => solver_statistics
+        !> Message of the last call (empty after success).
+        procedure :: message => solver_message
+        !> The resolved least-squares solver (`lsq_normal` or `lsq_stacked`).
+        procedure :: lsq_method => solver_lsq_method
+        !> Free all IDA and SUNDIALS objects (also done by `init` and finalization).
+        procedure :: destroy => solver_destroy
+        final :: solver_finalize
+    end type regdae_solver
+
+contains
+
+    subroutine solver_init(self, problem, t0, x0, opts, stat)
+        class(regdae_solver), intent(inout) :: self
+        class(dae_problem), intent(in) :: problem   !! the DAE (copied)
+        real(wp), intent(in) :: t0                  !! initial time
+        real(wp), intent(in) :: x0(:)               !! x(t0), length n; must satisfy g(x0, t0) = 0
+        type(solver_options), intent(in) :: opts    !! options (validated here)
+        integer, intent(out) :: stat                !! regdae status code
+        type(solver_core), pointer :: core
+        character(len=:), allocatable :: msg
+        real(wp), allocatable :: y0(:), xp0(:)
+        integer :: lsq, n, m
+        logical :: recoverable
+        real(wp) :: gnorm
+
+        call self%destroy()
+        self%t = t0
+        call validate_options(opts, stat, msg)
+        if (stat /= regdae_success) then
+            call fail(stat, msg)
+            return
+        end if
+        n = problem%n
+        m = problem%m
+        if (n < 1 .or. m < 0 .or. m > n) then
+            call fail(regdae_err_bad_input, 'problem sizes must satisfy 1 <= n and 0 <= m <= n (n = '// &
+                      itoa(n)//', m = '//itoa(m)//')')
+            return
+        end if
+        if (size(x0) /= n) then
+            call fail(regdae_err_bad_input, 'x0 has length '//itoa(size(x0))//', the problem has n = '//itoa(n))
+            return
+        end if
+        if (.not. ieee_is_finite(t0)) then
+            call fail(regdae_err_bad_input, 't0 is NaN or Inf')
+            return
+        end if
+        if (.not. all(ieee_is_finite(x0))) then
+            call fail(regdae_err_bad_input, 'x0 contains NaN or Inf')
+            return
+        end if
+
+        allocate (self%core)
+        core => self%core
+        core%opts = opts
+        core%n = n
+        core%m = m
+        core%t = t0
+        core%pending_message = ''
+        core%ida_message = ''
+
+        ! Consistent initial values from the regularized equations.
+        call core%model%init(problem, opts, lsq_normal)
+        call core%model%evaluate(t0, x0, stat, recoverable)
+        if (stat /= regdae_success) then
+            call fail(stat, 'at the initial point: '//core%model%message)
+            return
+        end if
+        gnorm = 0.0_wp
+        if (m > 0) gnorm = maxval(abs(core%model%g))
+        if (gnorm > opts%ic_tol) then
+            call fail(regdae_err_inconsistent_ic, 'inconsistent initial values: max |g(x0, t0)| = '// &
+                      format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol))
+            return
+        end if
+        lsq = opts%lsq
+        if (lsq == lsq_auto) then
+            lsq = lsq_normal
+            if (opts%eps < 1.0e-8_wp*max(1.0_wp, sum(core%model%gb**2))) lsq = lsq_stacked
+        end if
+        core%model%lsq = lsq
+        allocate (y0(m), xp0(n))
+        call core%model%solve_multiplier(t0, y0, stat)
+        if (stat /= regdae_success) then
+            call fail(stat, 'at the initial point: '//core%model%message)
+            return
+        end if
+        xp0 = core%model%f - matmul(core%model%b, y0)
+
+        if (opts%formulation == formulation_multiplier) then
+            core%neq = n + m
+        else
+            core%neq = n
+        end if
+        allocate (core%u_pert(core%neq), core%up_pert(core%neq), core%r_pert(core%neq), core%y_work(m))
+        call create_ida(core, t0, [x0, y0], [xp0, spread(0.0_wp, 1, m)], stat, msg)
+        if (stat /= regdae_success) then
+            call fail(stat, msg)
+            return
+        end if
+        self%last_stat = regdae_success
+        self%last_message = ''
+    contains
+        subroutine fail(code, text)
+            integer, intent(in) :: code
+            character(len=*), intent(in) :: text
+            stat = code
+            self%last_stat = code
+            self%last_message = text
+            call self%destroy()
+        end subroutine fail
+    end subroutine solver_init
+
+    ! Create the SUNDIALS context, vectors, IDA memory and the dense linear solver.
+    subroutine create_ida(core, t0, u0, up0, stat, msg)
+        type(solver_core), pointer, intent(in) :: core
+        real(wp), intent(in) :: t0, u0(:), up0(:)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        integer(c_long) :: neq
+        integer(c_int) :: ierr
+        real(c_double), pointer :: p(:)
+
+        stat = regdae_err_sundials
+        neq = int(core%neq, c_long)
+        ierr = FSUNContext_Create(c_null_ptr, core%sunctx)
+        if (ierr /= 0) then
+            msg = 'FSUNContext_Create failed'
+            return
+        end if
+        core%uu => FN_VNew_Serial(neq, core%sunctx)
+        core%up => FN_VNew_Serial(neq, core%sunctx)
+        if (.not. (associated(core%uu) .and. associated(core%up))) then
+            msg = 'FN_VNew_Serial failed'
+            return
+        end if
+        p => FN_VGetArrayPointer(core%uu)
+        p = u0(1:core%neq)
+        p => FN_VGetArrayPointer(core%up)
+        p = up0(1:core%neq)
+
+        core%ida_mem = FIDACreate(core%sunctx)
+        if (.not. c_associated(core%ida_mem)) then
+            msg = 'FIDACreate failed'
+            return
+        end if
+        ierr = FIDASetErrHandlerFn(core%ida_mem, c_funloc(ida_error_handler), c_loc(core))
+        if (ierr == 0) ierr = FIDAInit(core%ida_mem, c_funloc(ida_residual), t0, core%uu, core%up)
+        if (ierr == 0) ierr = FIDASetUserData(core%ida_mem, c_loc(core))
+        if (ierr /= 0) then
+            msg = 'FIDAInit failed: '//core%ida_message
+            return
+        end if
+
+        ! Tolerances and the exclusion of y from the local error test.
+        if (core%neq > core%n .and. core%opts%exclusion == exclusion_weights) then
+            ierr = FIDAWFtolerances(core%ida_mem, c_funloc(ida_error_weights))
+        else
+            ierr = FIDASStolerances(core%ida_mem, core%opts%rtol, core%opts%atol)
+        end if
+        if (ierr == 0 .and. core%neq > core%n .and. core%opts%exclusion == exclusion_suppress) then
+            core%idv => FN_VNew_Serial(neq, core%sunctx)
+            if (.not. associated(core%idv)) then
+                msg = 'FN_VNew_Serial failed'
+                return
+            end if
+            p => FN_VGetArrayPointer(core%idv)
+            p(1:core%n) = 1.0_wp        ! differential
+            p(core%n + 1:) = 0.0_wp     ! algebraic: y
+            ierr = FIDASetId(core%ida_mem, core%idv)
+            if (ierr == 0) ierr = FIDASetSuppressAlg(core%ida_mem, 1_c_int)
+        end if
+        if (ierr /= 0) then
+            msg = 'setting the tolerances failed: '//core%ida_message
+            return
+        end if
+
+        ! Dense linear algebra with our own, weight-independent Jacobian.
+        core%jmat => FSUNDenseMatrix(neq, neq, core%sunctx)
+        if (.not. associated(core%jmat)) then
+            msg = 'FSUNDenseMatrix failed'
+            return
+        end if
+        core%ls => FSUNLinSol_Dense(core%uu, core%jmat, core%sunctx)
+        if (.not. associated(core%ls)) then
+            msg = 'FSUNLinSol_Dense failed'
+            return
+        end if
+        ierr = FIDASetLinearSolver(core%ida_mem, core%ls, core%jmat)
+        if (ierr == 0) ierr = FIDASetJacFn(core%ida_mem, c_funloc(ida_jacobian))
+        if (ierr == 0) ierr = FIDASetMaxNumSteps(core%ida_mem, int(core%opts%max_steps, c_long))
+        if (ierr == 0 .and. core%opts%h_init > 0.0_wp) ierr = FIDASetInitStep(core%ida_mem, core%opts%h_init)
+        if (ierr == 0 .and. core%opts%h_max > 0.0_wp) ierr = FIDASetMaxStep(core%ida_mem, core%opts%h_max)
+        if (ierr /= 0) then
+            msg = 'IDA setup failed: '//core%ida_message
+            return
+        end if
+        stat = regdae_success
+        msg = ''
+    end subroutine create_ida
+
+    subroutine solver_advance(self, tout, x, y, stat)
+        class(regdae_solver), intent(inout) :: self
+        real(wp), intent(in) :: tout      !! output time (beyond the current time, or equal to it)
+        real(wp), intent(out) :: x(:)     !! x(tout), length n
+        real(wp), intent(out) :: y(:)     !! y(tout), length m, recomputed from x(tout)
+        integer, intent(out) :: stat      !! regdae status code
+        type(solver_core), pointer :: core
+        real(c_double), pointer :: u(:)
+        real(c_double) :: tret(1)
+        integer(c_int) :: ierr
+        logical :: recoverable
+
+        core => self%core
+        if (.not. associated(core)) then
+            call fail(regdae_err_not_initialized, 'advance called before a successful init')
+            return
+        end if
+        if (size(x) /= core%n .or. size(y) /= core%m) then
+            call fail(regdae_err_bad_input, 'advance: x must have length '//itoa(core%n)// &
+                      ' and y length '//itoa(core%m))
+            return
+        end if
+        if (.not. ieee_is_finite(tout)) then
+            call fail(regdae_err_bad_input, 'advance: tout is NaN or Inf')
+            return
+        end if
+        if (tout < core%t) then
+            call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout)// &
+                      ' is before the current time '//format_real(core%t))
+            return
+        end if
+        core%pending_stat = regdae_success
+        core%pending_message = ''
+        u => FN_VGetArrayPointer(core%uu)
+        if (tout > core%t) then
+            ! SUNDIALS 6.4.1 keeps a stop time in force after returning at it: set it anew each call.
+            ierr = 0
+            if (core%opts%stop_at_output) ierr = FIDASetStopTime(core%ida_mem, tout)
+            if (ierr == 0) ierr = FIDASolve(core%ida_mem, tout, tret, core%uu, core%up, IDA_NORMAL)
+            if (ierr < 0) then
+                core%t = tret(1)
+                x = u(1:core%n)
+                y = ieee_value(1.0_wp, ieee_quiet_nan)
+                if (core%pending_stat /= regdae_success .and. .not. core%pending_recoverable) then
+                    stat = core%pending_stat
+                else
+                    stat = regdae_err_integration
+                end if
+                call fail(stat, 'IDA failed at t = '//format_real(tret(1))//' (flag '//itoa(int(ierr))//'): '// &
+                          core%ida_message//merge_text(' | last residual failure: ', core%pending_message))
+                return
+            end if
+            if (tret(1) /= tout) then
+                call fail(regdae_err_integration, 'IDA returned at t = '//format_real(tret(1))// &
+                          ' instead of the requested '//format_real(tout))
+                return
+            end if
+            core%t = tout
+        end if
+        self%t = core%t
+        x = u(1:core%n)
+        ! The multiplier at an output time comes from the regularized equation, not
+        ! from IDA's interpolant.
+        call core%model%evaluate(tout, x, stat, recoverable)
+        if (stat == regdae_success) call core%model%solve_multiplier(tout, y, stat)
+        if (stat /= regdae_success) then
+            ! x(tout) is valid; only the multiplier equation is singular here
+            ! (Baumgarte where GB is singular, or eps = 0 with the normal equations).
+            y = ieee_value(1.0_wp, ieee_quiet_nan)
+            stat = regdae_warn_multiplier_undefined
+            self%last_stat = stat
+            self%last_message = 'the multiplier at t = '//format_real(tout)//' is undefined: '//core%model%message
+            return
+        end if
+        self%last_stat = regdae_success
+        self%last_message = ''
+    contains
+        subroutine fail(code, text)
+            integer, intent(in) :: code
+            character(len=*), intent(in) :: text
+            stat = code
+            self%last_stat = code
+            self%last_message = text
+            if (associated(core)) self%t = core%t
+        end subroutine fail
+    end subroutine solver_advance
+
+    function solver_statistics(self) result(st)
+        class(regdae_solver), intent(in) :: self
+        type(solver_stats) :: st
+        integer(c_long) :: k(1)
+        real(c_double) :: h(1)
+        integer(c_int) :: ierr
+
+        st%t = self%t
+        if (.not. associated(self%core)) return
+        associate (mem => self%core%ida_mem)
+            ierr = FIDAGetNumSteps(mem, k); st%steps = k(1)
+            ierr = FIDAGetNumResEvals(mem, k); st%res_evals = k(1) + self%core%jac_res_evals
+            ierr = FIDAGetNumJacEvals(mem, k); st%jac_evals = k(1)
+            ierr = FIDAGetNumLinSolvSetups(mem, k); st%lin_setups = k(1)
+            ierr = FIDAGetNumNonlinSolvIters(mem, k); st%nonlin_iters = k(1)
+            ierr = FIDAGetNumErrTestFails(mem, k); st%err_test_fails = k(1)
+            ierr = FIDAGetNumNonlinSolvConvFails(mem, k); st%conv_fails = k(1)
+            ierr = FIDAGetLastStep(mem, h); st%h_last = h(1)
+        end associate
+        st%jac_res_evals = self%core%jac_res_evals
+    end function solver_statistics
+
+    function solver_message(self) result(msg)
+        class(regdae_solver), intent(in) :: self
+        character(len=:), allocatable :: msg
+        if (allocated(self%last_message)) then
+            msg = self%last_message
+        else
+            msg = status_message(self%last_stat)
+        end if
+    end function solver_message
+
+    integer function solver_lsq_method(self)
+        class(regdae_solver), intent(in) :: self
+        solver_lsq_method = 0
+        if (associated(self%core)) solver_lsq_method = self%core%model%lsq
+    end function solver_lsq_method
+
+    subroutine solver_destroy(self)
+        class(regdae_solver), intent(inout) :: self
+        type(solver_core), pointer :: core
+        integer(c_int) :: ierr
+
+        core => self%core
+        if (.not. associated(core)) return
+        if (c_associated(core%ida_mem)) call FIDAFree(core%ida_mem)
+        if (associated(core%ls)) ierr = FSUNLinSolFree(core%ls)
+        if (associated(core%jmat)) call FSUNMatDestroy(core%jmat)
+        if (associated(core%idv)) call FN_VDestroy(core%idv)
+        if (associated(core%up)) call FN_VDestroy(core%up)
+        if (associated(core%uu)) call FN_VDestroy(core%uu)
+        if (c_associated(core%sunctx)) ierr = FSUNContext_Free(core%sunctx)
+        deallocate (self%core)
+        self%core => null()
+    end subroutine solver_destroy
+
+    subroutine solver_finalize(self)
+        type(regdae_solver), intent(inout) :: self
+        call self%destroy()
+    end subroutine solver_finalize
+
+    ! ---------------------------------------------------------------------
+    ! The bridge to IDA: bind(C) callbacks that reach the solver core through
+    ! IDA's user_data.
+    ! ---------------------------------------------------------------------
+
+    ! Regularized residual for the unknowns u (x, or (x, y)); returns 0, or
+    ! +1 (recoverable) / -1 (fatal) after recording the failure in the core.
+    integer(c_int) function evaluate_residual(core, t, u, up, res) result(ierr)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, u(:), up(:)
+        real(wp), intent(out) :: res(:)
+        integer :: stat, n
+        logical :: recoverable
+
+        n = core%n
+        if (core%neq == n) then
+            call core%model%residual_eliminated(t, u, up, res, core%y_work, stat, recoverable)
+        else
+            call core%model%residual_multiplier(t, u(1:n), u(n + 1:), up(1:n), res(1:n), res(n + 1:), &
+                                                stat, recoverable)
+        end if
+        ierr = 0
+        if (stat == regdae_success) then
+            if (all(ieee_is_finite(res))) return
+            stat = regdae_err_nonfinite
+            recoverable = .true.
+            core%model%message = 'NaN or Inf in the residual at t = '//format_real(t)
+        end if
+        core%pending_stat = stat
+        core%pending_recoverable = recoverable
+        core%pending_message = core%model%message
+        ierr = merge(1_c_int, -1_c_int, recoverable)
+    end function evaluate_residual
+
+    integer(c_int) function ida_residual(t, nv_u, nv_up, nv_res, user_data) result(ierr) bind(C)
+        real(c_double), value :: t
+        type(N_Vector) :: nv_u, nv_up, nv_res
+        type(c_ptr), value :: user_data
+        type(solver_core), pointer :: core
+        real(c_double), pointer :: u(:), up(:), res(:)
+
+        call c_f_pointer(user_data, core)
+        u => FN_VGetArrayPointer(nv_u)
+        up => FN_VGetArrayPointer(nv_up)
+        res => FN_VGetArrayPointer(nv_res)
+        ierr = evaluate_residual(core, t, u, up, res)
+    end function ida_residual
+
+    ! Dense Jacobian dF/du + cj dF/du' by forward differences, column j with the
+    ! increment d_j = sqrt(u) max(|u_j|, 1): independent of IDA's error weights,
+    ! so it is defined also when some weights are zero.
+    integer(c_int) function ida_jacobian(t, cj, nv_u, nv_up, nv_res, jmat, user_data, tmp1, tmp2, tmp3) &
+        result(ierr) bind(C)
+        real(c_double), value :: t, cj
+        type(N_Vector) :: nv_u, nv_up, nv_res
+        type(SUNMatrix) :: jmat
+        type(c_ptr), value :: user_data
+        type(N_Vector) :: tmp1, tmp2, tmp3
+        type(solver_core), pointer :: core
+        real(c_double), pointer :: u(:), up(:), res(:), jdata(:), jac(:, :)
+        real(wp) :: delta, sqrt_unit
+        integer :: j, neq
+
+        call c_f_pointer(user_data, core)
+        neq = core%neq
+        u => FN_VGetArrayPointer(nv_u)
+        up => FN_VGetArrayPointer(nv_up)
+        res => FN_VGetArrayPointer(nv_res)
+        ! FSUNDenseMatrix_Data returns a rank-1 pointer of extent 1: rebuild the
+        ! n x n view from its address.
+        jdata => FSUNDenseMatrix_Data(jmat)
+        call c_f_pointer(c_loc(jdata(1)), jac, [neq, neq])
+        sqrt_unit = sqrt(epsilon(1.0_wp))
+        core%u_pert = u(1:neq)
+        core%up_pert = up(1:neq)
+        do j = 1, neq
+            delta = sqrt_unit*max(abs(u(j)), 1.0_wp)
+            core%u_pert(j) = u(j) + delta
+            delta = core%u_pert(j) - u(j)       ! the increment actually represented
+            core%up_pert(j) = up(j) + cj*delta
+            ierr = evaluate_residual(core, t, core%u_pert, core%up_pert, core%r_pert)
+            core%jac_res_evals = core%jac_res_evals + 1
+            if (ierr /= 0) return
+            jac(:, j) = (core%r_pert - res(1:neq))/delta
+            core%u_pert(j) = u(j)
+            core%up_pert(j) = up(j)
+        end do
+        ierr = 0
+    end function ida_jacobian
+
+    ! Error weights with y left out: 1/(rtol |x_i| + atol) for x, 0 for y.
+    integer(c_int) function ida_error_weights(nv_u, nv_ewt, user_data) result(ierr) bind(C)
+        type(N_Vector) :: nv_u, nv_ewt
+        type(c_ptr), value :: user_data
+        type(solver_core), pointer :: core
+        real(c_double), pointer :: u(:), ewt(:)
+
+        call c_f_pointer(user_data, core)
+        u => FN_VGetArrayPointer(nv_u)
+        ewt => FN_VGetArrayPointer(nv_ewt)
+        ewt(1:core%n) = 1.0_wp/(core%opts%rtol*abs(u(1:core%n)) + core%opts%atol)
+        ewt(core%n + 1:core%neq) = 0.0_wp
+        ierr = 0
+    end function ida_error_weights
+
+    ! Keep IDA's last message in the core instead of printing it.
+    subroutine ida_error_handler(error_code, module_name, function_name, msg, user_data) bind(C)
+        integer(c_int), value :: error_code
+        type(c_ptr), value :: module_name, function_name, msg
+        type(c_ptr), value :: user_data
+        type(solver_core), pointer :: core
+
+        if (error_code == 0) return
+        call c_f_pointer(user_data, core)
+        core%ida_message = c_string(function_name)//': '//c_string(msg)
+    end subroutine ida_error_handler
+
+    ! A C string as a Fortran string.
+    function c_string(p) result(s)
+        type(c_ptr), intent(in) :: p
+        character(len=:), allocatable :: s
+        character(kind=c_char), pointer :: chars(:)
+        integer :: k, length
+        length = 0
+        if (c_associated(p)) then
+            call c_f_pointer(p, chars, [4096])
+            do while (length < size(chars))
+                if (chars(length + 1) == c_null_char) exit
+                length = length + 1
+            end do
+        end if
+        allocate (character(len=length) :: s)
+        do k = 1, length
+            s(k:k) = chars(k)
+        end do
+    end function c_string
+
+    pure function itoa(k) result(s)
+        integer, intent(in) :: k
+        character(len=:), allocatable :: s
+        character(len=16) :: buf
+        write (buf, '(i0)') k
+        s = trim(buf)
+    end function itoa
+
+    pure function merge_text(prefix, text) result(s)
+        character(len=*), intent(in) :: prefix, text
+        character(len=:), allocatable :: s
+        s = ''
+        if (len(text) > 0) s = prefix//text
+    end function merge_text
+
+end module regdae_ida_solver

@@ -1,0 +1,62 @@
+!> Explicit interfaces to the LAPACK routines regdae calls.
+!!
+!! LAPACK is external Fortran 77 code; these interfaces let the compiler check
+!! every call's argument types and ranks.
+module regdae_lapack
+    use regdae_kinds, only: wp
+    implicit none
+    private
+
+    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv
+
+    interface
+        !> Solve A X = B, A symmetric positive definite (Cholesky).
+        subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
+            import :: wp
+            character, intent(in) :: uplo
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dposv
+
+        !> Cholesky factorization of a symmetric positive definite matrix.
+        subroutine dpotrf(uplo, n, a, lda, info)
+            import :: wp
+            character, intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotrf
+
+        !> Solve with a Cholesky factor computed by dpotrf.
+        subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
+            import :: wp
+            character, intent(in) :: uplo
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(wp), intent(in) :: a(lda, *)
+            real(wp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dpotrs
+
+        !> Minimum-norm least-squares solution by the SVD (divide and conquer).
+        subroutine dgelsd(m, n, nrhs, a, lda, b, ldb, s, rcond, rank, work, lwork, iwork, info)
+            import :: wp
+            integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
+            real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+            real(wp), intent(out) :: s(*)
+            real(wp), intent(in) :: rcond
+            integer, intent(out) :: rank, info
+            real(wp), intent(inout) :: work(*)
+            integer, intent(inout) :: iwork(*)
+        end subroutine dgelsd
+
+        !> Solve A X = B by LU factorization with partial pivoting.
+        subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: wp
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: ipiv(*), info
+        end subroutine dgesv
+    end interface
+
+end module regdae_lapack

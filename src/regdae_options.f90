@@ -1,0 +1,245 @@
+!> Solver options: a typed record with documented defaults, settable from
+!! `key=value` strings (the same keys the drivers accept).
+!!
+!! | key            | values                                | default        |
+!! |----------------|---------------------------------------|----------------|
+!! | method         | baumgarte, trust_region, direct       | trust_region   |
+!! | formulation    | multiplier, eliminated                | multiplier     |
+!! | lsq            | auto, normal, stacked                 | auto           |
+!! | exclusion      | suppress, weights, off                | suppress       |
+!! | gamma          | > 0                                   | 1e3            |
+!! | eps            | >= 0                                  | 1e-6           |
+!! | rtol, atol     | 0 < rtol < 1, atol > 0                | 1e-5, 1e-5     |
+!! | stop_at_output | yes, no                               | no             |
+!! | max_steps      | >= 1 (per output interval)            | 100000         |
+!! | h_init, h_max  | >= 0 (0: IDA's choice / no limit)     | 0, 0           |
+!! | ic_tol         | > 0                                   | 1e-8           |
+module regdae_options
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use regdae_kinds, only: wp
+    use regdae_status, only: regdae_success, regdae_err_bad_input
+    use regdae_damped_lsq, only: lsq_normal, lsq_stacked
+    implicit none
+    private
+
+    integer, parameter, public :: method_baumgarte = 1     !! (2.1a) with (2.5): gamma g + G x' + g_t = 0
+    integer, parameter, public :: method_trust_region = 2  !! (2.10)/(2.11)
+    integer, parameter, public :: method_direct = 3        !! (2.12)/(2.13)
+
+    integer, parameter, public :: formulation_multiplier = 1  !! IDA unknowns (x, y)
+    integer, parameter, public :: formulation_eliminated = 2  !! IDA unknowns x; y solved in the residual
+
+    integer, parameter, public :: lsq_auto = 0  !! stacked if eps < 1e-8 max(1, |GB(t0)|_F^2), else normal
+    public :: lsq_normal, lsq_stacked
+
+    integer, parameter, public :: exclusion_suppress = 1  !! FIDASetId + FIDASetSuppressAlg
+    integer, parameter, public :: exclusion_weights = 2   !! zero error weights (FIDAWFtolerances)
+    integer, parameter, public :: exclusion_off = 3       !! y stays in the error test
+
+    !> All options of a regdae solver, with their defaults.
+    type, public :: solver_options
+        integer :: method = method_trust_region        !! regularization
+        integer :: formulation = formulation_multiplier !! what IDA integrates
+        integer :: lsq = lsq_auto                      !! damped least-squares solver
+        integer :: exclusion = exclusion_suppress      !! how y leaves IDA's local error test
+        real(wp) :: gamma = 1.0e3_wp                   !! Baumgarte parameter (paper: 1/h)
+        real(wp) :: eps = 1.0e-6_wp                    !! damping of trust-region / direct
+        real(wp) :: rtol = 1.0e-5_wp                   !! relative tolerance (IDA)
+        real(wp) :: atol = 1.0e-5_wp                   !! absolute tolerance (IDA)
+        logical :: stop_at_output = .false.            !! make a step end at every output time
+        integer :: max_steps = 100000                  !! IDA steps allowed per call of `advance`
+        real(wp) :: h_init = 0.0_wp                    !! first step size (0: IDA estimates it)
+        real(wp) :: h_max = 0.0_wp                     !! largest step size (0: unlimited)
+        real(wp) :: ic_tol = 1.0e-8_wp                 !! allowed max |g(x0, t0)|
+    end type solver_options
+
+    public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name
+
+contains
+
+    !> Set one option from its `key` and textual `value`.
+    !! An unknown key or a bad value gives `regdae_err_bad_input` and a message
+    !! naming it.
+    subroutine set_option(opts, key, value, stat, msg)
+        type(solver_options), intent(inout) :: opts
+        character(len=*), intent(in) :: key     !! option name (see the table above)
+        character(len=*), intent(in) :: value   !! its value as text
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg   !! empty on success
+        type(solver_options) :: previous
+        integer :: code
+
+        previous = opts
+        stat = regdae_success
+        msg = ''
+        select case (key)
+        case ('method')
+            call lookup(value, [character(len=12) :: 'baumgarte', 'trust_region', 'direct'], code)
+            if (code > 0) opts%method = code
+        case ('formulation')
+            call lookup(value, [character(len=12) :: 'multiplier', 'eliminated'], code)
+            if (code > 0) opts%formulation = code
+        case ('lsq')
+            call lookup(value, [character(len=12) :: 'normal', 'stacked', 'auto'], code)
+            if (code > 0) opts%lsq = merge(lsq_auto, code, code == 3)
+        case ('exclusion')
+            call lookup(value, [character(len=12) :: 'suppress', 'weights', 'off'], code)
+            if (code > 0) opts%exclusion = code
+        case ('stop_at_output')
+            call lookup(value, [character(len=12) :: 'yes', 'no'], code)
+            if (code > 0) opts%stop_at_output = (code == 1)
+        case ('gamma')
+            call read_real(value, opts%gamma, code)
+        case ('eps')
+            call read_real(value, opts%eps, code)
+        case ('rtol')
+            call read_real(value, opts%rtol, code)
+        case ('atol')
+            call read_real(value, opts%atol, code)
+        case ('h_init')
+            call read_real(value, opts%h_init, code)
+        case ('h_max')
+            call read_real(value, opts%h_max, code)
+        case ('ic_tol')
+            call read_real(value, opts%ic_tol, code)
+        case ('max_steps')
+            call read_integer(value, opts%max_steps, code)
+        case default
+            stat = regdae_err_bad_input
+            msg = 'unknown option "'//key//'"'
+            return
+        end select
+        if (code <= 0) then
+            stat = regdae_err_bad_input
+            msg = 'bad value "'//value//'" for option "'//key//'"'
+            return
+        end if
+        call validate_options(opts, stat, msg)
+        if (stat /= regdae_success) opts = previous
+    end subroutine set_option
+
+    !> Check every option's range; the message names the first bad one.
+    subroutine validate_options(opts, stat, msg)
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        stat = regdae_err_bad_input
+        if (.not. (ieee_is_finite(opts%gamma) .and. opts%gamma > 0.0_wp)) then
+            msg = 'gamma must be finite and > 0'
+        else if (.not. (ieee_is_finite(opts%eps) .and. opts%eps >= 0.0_wp)) then
+            msg = 'eps must be finite and >= 0'
+        else if (.not. (opts%rtol > 0.0_wp .and. opts%rtol < 1.0_wp)) then
+            msg = 'rtol must be in (0, 1)'
+        else if (.not. (ieee_is_finite(opts%atol) .and. opts%atol > 0.0_wp)) then
+            msg = 'atol must be finite and > 0'
+        else if (.not. (ieee_is_finite(opts%h_init) .and. opts%h_init >= 0.0_wp)) then
+            msg = 'h_init must be finite and >= 0'
+        else if (.not. (ieee_is_finite(opts%h_max) .and. opts%h_max >= 0.0_wp)) then
+            msg = 'h_max must be finite and >= 0'
+        else if (.not. (ieee_is_finite(opts%ic_tol) .and. opts%ic_tol > 0.0_wp)) then
+            msg = 'ic_tol must be finite and > 0'
+        else if (opts%max_steps < 1) then
+            msg = 'max_steps must be >= 1'
+        else if (opts%method < method_baumgarte .or. opts%method > method_direct) then
+            msg = 'unknown method'
+        else if (opts%formulation < formulation_multiplier .or. opts%formulation > formulation_eliminated) then
+            msg = 'unknown formulation'
+        else if (opts%lsq < lsq_auto .or. opts%lsq > lsq_stacked) then
+            msg = 'unknown lsq solver'
+        else if (opts%exclusion < exclusion_suppress .or. opts%exclusion > exclusion_off) then
+            msg = 'unknown exclusion mechanism'
+        else
+            stat = regdae_success
+            msg = ''
+        end if
+    end subroutine validate_options
+
+    !> Name of a method code, as accepted by `set_option`.
+    pure function method_name(code) result(name)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: name
+        select case (code)
+        case (method_baumgarte); name = 'baumgarte'
+        case (method_trust_region); name = 'trust_region'
+        case (method_direct); name = 'direct'
+        case default; name = 'unknown'
+        end select
+    end function method_name
+
+    !> Name of a formulation code.
+    pure function formulation_name(code) result(name)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: name
+        select case (code)
+        case (formulation_multiplier); name = 'multiplier'
+        case (formulation_eliminated); name = 'eliminated'
+        case default; name = 'unknown'
+        end select
+    end function formulation_name
+
+    !> Name of a least-squares solver code.
+    pure function lsq_name(code) result(name)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: name
+        select case (code)
+        case (lsq_auto); name = 'auto'
+        case (lsq_normal); name = 'normal'
+        case (lsq_stacked); name = 'stacked'
+        case default; name = 'unknown'
+        end select
+    end function lsq_name
+
+    !> Name of an error-test exclusion code.
+    pure function exclusion_name(code) result(name)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: name
+        select case (code)
+        case (exclusion_suppress); name = 'suppress'
+        case (exclusion_weights); name = 'weights'
+        case (exclusion_off); name = 'off'
+        case default; name = 'unknown'
+        end select
+    end function exclusion_name
+
+    ! Position of `value` in `names` (1-based), 0 if absent.
+    pure subroutine lookup(value, names, code)
+        character(len=*), intent(in) :: value
+        character(len=*), intent(in) :: names(:)
+        integer, intent(out) :: code
+        integer :: i
+        code = 0
+        do i = 1, size(names)
+            if (value == trim(names(i))) code = i
+        end do
+    end subroutine lookup
+
+    ! Read a finite real; code = 1 on success, 0 otherwise.
+    subroutine read_real(text, x, code)
+        character(len=*), intent(in) :: text
+        real(wp), intent(inout) :: x
+        integer, intent(out) :: code
+        real(wp) :: tmp
+        integer :: ios
+        code = 0
+        if (len_trim(text) == 0 .or. verify(trim(text), '0123456789+-.eEdD') /= 0) return
+        read (text, *, iostat=ios) tmp
+        if (ios /= 0 .or. .not. ieee_is_finite(tmp)) return
+        x = tmp
+        code = 1
+    end subroutine read_real
+
+    ! Read an integer; code = 1 on success, 0 otherwise.
+    subroutine read_integer(text, k, code)
+        character(len=*), intent(in) :: text
+        integer, intent(inout) :: k
+        integer, intent(out) :: code
+        integer :: tmp, ios
+        code = 0
+        if (len_trim(text) == 0 .or. verify(trim(text), '0123456789+-') /= 0) return
+        read (text, *, iostat=ios) tmp
+        if (ios /= 0) return
+        k = tmp
+        code = 1
+    end subroutine read_integer
+
+end module regdae_options

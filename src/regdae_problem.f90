@@ -1,0 +1,82 @@
+!> The user's problem: a semi-explicit index-2 Hessenberg DAE (paper, eq. 2.1)
+!! $$ x' = f(x, t) - B(x, t)\,y, \qquad 0 = g(x, t), $$
+!! with x in R^n, y in R^m, G = g_x (m x n) and B (n x m).
+!!
+!! Extend `dae_problem`, set the components `n` and `m`, and implement the
+!! deferred procedures. Problem parameters are components of your type (never
+!! module variables), so several problems can live in one program. Every
+!! routine receives `stat = 0`; leave it so on success, set it > 0 for a
+!! recoverable failure (the step is retried with a smaller step size) or < 0
+!! to stop the integration.
+!!
+!! Sign convention: B multiplies y with a minus sign, as in sections 2 and 4 of
+!! the paper. A linear DAE written as x' = A x + C^T y + q (section 3) has
+!! B = -C^T here.
+module regdae_problem
+    use regdae_kinds, only: wp
+    implicit none
+    private
+
+    !> Abstract semi-explicit index-2 Hessenberg DAE.
+    type, abstract, public :: dae_problem
+        integer :: n = 0   !! number of differential variables x
+        integer :: m = 0   !! number of constraints and multipliers y
+    contains
+        !> f(x, t), length n.
+        procedure(vector_field), deferred :: rhs
+        !> B(x, t), n x m.
+        procedure(matrix_field), deferred :: matrix_b
+        !> g(x, t), length m.
+        procedure(vector_field), deferred :: constraint
+        !> G = dg/dx (x, t), m x n.
+        procedure(matrix_field), deferred :: constraint_jacobian
+        !> dg/dt (x, t), length m; default: central difference quotient in t.
+        procedure :: constraint_dt => default_constraint_dt
+    end type dae_problem
+
+    abstract interface
+        !> A vector-valued function of (x, t): f (length n) or g (length m).
+        subroutine vector_field(self, t, x, v, stat)
+            import :: dae_problem, wp
+            class(dae_problem), intent(inout) :: self
+            real(wp), intent(in) :: t       !! time
+            real(wp), intent(in) :: x(:)    !! state, length n
+            real(wp), intent(out) :: v(:)   !! value
+            integer, intent(inout) :: stat  !! 0 on entry; > 0 recoverable, < 0 fatal failure
+        end subroutine vector_field
+
+        !> A matrix-valued function of (x, t): B (n x m) or G (m x n).
+        subroutine matrix_field(self, t, x, a, stat)
+            import :: dae_problem, wp
+            class(dae_problem), intent(inout) :: self
+            real(wp), intent(in) :: t          !! time
+            real(wp), intent(in) :: x(:)       !! state, length n
+            real(wp), intent(out) :: a(:, :)   !! value
+            integer, intent(inout) :: stat     !! 0 on entry; > 0 recoverable, < 0 fatal failure
+        end subroutine matrix_field
+    end interface
+
+contains
+
+    !> g_t by the central difference (g(x, t+d) - g(x, t-d)) / (2 d),
+    !! d = u^(1/3) max(|t|, 1): truncation and rounding errors both ~ u^(2/3).
+    subroutine default_constraint_dt(self, t, x, v, stat)
+        class(dae_problem), intent(inout) :: self
+        real(wp), intent(in) :: t        !! time
+        real(wp), intent(in) :: x(:)     !! state, length n
+        real(wp), intent(out) :: v(:)    !! g_t, length m
+        integer, intent(inout) :: stat
+        real(wp) :: d, tp, tm
+        real(wp) :: gm(size(v))
+
+        d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(abs(t), 1.0_wp)
+        tp = t + d
+        tm = t - d
+        call self%constraint(tp, x, v, stat)
+        if (stat /= 0) return
+        call self%constraint(tm, x, gm, stat)
+        if (stat /= 0) return
+        v = (v - gm)/(tp - tm)
+    end subroutine default_constraint_dt
+
+end module regdae_problem

@@ -1,0 +1,63 @@
+!> Status codes of regdae and their messages.
+!!
+!! The sign convention is IDA's: 0 is success, a positive code a warning (the
+!! result is usable, see the code), a negative code an unrecoverable failure. User callbacks follow it too: leave `stat` at 0 on
+!! success, set it > 0 for a recoverable failure (the integrator retries with a
+!! smaller step) and < 0 for an unrecoverable one.
+module regdae_status
+    implicit none
+    private
+
+    integer, parameter, public :: regdae_success = 0                 !! success
+    integer, parameter, public :: regdae_warn_multiplier_undefined = 1  !! x(tout) is valid, y(tout) is not (NaN)
+    integer, parameter, public :: regdae_err_bad_input = -101        !! invalid argument or option
+    integer, parameter, public :: regdae_err_inconsistent_ic = -102  !! x(t0) violates g(x, t0) = 0
+    integer, parameter, public :: regdae_err_user_callback = -103    !! a user routine reported failure
+    integer, parameter, public :: regdae_err_not_psd = -104          !! direct method: GB not symmetric PSD
+    integer, parameter, public :: regdae_err_singular = -105         !! a matrix that must be invertible is singular
+    integer, parameter, public :: regdae_err_lapack = -106           !! LAPACK reported an argument error
+    integer, parameter, public :: regdae_err_sundials = -107         !! SUNDIALS object creation or setup failed
+    integer, parameter, public :: regdae_err_integration = -108      !! IDA failed during the integration
+    integer, parameter, public :: regdae_err_not_initialized = -109  !! solver used before a successful init
+    integer, parameter, public :: regdae_err_nonfinite = -110        !! NaN or Inf in a computed quantity
+
+    public :: status_message
+
+contains
+
+    !> Short, fixed description of a status code (the solver adds the details:
+    !! which quantity, at what time).
+    pure function status_message(code) result(msg)
+        integer, intent(in) :: code          !! a regdae status code
+        character(len=:), allocatable :: msg !! its description
+        select case (code)
+        case (regdae_success)
+            msg = 'success'
+        case (regdae_warn_multiplier_undefined)
+            msg = 'x is valid, but the multiplier is undefined at this time (singular multiplier equation)'
+        case (regdae_err_bad_input)
+            msg = 'invalid input'
+        case (regdae_err_inconsistent_ic)
+            msg = 'inconsistent initial values: the constraint g(x0, t0) = 0 is violated'
+        case (regdae_err_user_callback)
+            msg = 'a user-supplied routine reported failure'
+        case (regdae_err_not_psd)
+            msg = 'direct regularization needs GB symmetric positive semidefinite'
+        case (regdae_err_singular)
+            msg = 'singular matrix'
+        case (regdae_err_lapack)
+            msg = 'LAPACK error'
+        case (regdae_err_sundials)
+            msg = 'SUNDIALS setup error'
+        case (regdae_err_integration)
+            msg = 'the integrator (IDA) failed'
+        case (regdae_err_not_initialized)
+            msg = 'solver not initialized'
+        case (regdae_err_nonfinite)
+            msg = 'NaN or Inf encountered'
+        case default
+            msg = 'unknown status code'
+        end select
+    end function status_message
+
+end module regdae_status
