@@ -7,14 +7,14 @@
 module regdae
     use regdae_kinds, only: wp
     use regdae_status
-    use regdae_problem, only: dae_problem
+    use regdae_problem, only: dae_problem, constraint_dt_difference
     use regdae_options
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     use regdae_ida_solver, only: regdae_solver, solver_stats
     implicit none
     private
 
-    public :: wp, dae_problem, regdae_solver, solver_stats
+    public :: wp, dae_problem, constraint_dt_difference, regdae_solver, solver_stats
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     ! regdae_status
     public :: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, regdae_err_inconsistent_ic, &

@@ -34,6 +34,8 @@ module regdae_problem
         procedure :: constraint_dt => default_constraint_dt
     end type dae_problem
 
+    public :: constraint_dt_difference
+
     abstract interface
         !> A vector-valued function of (x, t): f (length n) or g (length m).
         subroutine vector_field(self, t, x, v, stat)
@@ -58,10 +60,20 @@ module regdae_problem
 
 contains
 
-    !> g_t by the central difference (g(x, t+d) - g(x, t-d)) / (2 d),
-    !! d = u^(1/3) max(|t|, 1): truncation and rounding errors both ~ u^(2/3).
     subroutine default_constraint_dt(self, t, x, v, stat)
         class(dae_problem), intent(inout) :: self
+        real(wp), intent(in) :: t        !! time
+        real(wp), intent(in) :: x(:)     !! state, length n
+        real(wp), intent(out) :: v(:)    !! g_t, length m
+        integer, intent(inout) :: stat
+        call constraint_dt_difference(self, t, x, v, stat)
+    end subroutine default_constraint_dt
+
+    !> g_t by the central difference (g(x, t+d) - g(x, t-d)) / (2 d),
+    !! d = u^(1/3) max(|t|, 1): truncation and rounding errors both ~ u^(2/3).
+    !! The default `constraint_dt`; callable from an override.
+    subroutine constraint_dt_difference(problem, t, x, v, stat)
+        class(dae_problem), intent(inout) :: problem
         real(wp), intent(in) :: t        !! time
         real(wp), intent(in) :: x(:)     !! state, length n
         real(wp), intent(out) :: v(:)    !! g_t, length m
@@ -72,11 +84,11 @@ contains
         d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(abs(t), 1.0_wp)
         tp = t + d
         tm = t - d
-        call self%constraint(tp, x, v, stat)
+        call problem%constraint(tp, x, v, stat)
         if (stat /= 0) return
-        call self%constraint(tm, x, gm, stat)
+        call problem%constraint(tm, x, gm, stat)
         if (stat /= 0) return
         v = (v - gm)/(tp - tm)
-    end subroutine default_constraint_dt
+    end subroutine constraint_dt_difference
 
 end module regdae_problem
