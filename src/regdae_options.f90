@@ -4,7 +4,7 @@
 !! | key            | values                                | default        |
 !! |----------------|---------------------------------------|----------------|
 !! | method         | baumgarte, trust_region, direct       | trust_region   |
-!! | formulation    | multiplier, eliminated                | multiplier     |
+!! | formulation    | multiplier, eliminated                | eliminated     |
 !! | lsq            | auto, normal, stacked                 | auto           |
 !! | exclusion      | suppress, weights, off                | suppress       |
 !! | gamma          | > 0                                   | 1e3            |
@@ -39,7 +39,7 @@ module regdae_options
     !> All options of a regdae solver, with their defaults.
     type, public :: solver_options
         integer :: method = method_trust_region        !! regularization
-        integer :: formulation = formulation_multiplier !! what IDA integrates
+        integer :: formulation = formulation_eliminated !! what IDA integrates
         integer :: lsq = lsq_auto                      !! damped least-squares solver
         integer :: exclusion = exclusion_suppress      !! how y leaves IDA's local error test
         real(wp) :: gamma = 1.0e3_wp                   !! Baumgarte parameter (paper: 1/h)

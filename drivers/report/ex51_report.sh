@@ -55,6 +55,22 @@ done
 echo
 
 cat <<'TXT'
+### Formulations and error-test exclusion (trust region, eps = 1e-6)
+
+`multiplier`: IDA integrates (x, y), y left out of the error test by `exclusion`;
+`eliminated` (the default): y is solved inside the residual and IDA integrates x alone.
+
+TXT
+echo "$header"
+for x in suppress weights off; do
+    run excl_$x method=trust_region eps=1e-6 formulation=multiplier exclusion=$x
+    row excl_$x "multiplier, exclusion=$x"
+done
+run excl_elim method=trust_region eps=1e-6 formulation=eliminated
+row excl_elim "eliminated"
+echo
+
+cat <<'TXT'
 ### Stepping over the singularity
 
 Without `stop_at_output` IDA chooses its steps freely. With y out of the error test and x = t + 1
@@ -72,33 +88,46 @@ echo
 cat <<'TXT'
 ### max_err_x against eps (gamma = 1e3, orientation psd, lsq=auto)
 
-`rate` is the local slope log(err_k / err_{k-1}) / log(eps_k / eps_{k-1}).
+`rate` is the local slope log(err_k / err_{k-1}) / log(eps_k / eps_{k-1}) of the eliminated
+runs. `predicted` is the error at t = 0 of the regularized solution from its closed-form layer
+analysis (doc/ex51.md): trust region 1.311 eps^(1/4), direct sqrt(eps) ln(2 / (gamma sqrt(eps)));
+both assume a layer narrower than 1/gamma: the direct estimate is left out where
+gamma sqrt(eps) >= 0.5, and the trust-region one overestimates while eps^(1/4) >= 1/gamma = 1e-3.
 
-| eps | trust_region multiplier | trust_region eliminated | rate (TR, elim.) | direct multiplier | direct eliminated | rate (direct, elim.) |
-|---|---|---|---|---|---|---|
 TXT
-prev_tr=""; prev_d=""; prev_e=""
-for k in 4 5 6 7 8 9 10 11 12; do
-    e="1e-$k"
-    for m in trust_region direct; do
-        for form in multiplier eliminated; do
-            run sweep_${m}_${form}_$k method=$m eps=$e formulation=$form
+for tol in 1e-5 1e-10; do
+    echo "rtol = atol = $tol:"
+    echo
+    echo '| eps | trust_region multiplier | trust_region eliminated | rate | predicted | direct multiplier | direct eliminated | rate | predicted |'
+    echo '|---|---|---|---|---|---|---|---|---|'
+    prev_tr=""; prev_d=""; prev_e=""
+    for k in 4 5 6 7 8 9 10 11 12; do
+        e="1e-$k"
+        for m in trust_region direct; do
+            for form in multiplier eliminated; do
+                run sweep_${tol}_${m}_${form}_$k method=$m eps=$e formulation=$form rtol=$tol atol=$tol
+            done
         done
+        cell() {   # cell METHOD FORM: max_err_x, marked when the run failed
+            v=$(field "sweep_${tol}_$1_$2_$k" max_err_x)
+            [ "$(field "sweep_${tol}_$1_$2_$k" status)" = ok ] || v="$v (failed)"
+            echo "$v"
+        }
+        tr_e=$(field "sweep_${tol}_trust_region_eliminated_$k" max_err_x)
+        d_e=$(field "sweep_${tol}_direct_eliminated_$k" max_err_x)
+        rates=$(awk -v a="$prev_tr" -v b="$tr_e" -v c="$prev_d" -v d="$d_e" -v e0="$prev_e" -v e1="$e" 'BEGIN {
+            if (a == "") { print "- -"; exit }
+            printf "%.2f %.2f", log(b / a) / log(e1 / e0), log(d / c) / log(e1 / e0) }')
+        pred=$(awk -v e="$e" -v g=1e3 'BEGIN { s = sqrt(e)
+            if (g * s < 0.5) printf "%.2e %.2e", 1.311 * e^0.25, s * log(2 / (g * s))
+            else printf "%.2e -", 1.311 * e^0.25 }')
+        printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n' "$e" "$(cell trust_region multiplier)" \
+            "$(cell trust_region eliminated)" "${rates% *}" "${pred% *}" "$(cell direct multiplier)" \
+            "$(cell direct eliminated)" "${rates#* }" "${pred#* }"
+        prev_tr=$tr_e; prev_d=$d_e; prev_e=$e
     done
-    tr_m=$(field sweep_trust_region_multiplier_$k max_err_x); tr_e=$(field sweep_trust_region_eliminated_$k max_err_x)
-    d_m=$(field sweep_direct_multiplier_$k max_err_x); d_e=$(field sweep_direct_eliminated_$k max_err_x)
-    [ "$(field sweep_trust_region_multiplier_$k status)" = ok ] || tr_m="$tr_m (failed)"
-    [ "$(field sweep_trust_region_eliminated_$k status)" = ok ] || tr_e="$tr_e (failed)"
-    [ "$(field sweep_direct_multiplier_$k status)" = ok ] || d_m="$d_m (failed)"
-    [ "$(field sweep_direct_eliminated_$k status)" = ok ] || d_e="$d_e (failed)"
-    rate_tr=$(awk -v a="$prev_tr" -v b="${tr_e%% *}" -v e0="$prev_e" -v e1="$e" \
-        'BEGIN { if (a == "" || a + 0 <= 0 || b + 0 <= 0) print "-"; else printf "%.2f", log(b / a) / log(e1 / e0) }')
-    rate_d=$(awk -v a="$prev_d" -v b="${d_e%% *}" -v e0="$prev_e" -v e1="$e" \
-        'BEGIN { if (a == "" || a + 0 <= 0 || b + 0 <= 0) print "-"; else printf "%.2f", log(b / a) / log(e1 / e0) }')
-    printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$e" "$tr_m" "$tr_e" "$rate_tr" "$d_m" "$d_e" "$rate_d"
-    prev_tr=${tr_e%% *}; prev_d=${d_e%% *}; prev_e=$e
+    echo
 done
-echo
 
 # Figures: x - x_exact and y against t for the paper's four runs (multiplier formulation).
 if command -v gnuplot >/dev/null 2>&1; then
