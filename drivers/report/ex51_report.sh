@@ -83,6 +83,9 @@ for m in trust_region direct; do
     run skip_$m method=$m eps=1e-6 stop_at_output=no
     row skip_$m "$m eps=1e-6, stop_at_output=no"
 done
+run skip_baumgarte_multiplier method=baumgarte formulation=multiplier stop_at_output=no
+row skip_baumgarte_multiplier "baumgarte multiplier, stop_at_output=no"
+
 echo
 
 cat <<'TXT'
