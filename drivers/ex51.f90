@@ -19,7 +19,7 @@ program ex51_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use regdae
     use ex51_problem, only: ex51, new_ex51, orientation_psd, orientation_paper
-    use driver_support, only: argument, split_key_value, num, clock_start, elapsed_seconds, die_usage
+    use driver_support, only: format_int, argument, split_key_value, num, clock_start, elapsed_seconds, die_usage
     implicit none
 
     character(len=*), parameter :: prog = 'ex51'
@@ -71,7 +71,7 @@ program ex51_driver
         ' lsq='//lsq_name(opts%lsq)//' exclusion='//exclusion_name(opts%exclusion)// &
         ' stop_at_output='//trim(merge('yes', 'no ', opts%stop_at_output))
     write (*, '(a)') '# gamma='//num(opts%gamma)//' eps='//num(opts%eps)//' rtol='//num(opts%rtol)// &
-        ' atol='//num(opts%atol)//' nout='//itoa(nout)//' x0='//num(x0(1))
+        ' atol='//num(opts%atol)//' nout='//format_int(nout)//' x0='//num(x0(1))
     write (*, '(a)') '# y_exact is undefined at t = 0 (printed NaN)'
 
     start = clock_start()
@@ -101,25 +101,15 @@ program ex51_driver
         status_text = 'ok'
     end if
     write (*, '(a)') '# steps, residual evaluations (IDA + Jacobian), Jacobians, linear setups, Newton iterations: '// &
-        itoa(int(st%steps))//' '//itoa(int(st%res_evals))//' ('//itoa(int(st%res_evals - st%jac_res_evals))// &
-        ' + '//itoa(int(st%jac_res_evals))//') '//itoa(int(st%jac_evals))//' '//itoa(int(st%lin_setups))// &
-        ' '//itoa(int(st%nonlin_iters))
+        format_int(int(st%steps))//' '//format_int(int(st%res_evals))//' ('//format_int(int(st%res_evals - st%jac_res_evals))// &
+        ' + '//format_int(int(st%jac_res_evals))//') '//format_int(int(st%jac_evals))//' '//format_int(int(st%lin_setups))// &
+        ' '//format_int(int(st%nonlin_iters))
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text// &
-        ' t_end='//num(st%t)//' max_err_x='//num(max_err_x)//' steps='//itoa(int(st%steps))// &
-        ' res_evals='//itoa(int(st%res_evals))//' jac_evals='//itoa(int(st%jac_evals))// &
-        ' err_test_fails='//itoa(int(st%err_test_fails))//' conv_fails='//itoa(int(st%conv_fails))// &
+        ' t_end='//num(st%t)//' max_err_x='//num(max_err_x)//' steps='//format_int(int(st%steps))// &
+        ' res_evals='//format_int(int(st%res_evals))//' jac_evals='//format_int(int(st%jac_evals))// &
+        ' err_test_fails='//format_int(int(st%err_test_fails))//' conv_fails='//format_int(int(st%conv_fails))// &
         ' seconds='//num(seconds)
     call solver%destroy()
     if (stat /= regdae_success) stop 1
-
-contains
-
-    function itoa(n) result(s)
-        integer, intent(in) :: n
-        character(len=:), allocatable :: s
-        character(len=16) :: buf
-        write (buf, '(i0)') n
-        s = trim(buf)
-    end function itoa
 
 end program ex51_driver

@@ -6,6 +6,7 @@
 !! problem type to extend, the options, the solver and the status codes.
 module regdae
     use regdae_kinds, only: wp
+    use regdae_format, only: format_real, format_int
     use regdae_status
     use regdae_problem, only: dae_problem, constraint_dt_difference
     use regdae_options
@@ -14,7 +15,7 @@ module regdae
     implicit none
     private
 
-    public :: wp, dae_problem, constraint_dt_difference, regdae_solver, solver_stats
+    public :: wp, format_real, format_int, dae_problem, constraint_dt_difference, regdae_solver, solver_stats
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     ! regdae_status
     public :: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, regdae_err_inconsistent_ic, &

@@ -28,7 +28,8 @@ module regdae_ida_solver
     use regdae_status
     use regdae_problem, only: dae_problem
     use regdae_options
-    use regdae_regularization, only: regularized_dae, format_real
+    use regdae_regularization, only: regularized_dae
+    use regdae_format, only: format_real, format_int
     implicit none
     private
 
@@ -86,6 +87,7 @@ module regdae_ida_solver
         procedure :: lsq_method => solver_lsq_method
         !> Free all IDA and SUNDIALS objects (also done by `init` and finalization).
         procedure :: destroy => solver_destroy
+        procedure, private :: record => solver_record
         final :: solver_finalize
     end type regdae_solver
 
@@ -116,11 +118,11 @@ contains
         m = problem%m
         if (n < 1 .or. m < 0 .or. m > n) then
             call fail(regdae_err_bad_input, 'problem sizes must satisfy 1 <= n and 0 <= m <= n (n = '// &
-                      itoa(n)//', m = '//itoa(m)//')')
+                      format_int(n)//', m = '//format_int(m)//')')
             return
         end if
         if (size(x0) /= n) then
-            call fail(regdae_err_bad_input, 'x0 has length '//itoa(size(x0))//', the problem has n = '//itoa(n))
+            call fail(regdae_err_bad_input, 'x0 has length '//format_int(size(x0))//', the problem has n = '//format_int(n))
             return
         end if
         if (.not. ieee_is_finite(t0)) then
@@ -180,15 +182,12 @@ contains
             call fail(stat, msg)
             return
         end if
-        self%last_stat = regdae_success
-        self%last_message = ''
+        call self%record(regdae_success, '', stat)
     contains
         subroutine fail(code, text)
             integer, intent(in) :: code
             character(len=*), intent(in) :: text
-            stat = code
-            self%last_stat = code
-            self%last_message = text
+            call self%record(code, text, stat)
             call self%destroy()
         end subroutine fail
     end subroutine solver_init
@@ -299,8 +298,8 @@ contains
             return
         end if
         if (size(x) /= core%n .or. size(y) /= core%m) then
-            call fail(regdae_err_bad_input, 'advance: x must have length '//itoa(core%n)// &
-                      ' and y length '//itoa(core%m))
+            call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(core%n)// &
+                      ' and y length '//format_int(core%m))
             return
         end if
         if (.not. ieee_is_finite(tout)) then
@@ -329,7 +328,7 @@ contains
                 else
                     stat = regdae_err_integration
                 end if
-                call fail(stat, 'IDA failed at t = '//format_real(tret(1))//' (flag '//itoa(int(ierr))//'): '// &
+                call fail(stat, 'IDA failed at t = '//format_real(tret(1))//' (flag '//format_int(int(ierr))//'): '// &
                           core%ida_message//merge_text(' | last residual failure: ', core%pending_message))
                 return
             end if
@@ -350,20 +349,16 @@ contains
             ! x(tout) is valid; only the multiplier equation is singular here
             ! (Baumgarte where GB is singular, or eps = 0 with the normal equations).
             y = ieee_value(1.0_wp, ieee_quiet_nan)
-            stat = regdae_warn_multiplier_undefined
-            self%last_stat = stat
-            self%last_message = 'the multiplier at t = '//format_real(tout)//' is undefined: '//core%model%message
+            call self%record(regdae_warn_multiplier_undefined, 'the multiplier at t = '//format_real(tout)// &
+                             ' is undefined: '//core%model%message, stat)
             return
         end if
-        self%last_stat = regdae_success
-        self%last_message = ''
+        call self%record(regdae_success, '', stat)
     contains
         subroutine fail(code, text)
             integer, intent(in) :: code
             character(len=*), intent(in) :: text
-            stat = code
-            self%last_stat = code
-            self%last_message = text
+            call self%record(code, text, stat)
             if (associated(core)) self%t = core%t
         end subroutine fail
     end subroutine solver_advance
@@ -405,6 +400,17 @@ contains
         solver_lsq_method = 0
         if (associated(self%core)) solver_lsq_method = self%core%model%lsq
     end function solver_lsq_method
+
+    ! Set the status of a call and its message.
+    subroutine solver_record(self, code, text, stat)
+        class(regdae_solver), intent(inout) :: self
+        integer, intent(in) :: code
+        character(len=*), intent(in) :: text
+        integer, intent(out) :: stat
+        stat = code
+        self%last_stat = code
+        self%last_message = text
+    end subroutine solver_record
 
     subroutine solver_destroy(self)
         class(regdae_solver), intent(inout) :: self
@@ -565,14 +571,6 @@ contains
             s(k:k) = chars(k)
         end do
     end function c_string
-
-    pure function itoa(k) result(s)
-        integer, intent(in) :: k
-        character(len=:), allocatable :: s
-        character(len=16) :: buf
-        write (buf, '(i0)') k
-        s = trim(buf)
-    end function itoa
 
     pure function merge_text(prefix, text) result(s)
         character(len=*), intent(in) :: prefix, text

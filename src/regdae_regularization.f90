@@ -15,6 +15,7 @@
 module regdae_regularization
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
+    use regdae_format, only: format_real, format_int
     use regdae_status, only: regdae_success, regdae_err_user_callback, regdae_err_nonfinite, &
                              regdae_err_not_psd, regdae_err_singular, status_message
     use regdae_problem, only: dae_problem
@@ -22,8 +23,6 @@ module regdae_regularization
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     implicit none
     private
-
-    public :: format_real
 
     !> A problem with its regularization: the pieces at the last evaluated point
     !! and the scratch space of the multiplier solves.
@@ -225,33 +224,5 @@ contains
             res_y = self%gamma*self%g + matmul(self%gx, xp) + self%gt
         end select
     end subroutine residual_multiplier
-
-    !> A real in `es` format without surrounding blanks.
-    pure function format_real(x) result(s)
-        real(wp), intent(in) :: x
-        character(len=:), allocatable :: s
-        character(len=32) :: buf
-        write (buf, '(es15.6e3)') x
-        s = trim(adjustl(buf))
-        call trim_exponent(s)
-    end function format_real
-
-    pure function format_int(k) result(s)
-        integer, intent(in) :: k
-        character(len=:), allocatable :: s
-        character(len=16) :: buf
-        write (buf, '(i0)') k
-        s = trim(buf)
-    end function format_int
-
-    !> Drop the leading zero of a three-digit exponent: 1.5E-008 -> 1.5E-08.
-    pure subroutine trim_exponent(s)
-        character(len=:), allocatable, intent(inout) :: s
-        integer :: e
-        e = scan(s, 'E')
-        if (e > 0 .and. len(s) - e == 4) then
-            if (s(e + 2:e + 2) == '0') s = s(1:e + 1)//s(e + 3:)
-        end if
-    end subroutine trim_exponent
 
 end module regdae_regularization

@@ -2,10 +2,11 @@
 !! formatting for the summary line, wall-clock time.
 module driver_support
     use, intrinsic :: iso_fortran_env, only: int64, error_unit
-    use regdae, only: wp
+    use regdae, only: wp, format_real, format_int
     implicit none
     private
 
+    public :: format_int
     public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage
 
 contains
@@ -37,14 +38,11 @@ contains
         end if
     end subroutine split_key_value
 
-    !> A real for the summary line, 4 significant digits (NaN and Inf as such).
+    !> A real for the summary line, 5 significant digits (NaN and Inf as such).
     function num(x) result(s)
         real(wp), intent(in) :: x
         character(len=:), allocatable :: s
-        character(len=32) :: buf
-        write (buf, '(es12.4e3)') x
-        s = trim(adjustl(buf))
-        call trim_exponent(s)
+        s = format_real(x, 4)
     end function num
 
     !> Start a wall-clock measurement.
@@ -68,15 +66,5 @@ contains
         write (error_unit, '(a)') program_name//': '//text
         stop 2
     end subroutine die_usage
-
-    !> Drop the leading zero of a three-digit exponent: 1.5E-008 -> 1.5E-08.
-    pure subroutine trim_exponent(s)
-        character(len=:), allocatable, intent(inout) :: s
-        integer :: e
-        e = scan(s, 'E')
-        if (e > 0 .and. len(s) - e == 4) then
-            if (s(e + 2:e + 2) == '0') s = s(1:e + 1)//s(e + 3:)
-        end if
-    end subroutine trim_exponent
 
 end module driver_support
