@@ -3,7 +3,7 @@
 !! exclusion mechanisms, bad input, failing user routines, and two solvers in
 !! one process.
 module test_solver
-    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
     use regdae
     use ex51_problem, only: ex51, new_ex51, orientation_psd, orientation_paper
     use regdae_testing, only: checker, test_case, new_test
@@ -181,6 +181,8 @@ contains
         call solver%init(new_ex51(orientation_psd), t0, [ieee_value(1.0_wp, ieee_quiet_nan)], opts, stat)
         call chk%equal(stat, regdae_err_bad_input, 'NaN in x0')
         call chk%true(index(solver%message(), 'x0') > 0, 'message names x0')
+        call solver%init(new_ex51(orientation_psd), t0, [ieee_value(1.0_wp, ieee_positive_inf)], opts, stat)
+        call chk%equal(stat, regdae_err_bad_input, 'Inf in x0')
         call solver%init(new_ex51(orientation_psd), t0, [0.0_wp, 0.0_wp], opts, stat)
         call chk%equal(stat, regdae_err_bad_input, 'x0 of wrong length')
         call solver%init(new_ex51(orientation_psd), ieee_value(1.0_wp, ieee_quiet_nan), [0.0_wp], opts, stat)
