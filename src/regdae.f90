@@ -9,6 +9,8 @@ module regdae
     use regdae_format, only: format_real, format_int
     use regdae_status
     use regdae_problem, only: dae_problem, constraint_dt_difference
+    use regdae_second_order_problem, only: second_order_problem, velocity_constraint
+    use regdae_mechanical_problem, only: mechanical_problem
     use regdae_options
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     use regdae_ida_solver, only: regdae_solver, solver_stats
@@ -16,15 +18,17 @@ module regdae
     private
 
     public :: wp, format_real, format_int, dae_problem, constraint_dt_difference, regdae_solver, solver_stats
+    public :: second_order_problem, velocity_constraint, mechanical_problem
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     ! regdae_status
     public :: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, regdae_err_inconsistent_ic, &
               regdae_err_user_callback, &
               regdae_err_not_psd, regdae_err_singular, regdae_err_lapack, regdae_err_sundials, &
-              regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, status_message
+              regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, regdae_err_mass_matrix, &
+              status_message
     ! regdae_options
     public :: solver_options, set_option, validate_options, method_name, formulation_name, lsq_name, &
               exclusion_name, method_baumgarte, method_trust_region, method_direct, formulation_multiplier, &
               formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, exclusion_suppress, exclusion_weights, &
-              exclusion_off
+              exclusion_off, excluded_y, excluded_vy, excluded_name
 end module regdae

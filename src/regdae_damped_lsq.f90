@@ -21,7 +21,7 @@ module regdae_damped_lsq
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_singular, &
                              regdae_err_not_psd, regdae_err_lapack
-    use regdae_lapack, only: dposv, dgelsd, dgesv
+    use regdae_lapack, only: dposv, dgelsd, dgesv, dgesvd
     implicit none
     private
 
@@ -44,6 +44,8 @@ module regdae_damped_lsq
         procedure :: init => workspace_init
         !> Numerical rank of the stacked matrix in the last `lsq_stacked` solve.
         procedure :: rank => workspace_rank
+        !> Smallest singular value of a p x q matrix (`dgesvd`, values only).
+        procedure :: smallest_singular_value
     end type damped_lsq_workspace
 
     public :: damped_lsq_solve, shifted_spd_solve, square_solve
@@ -66,6 +68,8 @@ contains
         call dgelsd(p + q, q, 1, a_dummy, rows, b_dummy, rows, s_dummy, -1.0_wp, rank, &
                     work_query, -1, iwork_query, info)
         lwork = max(1, int(work_query(1)))
+        call dgesvd('N', 'N', max(p, 1), max(q, 1), a_dummy, rows, s_dummy, a_dummy, 1, a_dummy, 1, work_query, -1, info)
+        lwork = max(lwork, int(work_query(1)))
         liwork = max(1, iwork_query(1))
         allocate (self%work(lwork), self%iwork(liwork))
     end subroutine workspace_init
@@ -74,6 +78,29 @@ contains
         class(damped_lsq_workspace), intent(in) :: self
         workspace_rank = self%last_rank
     end function workspace_rank
+
+    !> Smallest singular value of `a` (p x q, the workspace's shape); for one
+    !! column or row it is a norm, without LAPACK.
+    function smallest_singular_value(self, a) result(sigma)
+        class(damped_lsq_workspace), intent(inout) :: self
+        real(wp), intent(in) :: a(:, :)
+        real(wp) :: sigma, dummy(1, 1)
+        integer :: info, p, q
+        p = size(a, 1)
+        q = size(a, 2)
+        if (p == 0 .or. q == 0) then
+            sigma = 0.0_wp
+        else if (q == 1) then
+            sigma = norm2(a(:, 1))
+        else if (p == 1) then
+            sigma = norm2(a(1, :))
+        else
+            self%mat(1:p, 1:q) = a
+            call dgesvd('N', 'N', p, q, self%mat, size(self%mat, 1), self%sv, dummy, 1, dummy, 1, &
+                        self%work, size(self%work), info)
+            sigma = self%sv(min(p, q))
+        end if
+    end function smallest_singular_value
 
     !> Damped least-squares solution y = (A^T A + eps I)^{-1} A^T r.
     !!

@@ -1,10 +1,12 @@
-!> The regdae solver: a regularized index-2 DAE integrated by SUNDIALS IDA.
+!> The regdae solver: a regularized index-2 or index-3 DAE integrated by
+!! SUNDIALS IDA.
 !!
 !! ```fortran
 !! type(regdae_solver) :: solver
-!! call solver%init(problem, t0, x0, opts, stat)
+!! call solver%init(problem, t0, x0, opts, stat)          ! dae_problem (index 2)
+!! call solver%init(problem, t0, x0, v0, opts, stat)      ! second_order_problem or mechanical_problem
 !! do k = 1, nout
-!!     call solver%advance(tout(k), x, y, stat)
+!!     call solver%advance(tout(k), x, y, stat [, v])
 !! end do
 !! call solver%destroy()
 !! ```
@@ -27,13 +29,16 @@ module regdae_ida_solver
     use regdae_kinds, only: wp
     use regdae_status
     use regdae_problem, only: dae_problem
+    use regdae_second_order_problem, only: second_order_problem, velocity_constraint
+    use regdae_mechanical_problem, only: mechanical_problem
+    use regdae_velocity_index2, only: new_velocity_index2
     use regdae_options
     use regdae_regularization, only: regularized_dae
     use regdae_format, only: format_real, format_int
     implicit none
     private
 
-    !> Integration statistics, in IDA's terms.
+    !> Integration statistics, in IDA's terms, and the singularity diagnostics.
     type, public :: solver_stats
         integer(int64) :: steps = 0            !! steps taken
         integer(int64) :: res_evals = 0        !! all residual evaluations (IDA's + Jacobian's)
@@ -45,6 +50,8 @@ module regdae_ida_solver
         integer(int64) :: conv_fails = 0       !! nonlinear convergence failures
         real(wp) :: t = 0.0_wp                 !! time reached
         real(wp) :: h_last = 0.0_wp            !! last step size used
+        integer :: singular_passes = 0         !! output intervals with sigma_min(GB) < singular_threshold
+        real(wp) :: sigma_min = huge(1.0_wp)   !! smallest sigma_min(GB) seen at the output times
     end type solver_stats
 
     ! Everything IDA's callbacks reach through user_data; allocated once per init
@@ -52,18 +59,27 @@ module regdae_ida_solver
     type :: solver_core
         type(regularized_dae) :: model
         type(solver_options) :: opts
-        integer :: n = 0, m = 0, neq = 0
+        integer :: n = 0, m = 0, neq = 0   ! n: size of the state z; neq: IDA unknowns
+        integer :: nx = 0                  ! size of x reported to the user
+        logical :: second_order = .false.  ! the user's problem is of order 2: z = (x, v)
+        real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
         real(wp) :: t = 0.0_wp
         type(c_ptr) :: sunctx = c_null_ptr
         type(c_ptr) :: ida_mem = c_null_ptr
         type(N_Vector), pointer :: uu => null(), up => null(), idv => null()
         type(SUNMatrix), pointer :: jmat => null()
         type(SUNLinearSolver), pointer :: ls => null()
+        logical, allocatable :: excluded(:)   ! unknowns left out of the error test
         real(wp), allocatable :: u_pert(:), up_pert(:), r_pert(:), y_work(:)
         integer(int64) :: jac_res_evals = 0
         integer :: pending_stat = regdae_success   ! last failure seen in a callback
         logical :: pending_recoverable = .true.
         character(len=:), allocatable :: pending_message, ida_message
+        ! singularity diagnostics at the output times
+        real(wp) :: sigma_last = huge(1.0_wp), sigma_min = huge(1.0_wp)
+        logical :: in_singular = .false.
+        real(wp), allocatable :: singular(:, :)   ! (2, k): start and end of each singular interval
+        integer :: n_singular = 0
     end type solver_core
 
     !> A regularized DAE solver on IDA (see the module documentation).
@@ -75,9 +91,16 @@ module regdae_ida_solver
         character(len=:), allocatable :: last_message
     contains
         !> Set up a problem: check the input, compute consistent initial values
-        !! and create the IDA objects.
-        procedure :: init => solver_init
-        !> Integrate to `tout`; return x(tout) and the multiplier y(tout).
+        !! and create the IDA objects. `init(problem, t0, x0, opts, stat)` for a
+        !! `dae_problem`; `init(problem, t0, x0, v0, opts, stat)` for a
+        !! `second_order_problem` or `mechanical_problem` (index from `opts%index`).
+        generic :: init => init_first_order, init_second_order
+        procedure, private :: init_first_order => solver_init_first
+        procedure, private :: init_second_order => solver_init_second
+        procedure, private :: start => solver_start
+        procedure, private :: check_input
+        !> Integrate to `tout`; return x(tout), the multiplier y(tout) (lambda for a
+        !! mechanical problem) and, for second-order problems, optionally v(tout).
         procedure :: advance => solver_advance
         !> Statistics of the integration so far.
         procedure :: statistics => solver_statistics
@@ -85,6 +108,10 @@ module regdae_ida_solver
         procedure :: message => solver_message
         !> The resolved least-squares solver (`lsq_normal` or `lsq_stacked`).
         procedure :: lsq_method => solver_lsq_method
+        !> sigma_min(GB) at the last output time.
+        procedure :: sigma_min => solver_sigma_min
+        !> The singular intervals so far: (2, k) array of start and end output times.
+        procedure :: singular_intervals => solver_singular_intervals
         !> Free all IDA and SUNDIALS objects (also done by `init` and finalization).
         procedure :: destroy => solver_destroy
         procedure, private :: record => solver_record
@@ -93,66 +120,129 @@ module regdae_ida_solver
 
 contains
 
-    subroutine solver_init(self, problem, t0, x0, opts, stat)
+    subroutine solver_init_first(self, problem, t0, x0, opts, stat)
         class(regdae_solver), intent(inout) :: self
-        class(dae_problem), intent(in) :: problem   !! the DAE (copied)
+        class(dae_problem), intent(in) :: problem   !! the index-2 DAE (copied)
         real(wp), intent(in) :: t0                  !! initial time
         real(wp), intent(in) :: x0(:)               !! x(t0), length n; must satisfy g(x0, t0) = 0
         type(solver_options), intent(in) :: opts    !! options (validated here)
         integer, intent(out) :: stat                !! regdae status code
-        type(solver_core), pointer :: core
+
+        if (.not. self%check_input(t0, x0, x0, problem%n, problem%m, opts, stat)) return
+        allocate (self%core)
+        self%core%nx = problem%n
+        call self%core%model%init_first_order(problem, opts, lsq_normal)
+        call self%start(t0, x0, opts, stat)
+    end subroutine solver_init_first
+
+    subroutine solver_init_second(self, problem, t0, x0, v0, opts, stat)
+        class(regdae_solver), intent(inout) :: self
+        class(second_order_problem), intent(in) :: problem   !! the order-2 DAE or mechanical system (copied)
+        real(wp), intent(in) :: t0                  !! initial time
+        real(wp), intent(in) :: x0(:)               !! x(t0), length n; g(x0, t0) = 0
+        real(wp), intent(in) :: v0(:)               !! x'(t0), length n; G v0 + g_t = 0
+        type(solver_options), intent(in) :: opts    !! options (validated here; `index` chooses 2 or 3)
+        integer, intent(out) :: stat
+        class(second_order_problem), allocatable :: copy
+        real(wp) :: gval(problem%m), gnorm
+        integer :: ustat
+
+        if (.not. self%check_input(t0, x0, v0, problem%n, problem%m, opts, stat)) return
+        ! Position and velocity constraints at t0 (the regularized system checks only one of them).
+        allocate (copy, source=problem)
+        ustat = 0
+        call copy%constraint(t0, x0, gval, ustat)
+        gnorm = 0.0_wp
+        if (ustat == 0 .and. problem%m > 0) gnorm = maxval(abs(gval))
+        if (ustat == 0) call velocity_constraint(copy, t0, x0, v0, gval, ustat)
+        if (ustat /= 0) then
+            call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
+                             'reported failure (stat = '//format_int(ustat)//')', stat)
+            return
+        end if
+        if (problem%m > 0) gnorm = max(gnorm, maxval(abs(gval)))
+        if (.not. (gnorm <= opts%ic_tol)) then
+            call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
+                             '|G v0 + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
+            return
+        end if
+        allocate (self%core)
+        self%core%nx = problem%n
+        self%core%second_order = .true.
+        select type (problem)
+        class is (mechanical_problem)
+            self%core%multiplier_sign = -1.0_wp
+        end select
+        if (opts%index == 3) then
+            call self%core%model%init_second_order(problem, opts, lsq_normal)
+        else
+            call self%core%model%init_first_order(new_velocity_index2(problem), opts, lsq_normal)
+        end if
+        call self%start(t0, [x0, v0], opts, stat)
+    end subroutine solver_init_second
+
+    ! Common checks of init; false (with stat and message set) if the input is bad.
+    logical function check_input(self, t0, x0, v0, n, m, opts, stat) result(ok)
+        class(regdae_solver), intent(inout) :: self
+        real(wp), intent(in) :: t0, x0(:), v0(:)
+        integer, intent(in) :: n, m
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
         character(len=:), allocatable :: msg
-        real(wp), allocatable :: y0(:), xp0(:)
-        integer :: lsq, n, m
-        logical :: recoverable
-        real(wp) :: gnorm
 
         call self%destroy()
         self%t = t0
+        ok = .false.
         call validate_options(opts, stat, msg)
         if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
+            call self%record(stat, msg, stat)
+        else if (n < 1 .or. m < 0 .or. m > n) then
+            call self%record(regdae_err_bad_input, 'problem sizes must satisfy 1 <= n and 0 <= m <= n (n = '// &
+                             format_int(n)//', m = '//format_int(m)//')', stat)
+        else if (size(x0) /= n .or. size(v0) /= n) then
+            call self%record(regdae_err_bad_input, 'x0 (and v0) must have length n = '//format_int(n)// &
+                             '; got '//format_int(size(x0))//' (and '//format_int(size(v0))//')', stat)
+        else if (.not. ieee_is_finite(t0)) then
+            call self%record(regdae_err_bad_input, 't0 is NaN or Inf', stat)
+        else if (.not. (all(ieee_is_finite(x0)) .and. all(ieee_is_finite(v0)))) then
+            call self%record(regdae_err_bad_input, 'x0 (or v0) contains NaN or Inf', stat)
+        else
+            ok = .true.
         end if
-        n = problem%n
-        m = problem%m
-        if (n < 1 .or. m < 0 .or. m > n) then
-            call fail(regdae_err_bad_input, 'problem sizes must satisfy 1 <= n and 0 <= m <= n (n = '// &
-                      format_int(n)//', m = '//format_int(m)//')')
-            return
-        end if
-        if (size(x0) /= n) then
-            call fail(regdae_err_bad_input, 'x0 has length '//format_int(size(x0))//', the problem has n = '//format_int(n))
-            return
-        end if
-        if (.not. ieee_is_finite(t0)) then
-            call fail(regdae_err_bad_input, 't0 is NaN or Inf')
-            return
-        end if
-        if (.not. all(ieee_is_finite(x0))) then
-            call fail(regdae_err_bad_input, 'x0 contains NaN or Inf')
-            return
-        end if
+    end function check_input
 
-        allocate (self%core)
+    ! With the model set up: consistent initial values, then the IDA objects.
+    subroutine solver_start(self, t0, z0, opts, stat)
+        class(regdae_solver), intent(inout) :: self
+        real(wp), intent(in) :: t0, z0(:)
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        type(solver_core), pointer :: core
+        character(len=:), allocatable :: msg
+        real(wp), allocatable :: y0(:), zp0(:)
+        integer :: lsq, n, m, nx
+        logical :: recoverable
+        real(wp) :: gnorm
+
         core => self%core
         core%opts = opts
-        core%n = n
-        core%m = m
+        core%n = size(z0)
+        core%m = core%model%m
         core%t = t0
         core%pending_message = ''
         core%ida_message = ''
+        n = core%n
+        m = core%m
+        nx = core%model%n
 
-        ! Consistent initial values from the regularized equations.
-        call core%model%init(problem, opts, lsq_normal)
-        call core%model%evaluate(t0, x0, stat, recoverable)
+        call core%model%evaluate(t0, z0, stat, recoverable)
         if (stat /= regdae_success) then
             call fail(stat, 'at the initial point: '//core%model%message)
             return
         end if
         gnorm = 0.0_wp
         if (m > 0) gnorm = maxval(abs(core%model%g))
-        if (gnorm > opts%ic_tol) then
+        if (.not. (gnorm <= opts%ic_tol)) then
             call fail(regdae_err_inconsistent_ic, 'inconsistent initial values: max |g(x0, t0)| = '// &
                       format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol))
             return
@@ -163,21 +253,28 @@ contains
             if (opts%eps < 1.0e-8_wp*max(1.0_wp, sum(core%model%gb**2))) lsq = lsq_stacked
         end if
         core%model%lsq = lsq
-        allocate (y0(m), xp0(n))
+        allocate (y0(m), zp0(n))
         call core%model%solve_multiplier(t0, y0, stat)
         if (stat /= regdae_success) then
             call fail(stat, 'at the initial point: '//core%model%message)
             return
         end if
-        xp0 = core%model%f - matmul(core%model%b, y0)
-
-        if (opts%formulation == formulation_multiplier) then
-            core%neq = n + m
+        call record_singularity(core, t0)
+        if (core%model%order == 1) then
+            zp0 = core%model%f - matmul(core%model%b, y0)
         else
-            core%neq = n
+            zp0 = [z0(nx + 1:2*nx), core%model%f - matmul(core%model%b, y0)]
+        end if
+
+        core%neq = n
+        if (opts%formulation == formulation_multiplier) core%neq = n + m
+        allocate (core%excluded(core%neq), source=.false.)
+        if (opts%exclusion /= exclusion_off) then
+            core%excluded(n + 1:) = .true.
+            if (core%model%order == 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:2*nx) = .true.
         end if
         allocate (core%u_pert(core%neq), core%up_pert(core%neq), core%r_pert(core%neq), core%y_work(m))
-        call create_ida(core, t0, [x0, y0], [xp0, spread(0.0_wp, 1, m)], stat, msg)
+        call create_ida(core, t0, [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg)
         if (stat /= regdae_success) then
             call fail(stat, msg)
             return
@@ -190,7 +287,33 @@ contains
             call self%record(code, text, stat)
             call self%destroy()
         end subroutine fail
-    end subroutine solver_init
+    end subroutine solver_start
+
+    ! Note sigma_min(GB) of the last evaluation at output time t and update the
+    ! singular intervals.
+    subroutine record_singularity(core, t)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t
+        real(wp), allocatable :: grown(:, :)
+        core%sigma_last = core%model%sigma_min_gb()
+        core%sigma_min = min(core%sigma_min, core%sigma_last)
+        if (core%sigma_last < core%opts%singular_threshold) then
+            if (.not. core%in_singular) then
+                if (.not. allocated(core%singular)) allocate (core%singular(2, 8))
+                if (core%n_singular == size(core%singular, 2)) then
+                    allocate (grown(2, 2*size(core%singular, 2)))
+                    grown(:, 1:core%n_singular) = core%singular
+                    call move_alloc(grown, core%singular)
+                end if
+                core%n_singular = core%n_singular + 1
+                core%singular(1, core%n_singular) = t
+            end if
+            core%singular(2, core%n_singular) = t
+            core%in_singular = .true.
+        else
+            core%in_singular = .false.
+        end if
+    end subroutine record_singularity
 
     ! Create the SUNDIALS context, vectors, IDA memory and the dense linear solver.
     subroutine create_ida(core, t0, u0, up0, stat, msg)
@@ -233,21 +356,20 @@ contains
             return
         end if
 
-        ! Tolerances and the exclusion of y from the local error test.
-        if (core%neq > core%n .and. core%opts%exclusion == exclusion_weights) then
+        ! Tolerances and the exclusion of y (and v) from the local error test.
+        if (any(core%excluded) .and. core%opts%exclusion == exclusion_weights) then
             ierr = FIDAWFtolerances(core%ida_mem, c_funloc(ida_error_weights))
         else
             ierr = FIDASStolerances(core%ida_mem, core%opts%rtol, core%opts%atol)
         end if
-        if (ierr == 0 .and. core%neq > core%n .and. core%opts%exclusion == exclusion_suppress) then
+        if (ierr == 0 .and. any(core%excluded) .and. core%opts%exclusion == exclusion_suppress) then
             core%idv => FN_VNew_Serial(neq, core%sunctx)
             if (.not. associated(core%idv)) then
                 msg = 'FN_VNew_Serial failed'
                 return
             end if
             p => FN_VGetArrayPointer(core%idv)
-            p(1:core%n) = 1.0_wp        ! differential
-            p(core%n + 1:) = 0.0_wp     ! algebraic: y
+            p = merge(0.0_wp, 1.0_wp, core%excluded)   ! 0: left out of the error test
             ierr = FIDASetId(core%ida_mem, core%idv)
             if (ierr == 0) ierr = FIDASetSuppressAlg(core%ida_mem, 1_c_int)
         end if
@@ -280,27 +402,37 @@ contains
         msg = ''
     end subroutine create_ida
 
-    subroutine solver_advance(self, tout, x, y, stat)
+    subroutine solver_advance(self, tout, x, y, stat, v)
         class(regdae_solver), intent(inout) :: self
         real(wp), intent(in) :: tout      !! output time (beyond the current time, or equal to it)
         real(wp), intent(out) :: x(:)     !! x(tout), length n
-        real(wp), intent(out) :: y(:)     !! y(tout), length m, recomputed from x(tout)
+        real(wp), intent(out) :: y(:)     !! y(tout) (lambda for a mechanical problem), length m,
+                                          !! recomputed from the state at tout
         integer, intent(out) :: stat      !! regdae status code
+        real(wp), intent(out), optional :: v(:)   !! second-order problems: v(tout), length n
         type(solver_core), pointer :: core
         real(c_double), pointer :: u(:)
         real(c_double) :: tret(1)
         integer(c_int) :: ierr
         logical :: recoverable
+        integer :: nx
 
         core => self%core
         if (.not. associated(core)) then
             call fail(regdae_err_not_initialized, 'advance called before a successful init')
             return
         end if
-        if (size(x) /= core%n .or. size(y) /= core%m) then
-            call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(core%n)// &
+        nx = core%nx
+        if (size(x) /= nx .or. size(y) /= core%m) then
+            call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(nx)// &
                       ' and y length '//format_int(core%m))
             return
+        end if
+        if (present(v)) then
+            if (.not. core%second_order .or. size(v) /= nx) then
+                call fail(regdae_err_bad_input, 'advance: v is for second-order problems, length '//format_int(nx))
+                return
+            end if
         end if
         if (.not. ieee_is_finite(tout)) then
             call fail(regdae_err_bad_input, 'advance: tout is NaN or Inf')
@@ -321,7 +453,7 @@ contains
             if (ierr == 0) ierr = FIDASolve(core%ida_mem, tout, tret, core%uu, core%up, IDA_NORMAL)
             if (ierr < 0) then
                 core%t = tret(1)
-                x = u(1:core%n)
+                call copy_state()
                 y = ieee_value(1.0_wp, ieee_quiet_nan)
                 if (core%pending_stat /= regdae_success .and. .not. core%pending_recoverable) then
                     stat = core%pending_stat
@@ -340,21 +472,28 @@ contains
             core%t = tout
         end if
         self%t = core%t
-        x = u(1:core%n)
+        call copy_state()
         ! The multiplier at an output time comes from the regularized equation, not
         ! from IDA's interpolant.
-        call core%model%evaluate(tout, x, stat, recoverable)
+        call core%model%evaluate(tout, u(1:core%n), stat, recoverable)
         if (stat == regdae_success) call core%model%solve_multiplier(tout, y, stat)
         if (stat /= regdae_success) then
-            ! x(tout) is valid; only the multiplier equation is singular here
+            ! The state at tout is valid; only the multiplier equation is singular here
             ! (Baumgarte where GB is singular, or eps = 0 with the normal equations).
             y = ieee_value(1.0_wp, ieee_quiet_nan)
             call self%record(regdae_warn_multiplier_undefined, 'the multiplier at t = '//format_real(tout)// &
                              ' is undefined: '//core%model%message, stat)
             return
         end if
+        y = core%multiplier_sign*y
+        call record_singularity(core, tout)
         call self%record(regdae_success, '', stat)
     contains
+        subroutine copy_state()
+            x = u(1:nx)
+            if (present(v)) v = u(nx + 1:2*nx)
+        end subroutine copy_state
+
         subroutine fail(code, text)
             integer, intent(in) :: code
             character(len=*), intent(in) :: text
@@ -383,6 +522,8 @@ contains
             ierr = FIDAGetLastStep(mem, h); st%h_last = h(1)
         end associate
         st%jac_res_evals = self%core%jac_res_evals
+        st%singular_passes = self%core%n_singular
+        st%sigma_min = self%core%sigma_min
     end function solver_statistics
 
     function solver_message(self) result(msg)
@@ -400,6 +541,20 @@ contains
         solver_lsq_method = 0
         if (associated(self%core)) solver_lsq_method = self%core%model%lsq
     end function solver_lsq_method
+
+    real(wp) function solver_sigma_min(self)
+        class(regdae_solver), intent(in) :: self
+        solver_sigma_min = ieee_value(1.0_wp, ieee_quiet_nan)
+        if (associated(self%core)) solver_sigma_min = self%core%sigma_last
+    end function solver_sigma_min
+
+    function solver_singular_intervals(self) result(intervals)
+        class(regdae_solver), intent(in) :: self
+        real(wp), allocatable :: intervals(:, :)
+        allocate (intervals(2, 0))
+        if (.not. associated(self%core)) return
+        if (self%core%n_singular > 0) intervals = self%core%singular(:, 1:self%core%n_singular)
+    end function solver_singular_intervals
 
     ! Set the status of a call and its message.
     subroutine solver_record(self, code, text, stat)
@@ -525,7 +680,7 @@ contains
         ierr = 0
     end function ida_jacobian
 
-    ! Error weights with y left out: 1/(rtol |x_i| + atol) for x, 0 for y.
+    ! Error weights 1/(rtol |u_i| + atol), 0 for the unknowns left out (y, and v if asked).
     integer(c_int) function ida_error_weights(nv_u, nv_ewt, user_data) result(ierr) bind(C)
         type(N_Vector) :: nv_u, nv_ewt
         type(c_ptr), value :: user_data
@@ -535,8 +690,7 @@ contains
         call c_f_pointer(user_data, core)
         u => FN_VGetArrayPointer(nv_u)
         ewt => FN_VGetArrayPointer(nv_ewt)
-        ewt(1:core%n) = 1.0_wp/(core%opts%rtol*abs(u(1:core%n)) + core%opts%atol)
-        ewt(core%n + 1:core%neq) = 0.0_wp
+        ewt(1:core%neq) = merge(0.0_wp, 1.0_wp/(core%opts%rtol*abs(u(1:core%neq)) + core%opts%atol), core%excluded)
         ierr = 0
     end function ida_error_weights
 

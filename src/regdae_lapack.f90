@@ -7,7 +7,7 @@ module regdae_lapack
     implicit none
     private
 
-    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv
+    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv, dgesvd
 
     interface
         !> Solve A X = B, A symmetric positive definite (Cholesky).
@@ -57,6 +57,18 @@ module regdae_lapack
             real(wp), intent(inout) :: a(lda, *), b(ldb, *)
             integer, intent(out) :: ipiv(*), info
         end subroutine dgesv
+
+        !> Singular value decomposition (here: singular values only).
+        subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
+            import :: wp
+            character, intent(in) :: jobu, jobvt
+            integer, intent(in) :: m, n, lda, ldu, ldvt, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: s(*)
+            real(wp), intent(inout) :: u(ldu, *), vt(ldvt, *)
+            real(wp), intent(inout) :: work(*)
+            integer, intent(out) :: info
+        end subroutine dgesvd
     end interface
 
 end module regdae_lapack

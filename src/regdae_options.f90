@@ -14,6 +14,11 @@
 !! | max_steps      | >= 1 (per output interval)            | 100000         |
 !! | h_init, h_max  | >= 0 (0: IDA's choice / no limit)     | 0, 0           |
 !! | ic_tol         | > 0                                   | 1e-8           |
+!! | index          | 2, 3 (second-order problems)          | 3              |
+!! | gamma0, gamma1 | > 0 (index 3: weights of g, G v + g_t)| 2e6, 2e3       |
+!! | curvature      | yes, no (index 3: add g_xx(v,v) ...)  | no             |
+!! | excluded       | y, vy (index 3: left out of the error test) | y        |
+!! | singular_threshold | >= 0 (sigma_min(GB) below: singular) | 0.05        |
 module regdae_options
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
@@ -36,6 +41,9 @@ module regdae_options
     integer, parameter, public :: exclusion_weights = 2   !! zero error weights (FIDAWFtolerances)
     integer, parameter, public :: exclusion_off = 3       !! y stays in the error test
 
+    integer, parameter, public :: excluded_y = 1    !! index 3: only y leaves the error test
+    integer, parameter, public :: excluded_vy = 2   !! index 3: v and y leave it (the paper's choice)
+
     !> All options of a regdae solver, with their defaults.
     type, public :: solver_options
         integer :: method = method_trust_region        !! regularization
@@ -50,10 +58,16 @@ module regdae_options
         integer :: max_steps = 100000                  !! IDA steps allowed per call of `advance`
         real(wp) :: h_init = 0.0_wp                    !! first step size (0: IDA estimates it)
         real(wp) :: h_max = 0.0_wp                     !! largest step size (0: unlimited)
-        real(wp) :: ic_tol = 1.0e-8_wp                 !! allowed max |g(x0, t0)|
+        real(wp) :: ic_tol = 1.0e-8_wp                 !! allowed max |g(x0, t0)| (and |G v0 + g_t|)
+        integer :: index = 3                           !! second-order problems: 3, or 2 via G v + g_t = 0 (5.4)
+        real(wp) :: gamma0 = 2.0e6_wp                  !! index 3: weight of g (paper: 2/h^2)
+        real(wp) :: gamma1 = 2.0e3_wp                  !! index 3: weight of G v + g_t (paper: 2/h)
+        logical :: curvature = .false.                 !! index 3: add g_xx(v,v) + 2 g_xt v + g_tt to r
+        integer :: excluded = excluded_y               !! index 3: which variables leave the error test
+        real(wp) :: singular_threshold = 0.05_wp       !! sigma_min(GB) below this at an output: singular
     end type solver_options
 
-    public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name
+    public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name, excluded_name
 
 contains
 
@@ -104,6 +118,22 @@ contains
             call read_real(value, opts%ic_tol, code)
         case ('max_steps')
             call read_integer(value, opts%max_steps, code)
+        case ('index')
+            call lookup(value, [character(len=12) :: '1', '2', '3'], code)
+            if (code > 1) opts%index = code
+            if (code == 1) code = 0
+        case ('gamma0')
+            call read_real(value, opts%gamma0, code)
+        case ('gamma1')
+            call read_real(value, opts%gamma1, code)
+        case ('curvature')
+            call lookup(value, [character(len=12) :: 'yes', 'no'], code)
+            if (code > 0) opts%curvature = (code == 1)
+        case ('excluded')
+            call lookup(value, [character(len=12) :: 'y', 'vy'], code)
+            if (code > 0) opts%excluded = code
+        case ('singular_threshold')
+            call read_real(value, opts%singular_threshold, code)
         case default
             stat = regdae_err_bad_input
             msg = 'unknown option "'//key//'"'
@@ -138,6 +168,16 @@ contains
             msg = 'h_max must be finite and >= 0'
         else if (.not. (ieee_is_finite(opts%ic_tol) .and. opts%ic_tol > 0.0_wp)) then
             msg = 'ic_tol must be finite and > 0'
+        else if (.not. (ieee_is_finite(opts%gamma0) .and. opts%gamma0 > 0.0_wp)) then
+            msg = 'gamma0 must be finite and > 0'
+        else if (.not. (ieee_is_finite(opts%gamma1) .and. opts%gamma1 > 0.0_wp)) then
+            msg = 'gamma1 must be finite and > 0'
+        else if (.not. (ieee_is_finite(opts%singular_threshold) .and. opts%singular_threshold >= 0.0_wp)) then
+            msg = 'singular_threshold must be finite and >= 0'
+        else if (opts%index /= 2 .and. opts%index /= 3) then
+            msg = 'index must be 2 or 3'
+        else if (opts%excluded /= excluded_y .and. opts%excluded /= excluded_vy) then
+            msg = 'excluded must be y or vy'
         else if (opts%max_steps < 1) then
             msg = 'max_steps must be >= 1'
         else if (opts%method < method_baumgarte .or. opts%method > method_direct) then
@@ -200,6 +240,17 @@ contains
         case default; name = 'unknown'
         end select
     end function exclusion_name
+
+    !> Name of an error-test set code (index 3).
+    pure function excluded_name(code) result(name)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: name
+        select case (code)
+        case (excluded_y); name = 'y'
+        case (excluded_vy); name = 'vy'
+        case default; name = 'unknown'
+        end select
+    end function excluded_name
 
     ! Position of `value` in `names` (1-based), 0 if absent.
     pure subroutine lookup(value, names, code)

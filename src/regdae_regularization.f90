@@ -1,24 +1,30 @@
-!> The regularized index-2 system of section 2 of the paper, independent of
+!> The regularized systems of sections 2 and 4 of the paper, independent of
 !! the integrator.
 !!
-!! At a point (t, x) it evaluates the problem's pieces f, B, g, G, g_t, forms
-!! GB and the right-hand side
-!! $$ r = G f + g_t + \gamma g $$
-!! and gives the multiplier of the chosen regularization:
-!! - Baumgarte (2.7), gamma = 1/h:   GB y = r                      (LU);
-!! - trust region (2.10):             ((GB)^T GB + eps I) y = (GB)^T r;
-!! - direct (2.12):                   (GB + eps I) y = r, GB symmetric PSD (Cholesky).
-!! From these it builds the residuals IDA integrates: the eliminated form
-!! x' - f + B y(x) = 0, and the multiplier form with (x, y) as unknowns, whose
-!! algebraic rows are the regularized equations themselves (for Baumgarte,
-!! (2.5): gamma g + G x' + g_t = 0).
+!! Order 1 (index 2, eq. 2.1): state z = x, x' = f(x, t) - B y, 0 = g(x, t), and
+!! $$ r = G f + g_t + \gamma g. $$
+!! Order 2 (index 3, eq. 4.1): state z = (x, v), x' = v, v' = f(x, v, t) - B y,
+!! 0 = g(x, t), and (paper, 4.4-4.8, with gamma0 = 2/h^2, gamma1 = 2/h)
+!! $$ r = G f + \gamma_1 (G v + g_t) + \gamma_0 g \; [+\, c], $$
+!! where the optional curvature term c = g_xx(v, v) + 2 g_xt v + g_tt completes
+!! d^2 g/dt^2 (option `curvature`): with it the regularized system is exact
+!! wherever GB is invertible, like Baumgarte's.
+!!
+!! The multiplier of each method solves
+!! - Baumgarte (2.7 / 4.4):  GB y = r                           (LU);
+!! - trust region (2.10 / 4.6): ((GB)^T GB + eps I) y = (GB)^T r;
+!! - direct (2.12 / 4.8):    (GB + eps I) y = r, GB symmetric PSD (Cholesky).
+!! The residuals IDA integrates are the eliminated form (y(z) solved inside) and
+!! the multiplier form with (z, y) as unknowns, whose algebraic rows are the
+!! regularized equations themselves (Baumgarte: r - G f with G v' in place of G f).
 module regdae_regularization
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
     use regdae_format, only: format_real, format_int
     use regdae_status, only: regdae_success, regdae_err_user_callback, regdae_err_nonfinite, &
-                             regdae_err_not_psd, regdae_err_singular, status_message
+                             regdae_err_not_psd, regdae_err_singular, regdae_err_mass_matrix, status_message
     use regdae_problem, only: dae_problem
+    use regdae_second_order_problem, only: second_order_problem
     use regdae_options, only: solver_options, method_baumgarte, method_trust_region, method_direct
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     implicit none
@@ -27,110 +33,173 @@ module regdae_regularization
     !> A problem with its regularization: the pieces at the last evaluated point
     !! and the scratch space of the multiplier solves.
     type, public :: regularized_dae
-        class(dae_problem), allocatable :: problem  !! the user's problem (a copy)
-        integer :: method = method_trust_region     !! regularization
-        integer :: lsq = 0                          !! `lsq_normal` or `lsq_stacked` (resolved)
-        real(wp) :: gamma = 0.0_wp                  !! Baumgarte parameter
-        real(wp) :: eps = 0.0_wp                    !! damping
-        real(wp), allocatable :: f(:)        !! f(x, t), n
-        real(wp), allocatable :: b(:, :)     !! B(x, t), n x m
-        real(wp), allocatable :: g(:)        !! g(x, t), m
+        class(dae_problem), allocatable :: first            !! order-1 problem (a copy), or
+        class(second_order_problem), allocatable :: second  !! order-2 problem (a copy)
+        integer :: order = 1        !! 1 (index 2) or 2 (index 3)
+        integer :: n = 0            !! size of x
+        integer :: m = 0            !! number of constraints
+        integer :: method = method_trust_region
+        integer :: lsq = 0          !! `lsq_normal` or `lsq_stacked` (resolved)
+        real(wp) :: gamma0 = 0.0_wp !! weight of g (order 1: gamma)
+        real(wp) :: gamma1 = 0.0_wp !! weight of G v + g_t (order 2)
+        real(wp) :: eps = 0.0_wp    !! damping
+        logical :: curvature = .false.  !! add c to r (order 2)
+        real(wp), allocatable :: f(:)        !! f, n
+        real(wp), allocatable :: b(:, :)     !! B, n x m
+        real(wp), allocatable :: g(:)        !! g, m
         real(wp), allocatable :: gx(:, :)    !! G = g_x, m x n
         real(wp), allocatable :: gt(:)       !! g_t, m
+        real(wp), allocatable :: curv(:)     !! c (order 2 with curvature), m
         real(wp), allocatable :: gb(:, :)    !! G B, m x m
-        real(wp), allocatable :: r(:)        !! G f + g_t + gamma g, m
+        real(wp), allocatable :: r(:)        !! right-hand side of the multiplier equation, m
         type(damped_lsq_workspace) :: lsq_ws
         character(len=:), allocatable :: message  !! details of the last failure
     contains
-        !> Copy the problem and options in and size the work arrays.
-        procedure :: init => regularized_init
-        !> Evaluate f, B, g, G, g_t, GB and r at (t, x).
+        !> Take an order-1 problem.
+        procedure :: init_first_order
+        !> Take an order-2 problem.
+        procedure :: init_second_order
+        !> Evaluate f, B, g, G, g_t (c), GB and r at (t, z).
         procedure :: evaluate
         !> Multiplier y from the pieces of the last `evaluate`.
         procedure :: solve_multiplier
-        !> Residual x' - f + B y(x) of the eliminated formulation.
+        !> Smallest singular value of GB from the last `evaluate`.
+        procedure :: sigma_min_gb
+        !> Residual of the eliminated formulation, unknowns z.
         procedure :: residual_eliminated
-        !> Residual of the multiplier formulation, unknowns (x, y).
+        !> Residual of the multiplier formulation, unknowns (z, y).
         procedure :: residual_multiplier
+        procedure, private :: allocate_pieces, constraint_terms, dynamics_residual
     end type regularized_dae
 
 contains
 
-    subroutine regularized_init(self, problem, opts, lsq)
+    subroutine init_first_order(self, problem, opts, lsq)
         class(regularized_dae), intent(inout) :: self
         class(dae_problem), intent(in) :: problem    !! copied into self
         type(solver_options), intent(in) :: opts
         integer, intent(in) :: lsq                   !! resolved least-squares method
-        integer :: n, m
+        if (allocated(self%first)) deallocate (self%first)
+        if (allocated(self%second)) deallocate (self%second)
+        allocate (self%first, source=problem)
+        self%order = 1
+        self%gamma0 = opts%gamma
+        self%gamma1 = 0.0_wp
+        self%curvature = .false.
+        call self%allocate_pieces(problem%n, problem%m, opts, lsq)
+    end subroutine init_first_order
 
-        if (allocated(self%problem)) deallocate (self%problem)
-        allocate (self%problem, source=problem)
-        n = problem%n
-        m = problem%m
+    subroutine init_second_order(self, problem, opts, lsq)
+        class(regularized_dae), intent(inout) :: self
+        class(second_order_problem), intent(in) :: problem    !! copied into self
+        type(solver_options), intent(in) :: opts
+        integer, intent(in) :: lsq
+        if (allocated(self%first)) deallocate (self%first)
+        if (allocated(self%second)) deallocate (self%second)
+        allocate (self%second, source=problem)
+        self%order = 2
+        self%gamma0 = opts%gamma0
+        self%gamma1 = opts%gamma1
+        self%curvature = opts%curvature
+        call self%allocate_pieces(problem%n, problem%m, opts, lsq)
+    end subroutine init_second_order
+
+    subroutine allocate_pieces(self, n, m, opts, lsq)
+        class(regularized_dae), intent(inout) :: self
+        integer, intent(in) :: n, m, lsq
+        type(solver_options), intent(in) :: opts
+        self%n = n
+        self%m = m
         self%method = opts%method
         self%lsq = lsq
-        self%gamma = opts%gamma
         self%eps = opts%eps
-        self%f = zeros(n)
-        self%g = zeros(m)
-        self%gt = zeros(m)
-        self%r = zeros(m)
-        allocate (self%b(n, m), self%gx(m, n), self%gb(m, m), source=0.0_wp)
+        if (allocated(self%f)) deallocate (self%f, self%b, self%g, self%gx, self%gt, self%curv, self%gb, self%r)
+        allocate (self%f(n), self%b(n, m), self%g(m), self%gx(m, n), self%gt(m), self%curv(m), self%gb(m, m), &
+                  self%r(m), source=0.0_wp)
         call self%lsq_ws%init(m, m)
         self%message = ''
-    end subroutine regularized_init
+    end subroutine allocate_pieces
 
-    pure function zeros(k) result(v)
-        integer, intent(in) :: k
-        real(wp) :: v(k)
-        v = 0.0_wp
-    end function zeros
-
-    !> Evaluate the pieces at (t, x). A failing user routine gives
-    !! `regdae_err_user_callback` with the user's sign in `recoverable`; a NaN
-    !! or Inf in any piece gives `regdae_err_nonfinite` (recoverable).
-    subroutine evaluate(self, t, x, stat, recoverable)
+    !> Evaluate the pieces at (t, z). A failing user routine gives
+    !! `regdae_err_user_callback` (or `regdae_err_mass_matrix`) with the user's
+    !! sign in `recoverable`; a NaN or Inf gives `regdae_err_nonfinite` (recoverable).
+    subroutine evaluate(self, t, z, stat, recoverable)
         class(regularized_dae), intent(inout) :: self
         real(wp), intent(in) :: t       !! time
-        real(wp), intent(in) :: x(:)    !! state, length n
+        real(wp), intent(in) :: z(:)    !! state: x (order 1) or (x, v) (order 2)
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable   !! may a smaller step help?
-        integer :: ustat
+        integer :: ustat, n
 
         stat = regdae_success
         recoverable = .true.
         ustat = 0
-        call self%problem%rhs(t, x, self%f, ustat)
-        if (failed('rhs')) return
-        call self%problem%matrix_b(t, x, self%b, ustat)
-        if (failed('matrix_b')) return
-        call self%problem%constraint(t, x, self%g, ustat)
-        if (failed('constraint')) return
-        call self%problem%constraint_jacobian(t, x, self%gx, ustat)
-        if (failed('constraint_jacobian')) return
-        call self%problem%constraint_dt(t, x, self%gt, ustat)
-        if (failed('constraint_dt')) return
+        n = self%n
+        if (self%order == 1) then
+            call self%first%rhs(t, z, self%f, ustat)
+            if (failed('rhs')) return
+            call self%first%matrix_b(t, z, self%b, ustat)
+            if (failed('matrix_b')) return
+            call self%first%constraint(t, z, self%g, ustat)
+            if (failed('constraint')) return
+            call self%first%constraint_jacobian(t, z, self%gx, ustat)
+            if (failed('constraint_jacobian')) return
+            call self%first%constraint_dt(t, z, self%gt, ustat)
+            if (failed('constraint_dt')) return
+        else
+            call self%second%rhs(t, z(1:n), z(n + 1:2*n), self%f, ustat)
+            if (failed('rhs')) return
+            call self%second%matrix_b(t, z(1:n), z(n + 1:2*n), self%b, ustat)
+            if (failed('matrix_b')) return
+            call self%second%constraint(t, z(1:n), self%g, ustat)
+            if (failed('constraint')) return
+            call self%second%constraint_jacobian(t, z(1:n), self%gx, ustat)
+            if (failed('constraint_jacobian')) return
+            call self%second%constraint_dt(t, z(1:n), self%gt, ustat)
+            if (failed('constraint_dt')) return
+            if (self%curvature) then
+                call self%second%constraint_curvature(t, z(1:n), z(n + 1:2*n), self%curv, ustat)
+                if (failed('constraint_curvature')) return
+            end if
+        end if
         if (.not. (all(ieee_is_finite(self%f)) .and. all(ieee_is_finite(self%b)) .and. &
                    all(ieee_is_finite(self%g)) .and. all(ieee_is_finite(self%gx)) .and. &
-                   all(ieee_is_finite(self%gt)))) then
+                   all(ieee_is_finite(self%gt)) .and. all(ieee_is_finite(self%curv)))) then
             stat = regdae_err_nonfinite
-            self%message = 'NaN or Inf in f, B, g, G or g_t at t = '//format_real(t)
+            self%message = 'NaN or Inf in f, B, g, G, g_t or c at t = '//format_real(t)
             return
         end if
         self%gb = matmul(self%gx, self%b)
-        self%r = matmul(self%gx, self%f) + self%gt + self%gamma*self%g
+        self%r = matmul(self%gx, self%f) + self%constraint_terms(z)
     contains
         logical function failed(name)
             character(len=*), intent(in) :: name
             failed = (ustat /= 0)
-            if (failed) then
+            if (.not. failed) return
+            recoverable = (ustat > 0)
+            if (ustat == regdae_err_mass_matrix) then
+                stat = regdae_err_mass_matrix
+                self%message = status_message(stat)//' at t = '//format_real(t)//' (in '//name//')'
+            else
                 stat = regdae_err_user_callback
-                recoverable = (ustat > 0)
                 self%message = 'user routine '//name//' reported failure (stat = '// &
                                format_int(ustat)//') at t = '//format_real(t)
             end if
         end function failed
     end subroutine evaluate
+
+    ! r - G f: gamma g + g_t (order 1); gamma0 g + gamma1 (G v + g_t) [+ c] (order 2).
+    function constraint_terms(self, z) result(q)
+        class(regularized_dae), intent(in) :: self
+        real(wp), intent(in) :: z(:)
+        real(wp) :: q(self%m)
+        if (self%order == 1) then
+            q = self%gt + self%gamma0*self%g
+        else
+            q = self%gamma0*self%g + self%gamma1*(matmul(self%gx, z(self%n + 1:2*self%n)) + self%gt)
+            if (self%curvature) q = q + self%curv
+        end if
+    end function constraint_terms
 
     !> The multiplier of the chosen regularization from the last `evaluate`.
     !! Failures: `regdae_err_not_psd` (direct, GB not symmetric PSD),
@@ -168,16 +237,24 @@ contains
         end select
     end subroutine solve_multiplier
 
-    !> Eliminated formulation: res = x' - f + B y(x), y from `solve_multiplier`.
-    subroutine residual_eliminated(self, t, x, xp, res, y, stat, recoverable)
+    !> sigma_min(GB) at the last evaluated point.
+    function sigma_min_gb(self) result(sigma)
         class(regularized_dae), intent(inout) :: self
-        real(wp), intent(in) :: t, x(:), xp(:)
-        real(wp), intent(out) :: res(:)   !! residual, length n
+        real(wp) :: sigma
+        sigma = self%lsq_ws%smallest_singular_value(self%gb)
+    end function sigma_min_gb
+
+    !> Eliminated formulation: res = z' - (v, f - B y(z)) (order 2) or
+    !! x' - f + B y(x) (order 1), y from `solve_multiplier`.
+    subroutine residual_eliminated(self, t, z, zp, res, y, stat, recoverable)
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:), zp(:)
+        real(wp), intent(out) :: res(:)   !! residual, length of z
         real(wp), intent(out) :: y(:)     !! multiplier used, length m
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable
 
-        call self%evaluate(t, x, stat, recoverable)
+        call self%evaluate(t, z, stat, recoverable)
         if (stat /= regdae_success) return
         call self%solve_multiplier(t, y, stat)
         if (stat /= regdae_success) then
@@ -186,25 +263,41 @@ contains
             recoverable = (stat == regdae_err_singular .or. stat == regdae_err_nonfinite)
             return
         end if
-        res = xp - self%f + matmul(self%b, y)
+        call self%dynamics_residual(z, zp, y, res)
     end subroutine residual_eliminated
 
-    !> Multiplier formulation: res_x = x' - f + B y, and res_y the regularized
-    !! equation of the method (trust region: (GB)^T (GB y - r) + eps y; direct:
-    !! (GB + eps I) y - r; Baumgarte: gamma g + G x' + g_t).
-    subroutine residual_multiplier(self, t, x, y, xp, res_x, res_y, stat, recoverable)
+    ! The differential rows: x' - f + B y (order 1); (x' - v, v' - f + B y) (order 2).
+    subroutine dynamics_residual(self, z, zp, y, res)
+        class(regularized_dae), intent(in) :: self
+        real(wp), intent(in) :: z(:), zp(:), y(:)
+        real(wp), intent(out) :: res(:)
+        integer :: n
+        n = self%n
+        if (self%order == 1) then
+            res(1:n) = zp(1:n) - self%f + matmul(self%b, y)
+        else
+            res(1:n) = zp(1:n) - z(n + 1:2*n)
+            res(n + 1:2*n) = zp(n + 1:2*n) - self%f + matmul(self%b, y)
+        end if
+    end subroutine dynamics_residual
+
+    !> Multiplier formulation: the differential rows with the given y, and
+    !! res_y the regularized equation (trust region: (GB)^T (GB y - r) + eps y;
+    !! direct: (GB + eps I) y - r; Baumgarte: r - G f + G (last block of z')).
+    subroutine residual_multiplier(self, t, z, y, zp, res_z, res_y, stat, recoverable)
         class(regularized_dae), intent(inout) :: self
-        real(wp), intent(in) :: t, x(:), y(:), xp(:)
-        real(wp), intent(out) :: res_x(:)   !! length n
+        real(wp), intent(in) :: t, z(:), y(:), zp(:)
+        real(wp), intent(out) :: res_z(:)   !! length of z
         real(wp), intent(out) :: res_y(:)   !! length m
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable
         real(wp), parameter :: psd_tol = 1.0e-8_wp
-        integer :: i
+        integer :: i, n
 
-        call self%evaluate(t, x, stat, recoverable)
+        call self%evaluate(t, z, stat, recoverable)
         if (stat /= regdae_success) return
-        res_x = xp - self%f + matmul(self%b, y)
+        call self%dynamics_residual(z, zp, y, res_z)
+        n = self%n
         select case (self%method)
         case (method_trust_region)
             res_y = matmul(matmul(self%gb, y) - self%r, self%gb) + self%eps*y
@@ -212,7 +305,7 @@ contains
             ! Necessary conditions for GB symmetric PSD, cheap enough for every
             ! residual: symmetry and a nonnegative diagonal.
             if (maxval(abs(self%gb - transpose(self%gb))) > psd_tol*maxval(abs(self%gb)) &
-                .or. any([(self%gb(i, i), i=1, self%problem%m)] < -psd_tol*maxval(abs(self%gb)))) then
+                .or. any([(self%gb(i, i), i=1, self%m)] < -psd_tol*maxval(abs(self%gb)))) then
                 stat = regdae_err_not_psd
                 recoverable = .false.
                 self%message = 'method=direct: GB is not symmetric positive semidefinite at t = '// &
@@ -221,7 +314,7 @@ contains
             end if
             res_y = matmul(self%gb, y) + self%eps*y - self%r
         case default
-            res_y = self%gamma*self%g + matmul(self%gx, xp) + self%gt
+            res_y = self%constraint_terms(z) + matmul(self%gx, zp((self%order - 1)*n + 1:self%order*n))
         end select
     end subroutine residual_multiplier
 

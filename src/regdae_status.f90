@@ -20,6 +20,7 @@ module regdae_status
     integer, parameter, public :: regdae_err_integration = -108      !! IDA failed during the integration
     integer, parameter, public :: regdae_err_not_initialized = -109  !! solver used before a successful init
     integer, parameter, public :: regdae_err_nonfinite = -110        !! NaN or Inf in a computed quantity
+    integer, parameter, public :: regdae_err_mass_matrix = -111      !! M(q) not symmetric positive definite
 
     public :: status_message
 
@@ -55,6 +56,8 @@ contains
             msg = 'solver not initialized'
         case (regdae_err_nonfinite)
             msg = 'NaN or Inf encountered'
+        case (regdae_err_mass_matrix)
+            msg = 'the mass matrix M(q) is not symmetric positive definite'
         case default
             msg = 'unknown status code'
         end select

@@ -49,7 +49,7 @@ contains
         opts%method = method
         opts%gamma = 10.0_wp
         opts%eps = 0.01_wp
-        call model%init(new_ex51(orientation_psd), opts, lsq)
+        call model%init_first_order(new_ex51(orientation_psd), opts, lsq)
     end function model_for
 
     subroutine pieces(chk)

@@ -1,0 +1,117 @@
+!> Constrained mechanical systems (paper, eq. 1.2 / 4.9):
+!! $$ M(q)\,q'' = f(q, q', t) + G^T \lambda, \qquad 0 = g(q, t). $$
+!!
+!! Extend `mechanical_problem`, set `n` (coordinates) and `m` (constraints), and
+!! implement `mass_matrix`, `forces`, `constraint` and `constraint_jacobian`
+!! (optionally `constraint_dt` and `constraint_curvature`, as for a
+!! `second_order_problem`). regdae forms the order-2 Hessenberg form
+!! q'' = M^{-1} f - B y with B = M^{-1} G^T and y = -lambda, factoring M once
+!! per evaluation point by Cholesky (`dpotrf`); M must be symmetric positive
+!! definite. The solver reports lambda, in this type's sign convention.
+module regdae_mechanical_problem
+    use regdae_kinds, only: wp
+    use regdae_status, only: regdae_err_mass_matrix
+    use regdae_lapack, only: dpotrf, dpotrs
+    use regdae_second_order_problem, only: second_order_problem
+    implicit none
+    private
+
+    !> Abstract constrained mechanical system.
+    type, abstract, extends(second_order_problem), public :: mechanical_problem
+        private
+        real(wp), allocatable :: factor(:, :)   ! Cholesky factor of M at (factor_t, factor_q)
+        real(wp), allocatable :: factor_q(:)
+        real(wp) :: factor_t = 0.0_wp
+        logical :: have_factor = .false.
+    contains
+        !> M(q, t), n x n, symmetric positive definite.
+        procedure(mass_matrix_iface), deferred :: mass_matrix
+        !> f(q, q', t), length n: applied and velocity-dependent forces.
+        procedure(forces_iface), deferred :: forces
+        !> f of the order-2 form: M^{-1} f.
+        procedure :: rhs => mechanical_rhs
+        !> B of the order-2 form: M^{-1} G^T.
+        procedure :: matrix_b => mechanical_b
+    end type mechanical_problem
+
+    abstract interface
+        subroutine mass_matrix_iface(self, t, q, mass, stat)
+            import :: mechanical_problem, wp
+            class(mechanical_problem), intent(inout) :: self
+            real(wp), intent(in) :: t, q(:)
+            real(wp), intent(out) :: mass(:, :)   !! n x n
+            integer, intent(inout) :: stat
+        end subroutine mass_matrix_iface
+
+        subroutine forces_iface(self, t, q, qd, f, stat)
+            import :: mechanical_problem, wp
+            class(mechanical_problem), intent(inout) :: self
+            real(wp), intent(in) :: t, q(:), qd(:)
+            real(wp), intent(out) :: f(:)          !! length n
+            integer, intent(inout) :: stat
+        end subroutine forces_iface
+    end interface
+
+contains
+
+    ! Cholesky factor of M(q, t), reused while (t, q) is unchanged: `rhs` and
+    ! `matrix_b` are evaluated at the same point. stat = regdae_err_mass_matrix
+    ! if M is not symmetric positive definite.
+    subroutine factor_mass(self, t, q, stat)
+        class(mechanical_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        integer, intent(inout) :: stat
+        real(wp), parameter :: symmetry_tol = 1.0e-12_wp
+        integer :: info, n
+
+        n = size(q)
+        if (self%have_factor) then
+            if (self%factor_t == t .and. all(self%factor_q == q)) return
+        end if
+        if (.not. allocated(self%factor)) allocate (self%factor(n, n), self%factor_q(n))
+        self%have_factor = .false.
+        call self%mass_matrix(t, q, self%factor, stat)
+        if (stat /= 0) return
+        if (maxval(abs(self%factor - transpose(self%factor))) > symmetry_tol*maxval(abs(self%factor))) then
+            stat = regdae_err_mass_matrix
+            return
+        end if
+        call dpotrf('L', n, self%factor, n, info)
+        if (info /= 0) then
+            stat = regdae_err_mass_matrix
+            return
+        end if
+        self%factor_t = t
+        self%factor_q = q
+        self%have_factor = .true.
+    end subroutine factor_mass
+
+    subroutine mechanical_rhs(self, t, x, v, val, stat)
+        class(mechanical_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        integer :: info
+        call factor_mass(self, t, x, stat)
+        if (stat /= 0) return
+        call self%forces(t, x, v, val, stat)
+        if (stat /= 0) return
+        call dpotrs('L', self%n, 1, self%factor, self%n, val, self%n, info)
+    end subroutine mechanical_rhs
+
+    subroutine mechanical_b(self, t, x, v, a, stat)
+        class(mechanical_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
+        real(wp) :: gx(self%m, self%n)
+        integer :: info
+        call factor_mass(self, t, x, stat)
+        if (stat /= 0) return
+        call self%constraint_jacobian(t, x, gx, stat)
+        if (stat /= 0) return
+        a = transpose(gx)
+        call dpotrs('L', self%n, self%m, self%factor, self%n, a, self%n, info)
+    end subroutine mechanical_b
+
+end module regdae_mechanical_problem

@@ -1,0 +1,130 @@
+!> The user's problem of order 2 (index 3; paper, eq. 4.1):
+!! $$ x'' = f(x, x', t) - B(x, x', t)\,y, \qquad 0 = g(x, t), $$
+!! x in R^n, y in R^m, G = g_x (m x n), B (n x m). regdae writes it first order
+!! in (x, v = x').
+!!
+!! Extend `second_order_problem`, set `n` and `m`, and implement the deferred
+!! procedures (same `stat` convention as `dae_problem`). The optional
+!! `constraint_curvature` is the part of d^2 g/dt^2 that does not contain x'':
+!! $$ c = g_{xx}(v, v) + 2 g_{xt} v + g_{tt}, $$
+!! used by the curvature-corrected regularization (option `curvature=yes`); by
+!! default it is a difference quotient of G v + g_t along (v, 1), so the user
+!! supplies only G.
+module regdae_second_order_problem
+    use regdae_kinds, only: wp
+    implicit none
+    private
+
+    !> Abstract second-order (index-3) Hessenberg DAE.
+    type, abstract, public :: second_order_problem
+        integer :: n = 0   !! number of coordinates x
+        integer :: m = 0   !! number of constraints and multipliers y
+    contains
+        !> f(x, v, t), length n.
+        procedure(second_order_field), deferred :: rhs
+        !> B(x, v, t), n x m.
+        procedure(second_order_matrix), deferred :: matrix_b
+        !> g(x, t), length m.
+        procedure(position_field), deferred :: constraint
+        !> G = dg/dx (x, t), m x n.
+        procedure(position_matrix), deferred :: constraint_jacobian
+        !> dg/dt (x, t), length m; default: central difference quotient in t.
+        procedure :: constraint_dt => default_constraint_dt
+        !> c = g_xx(v, v) + 2 g_xt v + g_tt, length m; default: difference quotient.
+        procedure :: constraint_curvature => default_constraint_curvature
+    end type second_order_problem
+
+    abstract interface
+        !> A vector function of (x, v, t): f (length n).
+        subroutine second_order_field(self, t, x, v, val, stat)
+            import :: second_order_problem, wp
+            class(second_order_problem), intent(inout) :: self
+            real(wp), intent(in) :: t, x(:), v(:)   !! time, position, velocity
+            real(wp), intent(out) :: val(:)
+            integer, intent(inout) :: stat          !! 0 on entry; > 0 recoverable, < 0 fatal failure
+        end subroutine second_order_field
+
+        !> A matrix function of (x, v, t): B (n x m).
+        subroutine second_order_matrix(self, t, x, v, a, stat)
+            import :: second_order_problem, wp
+            class(second_order_problem), intent(inout) :: self
+            real(wp), intent(in) :: t, x(:), v(:)
+            real(wp), intent(out) :: a(:, :)
+            integer, intent(inout) :: stat
+        end subroutine second_order_matrix
+
+        !> A vector function of (x, t): g (length m).
+        subroutine position_field(self, t, x, val, stat)
+            import :: second_order_problem, wp
+            class(second_order_problem), intent(inout) :: self
+            real(wp), intent(in) :: t, x(:)
+            real(wp), intent(out) :: val(:)
+            integer, intent(inout) :: stat
+        end subroutine position_field
+
+        !> A matrix function of (x, t): G (m x n).
+        subroutine position_matrix(self, t, x, a, stat)
+            import :: second_order_problem, wp
+            class(second_order_problem), intent(inout) :: self
+            real(wp), intent(in) :: t, x(:)
+            real(wp), intent(out) :: a(:, :)
+            integer, intent(inout) :: stat
+        end subroutine position_matrix
+    end interface
+
+    public :: velocity_constraint
+
+contains
+
+    !> g_t by the central difference in t (as for `dae_problem`).
+    subroutine default_constraint_dt(self, t, x, val, stat)
+        class(second_order_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        real(wp) :: d, tp, tm
+        real(wp) :: gm(size(val))
+
+        d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(abs(t), 1.0_wp)
+        tp = t + d
+        tm = t - d
+        call self%constraint(tp, x, val, stat)
+        if (stat /= 0) return
+        call self%constraint(tm, x, gm, stat)
+        if (stat /= 0) return
+        val = (val - gm)/(tp - tm)
+    end subroutine default_constraint_dt
+
+    !> The velocity constraint dg/dt = G(x, t) v + g_t(x, t), length m.
+    subroutine velocity_constraint(problem, t, x, v, val, stat)
+        class(second_order_problem), intent(inout) :: problem
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        real(wp) :: gx(problem%m, problem%n)
+
+        call problem%constraint_jacobian(t, x, gx, stat)
+        if (stat /= 0) return
+        call problem%constraint_dt(t, x, val, stat)
+        if (stat /= 0) return
+        val = val + matmul(gx, v)
+    end subroutine velocity_constraint
+
+    !> c = d/ds [G v + g_t](x + s v, t + s) at s = 0 by a central difference,
+    !! step d = u^(1/3) max(1, |x|) / max(1, |v|): error ~ u^(2/3) relative.
+    subroutine default_constraint_curvature(self, t, x, v, val, stat)
+        class(second_order_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        real(wp) :: d, minus(size(val))
+
+        d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(1.0_wp, maxval(abs(x)), abs(t))/max(1.0_wp, maxval(abs(v)))
+        call velocity_constraint(self, t + d, x + d*v, v, val, stat)
+        if (stat /= 0) return
+        call velocity_constraint(self, t - d, x - d*v, v, minus, stat)
+        if (stat /= 0) return
+        val = (val - minus)/(2.0_wp*d)
+    end subroutine default_constraint_curvature
+
+end module regdae_second_order_problem
