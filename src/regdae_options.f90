@@ -16,7 +16,7 @@
 !! | ic_tol         | > 0                                   | 1e-8           |
 !! | index          | 2, 3 (second-order problems)          | 3              |
 !! | gamma0, gamma1 | > 0 (index 3: weights of g, G v + g_t)| 2e6, 2e3       |
-!! | curvature      | yes, no (index 3: add g_xx(v,v) ...)  | no             |
+!! | curvature      | yes, no (index 3: add g_xx(v,v) ...)  | yes            |
 !! | excluded       | y, vy (index 3: left out of the error test) | y        |
 !! | singular_threshold | >= 0 (sigma_min(GB) below: singular) | 0.05        |
 module regdae_options
@@ -62,7 +62,7 @@ module regdae_options
         integer :: index = 3                           !! second-order problems: 3, or 2 via G v + g_t = 0 (5.4)
         real(wp) :: gamma0 = 2.0e6_wp                  !! index 3: weight of g (paper: 2/h^2)
         real(wp) :: gamma1 = 2.0e3_wp                  !! index 3: weight of G v + g_t (paper: 2/h)
-        logical :: curvature = .false.                 !! index 3: add g_xx(v,v) + 2 g_xt v + g_tt to r
+        logical :: curvature = .true.                  !! index 3: add g_xx(v,v) + 2 g_xt v + g_tt to r
         integer :: excluded = excluded_y               !! index 3: which variables leave the error test
         real(wp) :: singular_threshold = 0.05_wp       !! sigma_min(GB) below this at an output: singular
     end type solver_options

@@ -7,6 +7,7 @@ module driver_support
     private
 
     public :: format_int
+    public :: read_number
     public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage
 
 contains
@@ -59,6 +60,18 @@ contains
         call system_clock(now, rate)
         sec = real(now - start, wp)/real(rate, wp)
     end function elapsed_seconds
+
+    !> Read a finite real option value, or stop with a usage error naming it.
+    subroutine read_number(program_name, key, value, x)
+        character(len=*), intent(in) :: program_name, key, value
+        real(wp), intent(inout) :: x
+        real(wp) :: tmp
+        integer :: ios
+        ios = 1
+        if (len_trim(value) > 0 .and. verify(value, '0123456789+-.eEdD') == 0) read (value, *, iostat=ios) tmp
+        if (ios /= 0) call die_usage(program_name, 'bad value "'//value//'" for '//key)
+        x = tmp
+    end subroutine read_number
 
     !> Print a usage error naming the problem and stop with status 2.
     subroutine die_usage(program_name, text)

@@ -1,0 +1,160 @@
+!> Driver for Example 5.2 of Petzold, Ren & Maly (1997): the slider crank
+!! (equations 5.2-5.4), started at rest (by default) from th1 = th2 = pi/2, so
+!! that it passes the singular configuration (0, pi) every half swing.
+!!
+!! Usage: ex52 [key=value ...]
+!!   method=baumgarte|trust_region|direct (trust_region)   index=2|3 (3)
+!!   gamma=1e3 (index 2)   gamma0=2e6 gamma1=2e3 (index 3)   eps=1e-6   rtol=1e-5 atol=1e-5
+!!   tf=10 nout=1000 th1=pi/2 w1=0 (th2 = pi - th1, w2 = -w1: the physical branch)
+!!   excluded=y|vy (index 3: what leaves the error test)   curvature=no|yes (index 3)
+!!   branch_tol=0.1 (a larger |th1 + th2 - pi| flags the run as off the physical branch)
+!!   and formulation, lsq, exclusion, stop_at_output (yes), max_steps, h_init, h_max, ic_tol,
+!!   singular_threshold (0.05: sigma_min(GB) below it at an output time counts as singular)
+!! The reference is the reduced one-degree-of-freedom ODE on the physical branch, integrated by
+!! CVODE at rtol = atol = 1e-13.
+!! Output: '#' lines, the table 't th1 th2 w1 w2 lambda g3 energy' (lambda of eq. 5.2), and the last line
+!!   summary method=... index=... status=ok|failed t_end=... max_err_th=... max_abs_g3=...
+!!           max_energy_err=... max_branch_dev=... singular_passes=... steps=... res_evals=...
+!!           jac_evals=... err_test_fails=... conv_fails=... seconds=...
+!! Exit status: 0 ok, 1 solver failure or off the physical branch, 2 bad arguments.
+program ex52_driver
+    use, intrinsic :: iso_fortran_env, only: int64
+    use regdae
+    use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
+    use reference_ode, only: integrate_reference
+    use driver_support, only: format_int, argument, split_key_value, num, clock_start, elapsed_seconds, &
+                              die_usage, read_number
+    implicit none
+
+    character(len=*), parameter :: prog = 'ex52'
+    real(wp), parameter :: t0 = 0.0_wp, pi = acos(-1.0_wp), gravity = 9.8_wp
+    type(solver_options) :: opts
+    type(regdae_solver) :: solver
+    type(solver_stats) :: st
+    type(slider_crank) :: crank
+    type(slider_crank_reduced) :: reduced
+    character(len=:), allocatable :: key, value, msg, status_text
+    integer :: i, k, nout, stat, rstat
+    logical :: ok, off_branch
+    real(wp) :: th1, w1, tf, branch_tol, th(2), w(2), lam(1), t, e0, e, seconds
+    real(wp) :: max_err, max_g3, max_de, max_dev, dev, t_off, ref_drift
+    real(wp), allocatable :: times(:), ref(:, :)
+    integer(int64) :: start
+
+    th1 = pi/2
+    w1 = 0.0_wp
+    tf = 10.0_wp
+    nout = 1000
+    branch_tol = 0.1_wp
+    opts%stop_at_output = .true.
+    do i = 1, command_argument_count()
+        call split_key_value(argument(i), key, value, ok)
+        if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
+        select case (key)
+        case ('th1'); call read_number(prog, key, value, th1)
+        case ('w1'); call read_number(prog, key, value, w1)
+        case ('tf'); call read_number(prog, key, value, tf)
+        case ('branch_tol'); call read_number(prog, key, value, branch_tol)
+        case ('nout')
+            read (value, *, iostat=stat) nout
+            if (stat /= 0 .or. verify(value, '0123456789') /= 0 .or. nout < 1) &
+                call die_usage(prog, 'bad value "'//value//'" for nout (an integer >= 1)')
+        case default
+            call set_option(opts, key, value, stat, msg)
+            if (stat /= regdae_success) call die_usage(prog, msg)
+        end select
+    end do
+    if (.not. (tf > t0)) call die_usage(prog, 'tf must be > 0')
+
+    crank = new_slider_crank(gravity)
+    reduced%gravity = gravity
+    times = [(t0 + (tf - t0)*real(k, wp)/real(nout, wp), k=0, nout)]
+    allocate (ref(2, 0:nout))
+    call integrate_reference(reduced, t0, [th1, w1], times, ref, 1.0e-13_wp, 1.0e-13_wp, rstat)
+    if (rstat /= 0) call die_usage(prog, 'the reference integration (CVODE) failed, flag '//format_int(rstat))
+    ref_drift = maxval(abs(reduced_energy(ref(1, :), ref(2, :)) - reduced_energy(ref(1, 0), ref(2, 0))))
+
+    write (*, '(a)') '# regdae ex52: the slider crank, Example 5.2 of Petzold, Ren & Maly (1997)'
+    write (*, '(a)') '#   M(th) th'''' + h(th, th'') + G^T lambda = 0, g3 = -cos th1 - cos th2 = 0 (index 3); '// &
+        'index 2: G th'' = 0'
+    write (*, '(a)') '# method='//method_name(opts%method)//' index='//format_int(opts%index)// &
+        ' formulation='//formulation_name(opts%formulation)//' lsq='//lsq_name(opts%lsq)// &
+        ' excluded='//excluded_name(opts%excluded)//' exclusion='//exclusion_name(opts%exclusion)// &
+        ' curvature='//trim(merge('yes', 'no ', opts%curvature))
+    write (*, '(a)') '# gamma='//num(opts%gamma)//' gamma0='//num(opts%gamma0)//' gamma1='//num(opts%gamma1)// &
+        ' eps='//num(opts%eps)//' rtol='//num(opts%rtol)//' atol='//num(opts%atol)//' th1='//num(th1)// &
+        ' w1='//num(w1)//' tf='//num(tf)//' nout='//format_int(nout)
+    write (*, '(a)') '# reference: reduced ODE on th2 = pi - th1 by CVODE (Adams, rtol = atol = 1e-13); '// &
+        'its energy drift '//num(ref_drift)
+    write (*, '(a1,a23,7a24)') '#', 't', 'th1', 'th2', 'w1', 'w2', 'lambda', 'g3', 'energy'
+
+    start = clock_start()
+    max_err = 0.0_wp
+    max_g3 = 0.0_wp
+    max_de = 0.0_wp
+    max_dev = 0.0_wp
+    off_branch = .false.
+    t_off = t0
+    e0 = crank%energy([th1, pi - th1], [w1, -w1])
+    call solver%init(crank, t0, [th1, pi - th1], [w1, -w1], opts, stat)
+    if (stat == regdae_success) then
+        do k = 0, nout
+            t = times(k + 1)
+            call solver%advance(t, th, lam, stat, w)
+            if (stat < 0) exit
+            ! lambda of (5.2) is minus the mechanical multiplier (M q'' = f + G^T lambda_m).
+            lam = -lam
+            e = crank%energy(th, w)
+            max_err = max(max_err, abs(th(1) - ref(1, k)), abs(th(2) - (pi - ref(1, k))))
+            max_g3 = max(max_g3, abs(cos(th(1)) + cos(th(2))))
+            max_de = max(max_de, abs(e - e0))
+            dev = abs(modulo(th(1) + th(2) - pi + pi, 2*pi) - pi)
+            if (dev > branch_tol .and. .not. off_branch) then
+                off_branch = .true.
+                t_off = t
+            end if
+            max_dev = max(max_dev, dev)
+            write (*, '(8es24.15e3)') t, th, w, lam, -cos(th(1)) - cos(th(2)), e
+        end do
+        if (stat > 0) stat = regdae_success
+    end if
+    seconds = elapsed_seconds(start)
+    st = solver%statistics()
+    status_text = 'ok'
+    if (stat /= regdae_success) then
+        write (*, '(a)') '# error: '//solver%message()
+        status_text = 'failed'
+    else if (off_branch) then
+        write (*, '(a)') '# warning: left the physical branch th2 = pi - th1 at t = '//num(t_off)// &
+            ' (max |th1 + th2 - pi| = '//num(max_dev)//' > branch_tol = '//num(branch_tol)//')'
+        status_text = 'failed'
+    end if
+    call print_singular_intervals(solver%singular_intervals())
+    write (*, '(a)') 'summary method='//method_name(opts%method)//' index='//format_int(opts%index)// &
+        ' status='//status_text//' t_end='//num(st%t)//' max_err_th='//num(max_err)// &
+        ' max_abs_g3='//num(max_g3)//' max_energy_err='//num(max_de)//' max_branch_dev='//num(max_dev)// &
+        ' singular_passes='//format_int(st%singular_passes)//' steps='//format_int(int(st%steps))// &
+        ' res_evals='//format_int(int(st%res_evals))//' jac_evals='//format_int(int(st%jac_evals))// &
+        ' err_test_fails='//format_int(int(st%err_test_fails))//' conv_fails='//format_int(int(st%conv_fails))// &
+        ' seconds='//num(seconds)
+    call solver%destroy()
+    if (status_text /= 'ok') stop 1
+
+contains
+
+    elemental real(wp) function reduced_energy(th, w)
+        real(wp), intent(in) :: th, w
+        reduced_energy = 0.5_wp*w**2*(1.0_wp + 4.0_wp*cos(th)**2) - gravity*cos(th)
+    end function reduced_energy
+
+    subroutine print_singular_intervals(intervals)
+        real(wp), intent(in) :: intervals(:, :)
+        integer :: j
+        write (*, '(a)') '# singular passes (sigma_min(GB) < '//num(opts%singular_threshold)//' at the outputs): '// &
+            format_int(size(intervals, 2))
+        do j = 1, size(intervals, 2)
+            write (*, '(a)') '#   t in ['//num(intervals(1, j))//', '//num(intervals(2, j))//']'
+        end do
+    end subroutine print_singular_intervals
+
+end program ex52_driver

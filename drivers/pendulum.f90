@@ -1,0 +1,109 @@
+!> Driver: the planar pendulum in Cartesian coordinates (index 3), where the
+!! curvature term g_xx(v, v) = 2|v|^2 of d^2 g/dt^2 does not vanish; compares
+!! regdae's solution with the angle ODE integrated by CVODE at rtol = 1e-13.
+!!
+!! Usage: pendulum [key=value ...]
+!!   phi0=1.5707963267948966 w0=0 (initial angle from the downward vertical, angular velocity)
+!!   tf=10 nout=1000 gravity=9.81, and the solver options (method, index, gamma, gamma0, gamma1,
+!!   eps, rtol, atol, curvature, excluded, formulation, lsq, exclusion, stop_at_output (yes), ...)
+!! Output: '#' lines, the table 't x1 x2 v1 v2 y err_pos g', and the last line
+!!   summary method=... index=... curvature=... status=ok|failed t_end=... max_err_pos=... max_abs_g=...
+!!           steps=... res_evals=... jac_evals=... err_test_fails=... conv_fails=... seconds=...
+!! Exit status: 0 ok, 1 solver failure, 2 bad arguments.
+program pendulum_driver
+    use, intrinsic :: iso_fortran_env, only: int64
+    use regdae
+    use pendulum_problem, only: pendulum, pendulum_angle, new_pendulum
+    use reference_ode, only: integrate_reference
+    use driver_support, only: format_int, argument, split_key_value, num, clock_start, elapsed_seconds, &
+                              die_usage, read_number
+    implicit none
+
+    character(len=*), parameter :: prog = 'pendulum'
+    real(wp), parameter :: t0 = 0.0_wp
+    type(solver_options) :: opts
+    type(regdae_solver) :: solver
+    type(solver_stats) :: st
+    type(pendulum) :: problem
+    type(pendulum_angle) :: angle
+    character(len=:), allocatable :: key, value, msg, status_text
+    integer :: i, k, nout, stat, rstat
+    logical :: ok
+    real(wp) :: phi0, w0, tf, gravity, x(2), v(2), y(1), t, err, max_err, max_g, seconds
+    real(wp), allocatable :: times(:), ref(:, :)
+    integer(int64) :: start
+
+    phi0 = acos(0.0_wp)
+    w0 = 0.0_wp
+    tf = 10.0_wp
+    nout = 1000
+    gravity = 9.81_wp
+    opts%stop_at_output = .true.
+    do i = 1, command_argument_count()
+        call split_key_value(argument(i), key, value, ok)
+        if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
+        select case (key)
+        case ('phi0'); call read_number(prog, key, value, phi0)
+        case ('w0'); call read_number(prog, key, value, w0)
+        case ('tf'); call read_number(prog, key, value, tf)
+        case ('gravity'); call read_number(prog, key, value, gravity)
+        case ('nout')
+            read (value, *, iostat=stat) nout
+            if (stat /= 0 .or. verify(value, '0123456789') /= 0 .or. nout < 1) &
+                call die_usage(prog, 'bad value "'//value//'" for nout (an integer >= 1)')
+        case default
+            call set_option(opts, key, value, stat, msg)
+            if (stat /= regdae_success) call die_usage(prog, msg)
+        end select
+    end do
+    if (.not. (tf > t0)) call die_usage(prog, 'tf must be > 0')
+
+    problem = new_pendulum(gravity)
+    angle%gravity = gravity
+    times = [(t0 + (tf - t0)*real(k, wp)/real(nout, wp), k=0, nout)]
+    allocate (ref(2, 0:nout))
+    call integrate_reference(angle, t0, [phi0, w0], times, ref, 1.0e-13_wp, 1.0e-13_wp, rstat)
+    if (rstat /= 0) call die_usage(prog, 'the reference integration (CVODE) failed, flag '//format_int(rstat))
+
+    write (*, '(a)') '# regdae pendulum: x'''' = (0, -g) - 2 x y, 0 = |x|^2 - 1 (index 3, Cartesian coordinates)'
+    write (*, '(a)') '# reference: phi'''' = -g sin(phi) by CVODE (Adams, rtol = atol = 1e-13)'
+    write (*, '(a)') '# method='//method_name(opts%method)//' index='//format_int(opts%index)// &
+        ' formulation='//formulation_name(opts%formulation)//' curvature='//trim(merge('yes', 'no ', opts%curvature))// &
+        ' excluded='//excluded_name(opts%excluded)//' exclusion='//exclusion_name(opts%exclusion)
+    write (*, '(a)') '# gamma='//num(opts%gamma)//' gamma0='//num(opts%gamma0)//' gamma1='//num(opts%gamma1)// &
+        ' eps='//num(opts%eps)//' rtol='//num(opts%rtol)//' atol='//num(opts%atol)//' phi0='//num(phi0)// &
+        ' w0='//num(w0)//' tf='//num(tf)//' nout='//format_int(nout)
+    write (*, '(a1,a23,7a24)') '#', 't', 'x1', 'x2', 'v1', 'v2', 'y', 'err_pos', 'g'
+
+    start = clock_start()
+    max_err = 0.0_wp
+    max_g = 0.0_wp
+    call solver%init(problem, t0, [sin(phi0), -cos(phi0)], w0*[cos(phi0), sin(phi0)], opts, stat)
+    if (stat == regdae_success) then
+        do k = 0, nout
+            t = times(k + 1)
+            call solver%advance(t, x, y, stat, v)
+            if (stat < 0) exit
+            err = maxval(abs(x - [sin(ref(1, k)), -cos(ref(1, k))]))
+            max_err = max(max_err, err)
+            max_g = max(max_g, abs(x(1)**2 + x(2)**2 - 1.0_wp))
+            write (*, '(8es24.15e3)') t, x, v, y, err, x(1)**2 + x(2)**2 - 1.0_wp
+        end do
+        if (stat > 0) stat = regdae_success
+    end if
+    seconds = elapsed_seconds(start)
+    st = solver%statistics()
+    status_text = 'ok'
+    if (stat /= regdae_success) then
+        write (*, '(a)') '# error: '//solver%message()
+        status_text = 'failed'
+    end if
+    write (*, '(a)') 'summary method='//method_name(opts%method)//' index='//format_int(opts%index)// &
+        ' curvature='//trim(merge('yes', 'no ', opts%curvature))//' status='//status_text// &
+        ' t_end='//num(st%t)//' max_err_pos='//num(max_err)//' max_abs_g='//num(max_g)// &
+        ' steps='//format_int(int(st%steps))//' res_evals='//format_int(int(st%res_evals))// &
+        ' jac_evals='//format_int(int(st%jac_evals))//' err_test_fails='//format_int(int(st%err_test_fails))// &
+        ' conv_fails='//format_int(int(st%conv_fails))//' seconds='//num(seconds)
+    call solver%destroy()
+    if (stat /= regdae_success) stop 1
+end program pendulum_driver

@@ -1,0 +1,114 @@
+!> Example 5.2 of Petzold, Ren & Maly (1997): the slider crank (Haug), a planar
+!! double pendulum with unit point masses at the two joints, unit massless links,
+!! gravity g downwards, angles from the downward vertical, whose end slides on
+!! the horizontal line through the pivot. Equations (5.2)-(5.3):
+!! $$ M(\theta)\theta'' + h(\theta, \theta') + G^T \lambda = 0, \qquad
+!!    g_3 = -\cos\theta_1 - \cos\theta_2 = 0, $$
+!! M = [2, cos th_d; cos th_d, 1], th_d = th2 - th1,
+!! h = (-sin th_d th2'^2 + 2 g sin th1, sin th_d th1'^2 + g sin th2), G = (sin th1, sin th2).
+!! As a `mechanical_problem` (M q'' = f + G^T lambda_m): f = -h and lambda_m = -lambda.
+!!
+!! At (th1, th2) = (0, pi) G vanishes. On the physical branch th2 = pi - th1
+!! the motion has one degree of freedom with energy
+!! E = 0.5 th1'^2 (1 + 4 cos^2 th1) - g cos th1, and (Euler-Lagrange)
+!! $$ \theta_1'' = \sin\theta_1 \,(4 \cos\theta_1\, \theta_1'^2 - g) / (1 + 4\cos^2\theta_1), $$
+!! the reduced ODE `slider_crank_reduced` integrates for the reference.
+module slider_crank_problem
+    use regdae, only: wp, mechanical_problem
+    use reference_ode, only: ode_system
+    implicit none
+    private
+
+    !> The slider crank (n = 2 angles, m = 1 constraint).
+    type, extends(mechanical_problem), public :: slider_crank
+        real(wp) :: gravity = 9.8_wp   !! gravitational acceleration
+    contains
+        procedure :: mass_matrix => crank_mass
+        procedure :: forces => crank_forces
+        procedure :: constraint => crank_g
+        procedure :: constraint_jacobian => crank_gx
+        procedure :: constraint_dt => crank_gt
+        !> Total energy T + V of a state (th, w).
+        procedure :: energy => crank_energy
+    end type slider_crank
+
+    !> The reduced ODE on the physical branch, state (th1, th1').
+    type, extends(ode_system), public :: slider_crank_reduced
+        real(wp) :: gravity = 9.8_wp
+    contains
+        procedure :: rhs => reduced_rhs
+    end type slider_crank_reduced
+
+    public :: new_slider_crank
+
+contains
+
+    function new_slider_crank(gravity) result(p)
+        real(wp), intent(in) :: gravity
+        type(slider_crank) :: p
+        p%n = 2
+        p%m = 1
+        p%gravity = gravity
+    end function new_slider_crank
+
+    subroutine crank_mass(self, t, q, mass, stat)
+        class(slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        real(wp), intent(out) :: mass(:, :)
+        integer, intent(inout) :: stat
+        real(wp) :: c
+        c = cos(q(2) - q(1))
+        mass = reshape([2.0_wp, c, c, 1.0_wp], [2, 2])
+    end subroutine crank_mass
+
+    subroutine crank_forces(self, t, q, qd, f, stat)
+        class(slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:), qd(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(inout) :: stat
+        real(wp) :: s
+        s = sin(q(2) - q(1))
+        f(1) = s*qd(2)**2 - 2.0_wp*self%gravity*sin(q(1))
+        f(2) = -s*qd(1)**2 - self%gravity*sin(q(2))
+    end subroutine crank_forces
+
+    subroutine crank_g(self, t, x, val, stat)
+        class(slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        val(1) = -cos(x(1)) - cos(x(2))
+    end subroutine crank_g
+
+    subroutine crank_gx(self, t, x, a, stat)
+        class(slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
+        a(1, :) = [sin(x(1)), sin(x(2))]
+    end subroutine crank_gx
+
+    subroutine crank_gt(self, t, x, val, stat)
+        class(slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        val = 0.0_wp
+    end subroutine crank_gt
+
+    pure real(wp) function crank_energy(self, th, w) result(e)
+        class(slider_crank), intent(in) :: self
+        real(wp), intent(in) :: th(2), w(2)
+        e = 0.5_wp*(2.0_wp*w(1)**2 + w(2)**2 + 2.0_wp*cos(th(2) - th(1))*w(1)*w(2)) &
+            - 2.0_wp*self%gravity*cos(th(1)) - self%gravity*cos(th(2))
+    end function crank_energy
+
+    subroutine reduced_rhs(self, t, y, ydot)
+        class(slider_crank_reduced), intent(inout) :: self
+        real(wp), intent(in) :: t, y(:)
+        real(wp), intent(out) :: ydot(:)
+        ydot(1) = y(2)
+        ydot(2) = sin(y(1))*(4.0_wp*cos(y(1))*y(2)**2 - self%gravity)/(1.0_wp + 4.0_wp*cos(y(1))**2)
+    end subroutine reduced_rhs
+
+end module slider_crank_problem
