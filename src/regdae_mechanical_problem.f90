@@ -104,14 +104,15 @@ contains
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: a(:, :)
         integer, intent(inout) :: stat
-        real(wp) :: gx(self%m, self%n)
+        real(wp) :: gx(self%m, self%n), bt(self%n, self%m)
         integer :: info
         call factor_mass(self, t, x, stat)
         if (stat /= 0) return
         call self%constraint_jacobian(t, x, gx, stat)
         if (stat /= 0) return
-        a = transpose(gx)
-        call dpotrs('L', self%n, self%m, self%factor, self%n, a, self%n, info)
+        bt = transpose(gx)
+        call dpotrs('L', self%n, self%m, self%factor, self%n, bt, self%n, info)
+        a = bt
     end subroutine mechanical_b
 
 end module regdae_mechanical_problem

@@ -6,6 +6,7 @@ program regdae_tester
     use test_lsq, only: lsq_tests
     use test_residuals, only: residual_tests
     use test_solver, only: solver_tests
+    use test_mechanics, only: mechanics_tests
     implicit none
     character(len=64) :: suite
     integer :: nfailed, ntotal
@@ -20,8 +21,9 @@ program regdae_tester
     call maybe_run('lsq', lsq_tests())
     call maybe_run('residuals', residual_tests())
     call maybe_run('solver', solver_tests())
+    call maybe_run('mechanics', mechanics_tests())
     if (.not. known) then
-        write (*, '(a)') 'regdae_tester: unknown suite "'//trim(suite)//'" (lsq, residuals, solver)'
+        write (*, '(a)') 'regdae_tester: unknown suite "'//trim(suite)//'" (lsq, residuals, solver, mechanics)'
         stop 2
     end if
     write (*, '(i0,a,i0,a)') ntotal - nfailed, ' passed, ', nfailed, ' failed'

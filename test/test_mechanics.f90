@@ -1,0 +1,250 @@
+!> Tests of the order-2 and mechanical interfaces on the slider crank and the
+!! pendulum: the reduced ODE against the full equations, B = M^-1 G^T by hand,
+!! the curvature term against its analytic form, bad input, and accuracy
+!! against the CVODE reference.
+module test_mechanics
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use regdae
+    use regdae_lapack, only: dgesv
+    use regdae_velocity_index2, only: velocity_index2_problem, new_velocity_index2
+    use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
+    use pendulum_problem, only: pendulum, pendulum_angle, new_pendulum
+    use reference_ode, only: integrate_reference
+    use regdae_testing, only: checker, test_case, new_test
+    implicit none
+    private
+    public :: mechanics_tests
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+
+    !> A mechanical system with a mass matrix that is not positive definite
+    !! (`kind`: 1 indefinite, 2 not symmetric).
+    type, extends(mechanical_problem) :: bad_mass
+        integer :: kind = 1
+    contains
+        procedure :: mass_matrix => bad_mass_matrix
+        procedure :: forces => bad_forces
+        procedure :: constraint => bad_g
+        procedure :: constraint_jacobian => bad_gx
+    end type bad_mass
+
+contains
+
+    function mechanics_tests() result(tests)
+        type(test_case), allocatable :: tests(:)
+        tests = [new_test('reduced_ode_matches_full_equations', reduced_ode_matches_full), &
+                 new_test('mechanical_b_by_hand', mechanical_b_by_hand), &
+                 new_test('curvature_difference_quotient', curvature_difference_quotient), &
+                 new_test('velocity_index2_jacobian', velocity_index2_jacobian), &
+                 new_test('mechanical_bad_input', mechanical_bad_input), &
+                 new_test('pendulum_index3_accuracy', pendulum_index3_accuracy)]
+    end function mechanics_tests
+
+    ! On the branch th2 = pi - th1, w2 = -w1, the full equations (5.2)-(5.3),
+    ! solved as the index-1 system [M G^T; G 0] (th'', lambda_m) = (f, -g_xx(w, w)),
+    ! give th1'' of the reduced ODE and th2'' = -th1''; the energies agree.
+    ! Both sides are computed to rounding (condition of the 3 x 3 system < 1e3): 1e-12.
+    subroutine reduced_ode_matches_full(chk)
+        type(checker), intent(inout) :: chk
+        type(slider_crank) :: crank
+        type(slider_crank_reduced) :: reduced
+        real(wp) :: th1, w1, q(2), w(2), mass(2, 2), f(2), gx(1, 2), kkt(3, 3), rhs(3), yd(2)
+        integer :: stat, ipiv(3), info, i, j
+        crank = new_slider_crank(9.8_wp)
+        do i = 1, 4
+            do j = 1, 3
+                th1 = -1.4_wp + 0.7_wp*i + 0.05_wp   ! avoid th1 = 0, where G = 0
+                w1 = -2.0_wp + 1.5_wp*j
+                q = [th1, pi - th1]
+                w = [w1, -w1]
+                stat = 0
+                call crank%mass_matrix(0.0_wp, q, mass, stat)
+                call crank%forces(0.0_wp, q, w, f, stat)
+                call crank%constraint_jacobian(0.0_wp, q, gx, stat)
+                kkt = 0.0_wp
+                kkt(1:2, 1:2) = mass
+                kkt(1:2, 3) = gx(1, :)
+                kkt(3, 1:2) = gx(1, :)
+                rhs = [f, -(cos(q(1))*w(1)**2 + cos(q(2))*w(2)**2)]
+                call dgesv(3, 1, kkt, 3, ipiv, rhs, 3, info)
+                call reduced%rhs(0.0_wp, [th1, w1], yd)
+                call chk%close(rhs(1), yd(2), 1.0e-12_wp*max(1.0_wp, abs(yd(2))), 'th1'''' full = reduced')
+                call chk%close(rhs(2), -yd(2), 1.0e-12_wp*max(1.0_wp, abs(yd(2))), 'th2'''' = -th1''''')
+                call chk%close(crank%energy(q, w), 0.5_wp*w1**2*(1.0_wp + 4.0_wp*cos(th1)**2) - 9.8_wp*cos(th1), &
+                               1.0e-12_wp, 'full energy = reduced energy')
+            end do
+        end do
+    end subroutine reduced_ode_matches_full
+
+    ! At th = (pi/3, 2pi/3): cos th_d = 1/2, M = [2, 1/2; 1/2, 1], det M = 7/4,
+    ! M^-1 = [1, -1/2; -1/2, 2] / (7/4), G^T = (sqrt(3)/2)(1, 1), so
+    ! B = M^-1 G^T = (sqrt(3)/2)(4/7)(1/2, 3/2). With w = (1, 2): sin th_d = sqrt(3)/2,
+    ! f = (sqrt(3)/2 * 4 - 19.6 sqrt(3)/2, -sqrt(3)/2 * 1 - 9.8 sqrt(3)/2), rhs = M^-1 f.
+    subroutine mechanical_b_by_hand(chk)
+        type(checker), intent(inout) :: chk
+        type(slider_crank) :: crank
+        real(wp) :: q(2), w(2), b(2, 1), acc(2), s3, f(2), minv(2, 2)
+        integer :: stat
+        crank = new_slider_crank(9.8_wp)
+        q = [pi/3, 2*pi/3]
+        w = [1.0_wp, 2.0_wp]
+        s3 = sqrt(3.0_wp)/2
+        stat = 0
+        call crank%matrix_b(0.0_wp, q, w, b, stat)
+        call chk%equal(stat, 0, 'status')
+        call chk%close(b(1, 1), s3*(4.0_wp/7)*0.5_wp, 1.0e-14_wp, 'B(1)')
+        call chk%close(b(2, 1), s3*(4.0_wp/7)*1.5_wp, 1.0e-14_wp, 'B(2)')
+        call crank%rhs(0.0_wp, q, w, acc, stat)
+        f = [s3*4.0_wp - 19.6_wp*s3, -s3 - 9.8_wp*s3]
+        minv = reshape([1.0_wp, -0.5_wp, -0.5_wp, 2.0_wp], [2, 2])/1.75_wp
+        call chk%close(acc(1), dot_product(minv(1, :), f), 1.0e-13_wp, 'M^-1 f (1)')
+        call chk%close(acc(2), dot_product(minv(2, :), f), 1.0e-13_wp, 'M^-1 f (2)')
+    end subroutine mechanical_b_by_hand
+
+    ! The default curvature term (a central difference of G v + g_t along (v, 1),
+    ! error ~ u^(2/3) |v|^2 ~ 4e-11 |v|^2) against the analytic g_xx(v, v):
+    ! cos th1 w1^2 + cos th2 w2^2 (slider crank) and 2 |v|^2 (pendulum).
+    subroutine curvature_difference_quotient(chk)
+        type(checker), intent(inout) :: chk
+        type(slider_crank) :: crank
+        type(pendulum) :: pend
+        real(wp) :: q(2), w(2), c(1)
+        integer :: stat, i
+        crank = new_slider_crank(9.8_wp)
+        pend = new_pendulum(9.81_wp)
+        do i = 1, 5
+            q = [0.3_wp*i - 0.8_wp, 2.0_wp - 0.4_wp*i]
+            w = [1.5_wp - 0.7_wp*i, 0.9_wp*i - 2.0_wp]
+            stat = 0
+            call crank%constraint_curvature(0.0_wp, q, w, c, stat)
+            call chk%close(c(1), cos(q(1))*w(1)**2 + cos(q(2))*w(2)**2, 1.0e-9_wp*max(1.0_wp, sum(w**2)), &
+                           'slider crank g_xx(v, v)')
+            call pend%constraint_curvature(0.0_wp, [sin(q(1)), -cos(q(1))], w, c, stat)
+            call chk%close(c(1), 2.0_wp*sum(w**2), 1.0e-9_wp*max(1.0_wp, sum(w**2)), 'pendulum 2 |v|^2')
+        end do
+    end subroutine curvature_difference_quotient
+
+    ! The index-2 form (5.4): g~ = sin th1 w1 + sin th2 w2, whose Jacobian in
+    ! (th, w) is (cos th1 w1, cos th2 w2, sin th1, sin th2); and G~ B~ = G B.
+    subroutine velocity_index2_jacobian(chk)
+        type(checker), intent(inout) :: chk
+        type(velocity_index2_problem) :: p
+        type(slider_crank) :: crank
+        real(wp) :: z(4), gz(1, 4), bz(4, 1), b2(2, 1), g1(1), expected(4)
+        integer :: stat
+        crank = new_slider_crank(9.8_wp)
+        p = new_velocity_index2(crank)
+        z = [0.4_wp, 2.1_wp, -1.3_wp, 0.8_wp]
+        stat = 0
+        call p%constraint(0.0_wp, z, g1, stat)
+        call chk%close(g1(1), sin(z(1))*z(3) + sin(z(2))*z(4), 1.0e-15_wp, 'g~ = G v')
+        call p%constraint_jacobian(0.0_wp, z, gz, stat)
+        expected = [cos(z(1))*z(3), cos(z(2))*z(4), sin(z(1)), sin(z(2))]
+        call chk%close_rel(gz(1, :), expected, 1.0e-9_wp, 'd g~ / d(th, w)')
+        call p%matrix_b(0.0_wp, z, bz, stat)
+        call crank%matrix_b(0.0_wp, z(1:2), z(3:4), b2, stat)
+        call chk%close(dot_product(gz(1, :), bz(:, 1)), dot_product([sin(z(1)), sin(z(2))], b2(:, 1)), &
+                       1.0e-12_wp, 'G~ B~ = G B')
+    end subroutine velocity_index2_jacobian
+
+    subroutine mechanical_bad_input(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts
+        type(bad_mass) :: p
+        type(slider_crank) :: crank
+        integer :: stat
+        p%n = 2
+        p%m = 1
+        p%kind = 1
+        call solver%init(p, 0.0_wp, [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_mass_matrix, 'indefinite M')
+        call chk%true(index(solver%message(), 'mass matrix') > 0, 'message names the mass matrix')
+        p%kind = 2
+        call solver%init(p, 0.0_wp, [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_mass_matrix, 'non-symmetric M')
+        crank = new_slider_crank(9.8_wp)
+        call solver%init(crank, 0.0_wp, [pi/2, pi/2], [0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_bad_input, 'v0 of wrong length')
+        call solver%init(crank, 0.0_wp, [pi/2, pi/2, 0.0_wp], [0.0_wp, 0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_bad_input, 'x0 of wrong length')
+        call solver%init(crank, 0.0_wp, [pi/2, pi/2], [ieee_value(1.0_wp, ieee_quiet_nan), 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_bad_input, 'NaN in v0')
+        call solver%init(crank, 0.0_wp, [pi/2, pi/2], [1.0_wp, 1.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_inconsistent_ic, 'v0 violates G v = 0')
+        call solver%init(crank, 0.0_wp, [pi/2, pi/3], [0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_inconsistent_ic, 'x0 violates g = 0')
+        opts%index = 2
+        call solver%init(crank, 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_success, 'consistent start, index 2')
+        call solver%destroy()
+    end subroutine mechanical_bad_input
+
+    ! Pendulum from phi = pi/2 at rest over t in [0, 2] (about one period) at
+    ! rtol = atol = 1e-10 with the curvature term: the regularized system is then
+    ! exact (GB = 4 is invertible) and the error is the integration error,
+    ! measured ~1e-9; the bound 1e-7 leaves a margin of 100.
+    subroutine pendulum_index3_accuracy(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts
+        type(pendulum_angle) :: angle
+        real(wp) :: times(21), ref(2, 21), x(2), v(2), y(1), err
+        integer :: stat, k, rstat
+        times = [(0.1_wp*k, k=0, 20)]
+        call integrate_reference(angle, 0.0_wp, [pi/2, 0.0_wp], times, ref, 1.0e-13_wp, 1.0e-13_wp, rstat)
+        call chk%equal(rstat, 0, 'reference')
+        opts%rtol = 1.0e-10_wp
+        opts%atol = 1.0e-10_wp
+        opts%curvature = .true.
+        opts%eps = 1.0e-12_wp
+        call solver%init(new_pendulum(9.81_wp), 0.0_wp, [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], opts, stat)
+        err = 0.0_wp
+        do k = 1, 21
+            call solver%advance(times(k), x, y, stat, v)
+            if (stat /= regdae_success) exit
+            err = max(err, maxval(abs(x - [sin(ref(1, k)), -cos(ref(1, k))])))
+        end do
+        call chk%equal(stat, regdae_success, 'reaches t = 2')
+        call chk%true(err <= 1.0e-7_wp, 'position error <= 1e-7')
+        write (*, '(a,es10.2)') '    pendulum max position error: ', err
+        call solver%destroy()
+    end subroutine pendulum_index3_accuracy
+
+    subroutine bad_mass_matrix(self, t, q, mass, stat)
+        class(bad_mass), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        real(wp), intent(out) :: mass(:, :)
+        integer, intent(inout) :: stat
+        if (self%kind == 1) then
+            mass = reshape([1.0_wp, 0.0_wp, 0.0_wp, -1.0_wp], [2, 2])
+        else
+            mass = reshape([2.0_wp, 1.0_wp, 0.0_wp, 2.0_wp], [2, 2])
+        end if
+    end subroutine bad_mass_matrix
+
+    subroutine bad_forces(self, t, q, qd, f, stat)
+        class(bad_mass), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:), qd(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(inout) :: stat
+        f = 0.0_wp
+    end subroutine bad_forces
+
+    subroutine bad_g(self, t, x, val, stat)
+        class(bad_mass), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        val(1) = x(1)**2 + x(2)**2 - 1.0_wp
+    end subroutine bad_g
+
+    subroutine bad_gx(self, t, x, a, stat)
+        class(bad_mass), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
+        a(1, :) = 2.0_wp*x
+    end subroutine bad_gx
+
+end module test_mechanics
