@@ -5,24 +5,8 @@
 ex51=${1:?usage: check_ex51.sh path/to/ex51}
 tmp=$(mktemp -d) || exit 1
 trap 'rm -rf "$tmp"' EXIT INT TERM
-passed=0
-failed=0
-
-ok()   { passed=$((passed + 1)); echo "  PASS $1"; }
-bad()  { failed=$((failed + 1)); echo "  FAIL $1"; }
-check() { if [ "$2" = 0 ]; then ok "$1"; else bad "$1"; fi; }   # check NAME STATUS
-
-# run NAME ARGS...: output in $tmp/NAME.out, stderr in $tmp/NAME.err, exit code in $tmp/NAME.rc
-run() {
-    name=$1; shift
-    "$ex51" "$@" >"$tmp/$name.out" 2>"$tmp/$name.err"
-    echo $? >"$tmp/$name.rc"
-}
-field() { tail -n 1 "$tmp/$1.out" | tr ' ' '\n' | sed -n "s/^$2=//p"; }   # field NAME KEY
-rc() { cat "$tmp/$1.rc"; }
-# le A B: A <= B as numbers
-le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 <= b + 0) }'; }
-lt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 < b + 0) }'; }
+driver=$ex51
+. "$(dirname "$0")/check_lib.sh"
 
 # 1. Trust region reaches t = 1 at eps = 1e-6 and 1e-9; the error at 1e-9 is <= 1e-2 and smaller.
 run tr6 method=trust_region eps=1e-6
@@ -101,5 +85,4 @@ run inconsistent x0=0.5
 [ "$(rc inconsistent)" = 1 ] && [ "$(field inconsistent status)" = failed ] && grep -q 'inconsistent' "$tmp/inconsistent.out"
 check "inconsistent x0: status=failed, exit 1" $?
 
-echo "$passed passed, $failed failed"
-[ "$failed" = 0 ]
+finish

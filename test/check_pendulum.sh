@@ -1,0 +1,27 @@
+#!/bin/sh
+# Driver-level checks of pendulum: with the curvature term the error keeps
+# falling with the tolerance (below 1e-8); without it it stalls.
+# Usage: check_pendulum.sh path/to/pendulum
+driver=${1:?usage: check_pendulum.sh path/to/pendulum}
+tmp=$(mktemp -d) || exit 1
+trap 'rm -rf "$tmp"' EXIT INT TERM
+. "$(dirname "$0")/check_lib.sh"
+
+prev=1
+for tol in 1e-6 1e-8 1e-10 1e-12; do
+    run "yes_$tol" curvature=yes rtol=$tol atol=$tol eps=1e-12
+    e=$(field "yes_$tol" max_err_pos)
+    [ "$(field "yes_$tol" status)" = ok ] && lt "$e" "$prev"
+    check "curvature=yes tol=$tol: max_err_pos=$e falls" $?
+    prev=$e
+done
+le "$prev" 1e-8
+check "curvature=yes: max_err_pos=$prev <= 1e-8 at tol 1e-12" $?
+
+# Without the curvature term the error stalls near 2|v|^2/gamma0-driven drift (2.3e-4 at gamma0 = 2e6).
+run no_10 curvature=no rtol=1e-10 atol=1e-10
+run no_12 curvature=no rtol=1e-12 atol=1e-12
+e10=$(field no_10 max_err_pos); e12=$(field no_12 max_err_pos)
+lt 1e-5 "$e12" && awk -v a="$e10" -v b="$e12" 'BEGIN { exit !(b > 0.5 * a) }'
+check "curvature=no: stalls (tol 1e-10: $e10, tol 1e-12: $e12)" $?
+finish
