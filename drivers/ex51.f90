@@ -19,7 +19,8 @@ program ex51_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use regdae
     use ex51_problem, only: ex51, new_ex51, orientation_psd, orientation_paper
-    use driver_support, only: format_int, argument, split_key_value, num, clock_start, elapsed_seconds, die_usage
+    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+                              clock_start, elapsed_seconds, die_usage
     implicit none
 
     character(len=*), parameter :: prog = 'ex51'
@@ -28,7 +29,7 @@ program ex51_driver
     type(regdae_solver) :: solver
     type(solver_stats) :: st
     type(ex51) :: problem
-    character(len=:), allocatable :: key, value, msg, status_text
+    character(len=:), allocatable :: key, value, status_text
     integer :: i, k, nout, orientation, stat, ios
     logical :: ok
     real(wp) :: x0(1), x(1), y(1), t, max_err_x, seconds
@@ -42,10 +43,6 @@ program ex51_driver
         call split_key_value(argument(i), key, value, ok)
         if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
         select case (key)
-        case ('nout')
-            read (value, *, iostat=ios) nout
-            if (ios /= 0 .or. verify(value, '0123456789') /= 0 .or. nout < 1) &
-                call die_usage(prog, 'bad value "'//value//'" for nout (an integer >= 1)')
         case ('orientation')
             select case (value)
             case ('psd'); orientation = orientation_psd
@@ -57,8 +54,7 @@ program ex51_driver
             if (ios /= 0 .or. verify(value, '0123456789+-.eEdD') /= 0) &
                 call die_usage(prog, 'bad value "'//value//'" for x0')
         case default
-            call set_option(opts, key, value, stat, msg)
-            if (stat /= regdae_success) call die_usage(prog, msg)
+            call common_argument(prog, key, value, opts, nout)
         end select
     end do
 
@@ -105,10 +101,7 @@ program ex51_driver
         ' + '//format_int(int(st%jac_res_evals))//') '//format_int(int(st%jac_evals))//' '//format_int(int(st%lin_setups))// &
         ' '//format_int(int(st%nonlin_iters))
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text// &
-        ' t_end='//num(st%t)//' max_err_x='//num(max_err_x)//' steps='//format_int(int(st%steps))// &
-        ' res_evals='//format_int(int(st%res_evals))//' jac_evals='//format_int(int(st%jac_evals))// &
-        ' err_test_fails='//format_int(int(st%err_test_fails))//' conv_fails='//format_int(int(st%conv_fails))// &
-        ' seconds='//num(seconds)
+        ' t_end='//num(st%t)//' max_err_x='//num(max_err_x)//stats_fields(st, seconds)
     call solver%destroy()
     if (stat /= regdae_success) stop 1
 

@@ -22,7 +22,8 @@ program ex52_driver
     use regdae
     use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, argument, split_key_value, num, clock_start, elapsed_seconds, &
+    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+                              clock_start, elapsed_seconds, &
                               die_usage, read_number
     implicit none
 
@@ -33,7 +34,7 @@ program ex52_driver
     type(solver_stats) :: st
     type(slider_crank) :: crank
     type(slider_crank_reduced) :: reduced
-    character(len=:), allocatable :: key, value, msg, status_text
+    character(len=:), allocatable :: key, value, status_text
     integer :: i, k, nout, stat, rstat
     logical :: ok, off_branch
     real(wp) :: th1, w1, tf, branch_tol, th(2), w(2), lam(1), t, e0, e, seconds
@@ -55,13 +56,8 @@ program ex52_driver
         case ('w1'); call read_number(prog, key, value, w1)
         case ('tf'); call read_number(prog, key, value, tf)
         case ('branch_tol'); call read_number(prog, key, value, branch_tol)
-        case ('nout')
-            read (value, *, iostat=stat) nout
-            if (stat /= 0 .or. verify(value, '0123456789') /= 0 .or. nout < 1) &
-                call die_usage(prog, 'bad value "'//value//'" for nout (an integer >= 1)')
         case default
-            call set_option(opts, key, value, stat, msg)
-            if (stat /= regdae_success) call die_usage(prog, msg)
+            call common_argument(prog, key, value, opts, nout)
         end select
     end do
     if (.not. (tf > t0)) call die_usage(prog, 'tf must be > 0')
@@ -133,10 +129,7 @@ program ex52_driver
     write (*, '(a)') 'summary method='//method_name(opts%method)//' index='//format_int(opts%index)// &
         ' status='//status_text//' t_end='//num(st%t)//' max_err_th='//num(max_err)// &
         ' max_abs_g3='//num(max_g3)//' max_energy_err='//num(max_de)//' max_branch_dev='//num(max_dev)// &
-        ' singular_passes='//format_int(st%singular_passes)//' steps='//format_int(int(st%steps))// &
-        ' res_evals='//format_int(int(st%res_evals))//' jac_evals='//format_int(int(st%jac_evals))// &
-        ' err_test_fails='//format_int(int(st%err_test_fails))//' conv_fails='//format_int(int(st%conv_fails))// &
-        ' seconds='//num(seconds)
+        ' singular_passes='//format_int(st%singular_passes)//stats_fields(st, seconds)
     call solver%destroy()
     if (status_text /= 'ok') stop 1
 

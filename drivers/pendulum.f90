@@ -15,7 +15,8 @@ program pendulum_driver
     use regdae
     use pendulum_problem, only: pendulum, pendulum_angle, new_pendulum
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, argument, split_key_value, num, clock_start, elapsed_seconds, &
+    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+                              clock_start, elapsed_seconds, &
                               die_usage, read_number
     implicit none
 
@@ -26,7 +27,7 @@ program pendulum_driver
     type(solver_stats) :: st
     type(pendulum) :: problem
     type(pendulum_angle) :: angle
-    character(len=:), allocatable :: key, value, msg, status_text
+    character(len=:), allocatable :: key, value, status_text
     integer :: i, k, nout, stat, rstat
     logical :: ok
     real(wp) :: phi0, w0, tf, gravity, x(2), v(2), y(1), t, err, max_err, max_g, seconds
@@ -47,13 +48,8 @@ program pendulum_driver
         case ('w0'); call read_number(prog, key, value, w0)
         case ('tf'); call read_number(prog, key, value, tf)
         case ('gravity'); call read_number(prog, key, value, gravity)
-        case ('nout')
-            read (value, *, iostat=stat) nout
-            if (stat /= 0 .or. verify(value, '0123456789') /= 0 .or. nout < 1) &
-                call die_usage(prog, 'bad value "'//value//'" for nout (an integer >= 1)')
         case default
-            call set_option(opts, key, value, stat, msg)
-            if (stat /= regdae_success) call die_usage(prog, msg)
+            call common_argument(prog, key, value, opts, nout)
         end select
     end do
     if (.not. (tf > t0)) call die_usage(prog, 'tf must be > 0')
@@ -100,10 +96,7 @@ program pendulum_driver
     end if
     write (*, '(a)') 'summary method='//method_name(opts%method)//' index='//format_int(opts%index)// &
         ' curvature='//trim(merge('yes', 'no ', opts%curvature))//' status='//status_text// &
-        ' t_end='//num(st%t)//' max_err_pos='//num(max_err)//' max_abs_g='//num(max_g)// &
-        ' steps='//format_int(int(st%steps))//' res_evals='//format_int(int(st%res_evals))// &
-        ' jac_evals='//format_int(int(st%jac_evals))//' err_test_fails='//format_int(int(st%err_test_fails))// &
-        ' conv_fails='//format_int(int(st%conv_fails))//' seconds='//num(seconds)
+        ' t_end='//num(st%t)//' max_err_pos='//num(max_err)//' max_abs_g='//num(max_g)//stats_fields(st, seconds)
     call solver%destroy()
     if (stat /= regdae_success) stop 1
 end program pendulum_driver

@@ -2,12 +2,12 @@
 !! formatting for the summary line, wall-clock time.
 module driver_support
     use, intrinsic :: iso_fortran_env, only: int64, error_unit
-    use regdae, only: wp, format_real, format_int
+    use regdae, only: wp, format_real, format_int, solver_options, solver_stats, set_option, regdae_success
     implicit none
     private
 
     public :: format_int
-    public :: read_number
+    public :: read_number, common_argument, stats_fields
     public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage
 
 contains
@@ -72,6 +72,34 @@ contains
         if (ios /= 0) call die_usage(program_name, 'bad value "'//value//'" for '//key)
         x = tmp
     end subroutine read_number
+
+    !> The arguments all drivers share: `nout` (an integer >= 1) and every solver
+    !! option; anything else stops with a usage error naming it.
+    subroutine common_argument(program_name, key, value, opts, nout)
+        character(len=*), intent(in) :: program_name, key, value
+        type(solver_options), intent(inout) :: opts
+        integer, intent(inout) :: nout
+        character(len=:), allocatable :: msg
+        integer :: stat
+        if (key == 'nout') then
+            read (value, *, iostat=stat) nout
+            if (stat /= 0 .or. len_trim(value) == 0 .or. verify(value, '0123456789') /= 0 .or. nout < 1) &
+                call die_usage(program_name, 'bad value "'//value//'" for nout (an integer >= 1)')
+        else
+            call set_option(opts, key, value, stat, msg)
+            if (stat /= regdae_success) call die_usage(program_name, msg)
+        end if
+    end subroutine common_argument
+
+    !> The statistics fields that end every summary line.
+    function stats_fields(st, seconds) result(text)
+        type(solver_stats), intent(in) :: st
+        real(wp), intent(in) :: seconds
+        character(len=:), allocatable :: text
+        text = ' steps='//format_int(int(st%steps))//' res_evals='//format_int(int(st%res_evals))// &
+               ' jac_evals='//format_int(int(st%jac_evals))//' err_test_fails='//format_int(int(st%err_test_fails))// &
+               ' conv_fails='//format_int(int(st%conv_fails))//' seconds='//num(seconds)
+    end function stats_fields
 
     !> Print a usage error naming the problem and stop with status 2.
     subroutine die_usage(program_name, text)
