@@ -31,6 +31,7 @@ module regdae_ida_solver
     use regdae_problem, only: dae_problem
     use regdae_second_order_problem, only: second_order_problem, velocity_constraint
     use regdae_mechanical_problem, only: mechanical_problem
+    use regdae_higher_order_problem, only: higher_order_problem
     use regdae_velocity_index2, only: new_velocity_index2
     use regdae_options
     use regdae_regularization, only: regularized_dae
@@ -93,10 +94,12 @@ module regdae_ida_solver
         !> Set up a problem: check the input, compute consistent initial values
         !! and create the IDA objects. `init(problem, t0, x0, opts, stat)` for a
         !! `dae_problem`; `init(problem, t0, x0, v0, opts, stat)` for a
-        !! `second_order_problem` or `mechanical_problem` (index from `opts%index`).
-        generic :: init => init_first_order, init_second_order
+        !! `second_order_problem` or `mechanical_problem` (index from `opts%index`);
+        !! `init(problem, t0, xs0, opts, stat)` for a `higher_order_problem`, xs0(n, order).
+        generic :: init => init_first_order, init_second_order, init_higher_order
         procedure, private :: init_first_order => solver_init_first
         procedure, private :: init_second_order => solver_init_second
+        procedure, private :: init_higher_order => solver_init_higher
         procedure, private :: start => solver_start
         procedure, private :: check_input
         !> Integrate to `tout`; return x(tout), the multiplier y(tout) (lambda for a
@@ -169,17 +172,64 @@ contains
         allocate (self%core)
         self%core%nx = problem%n
         self%core%second_order = .true.
-        select type (problem)
+        select type (copy)
         class is (mechanical_problem)
             self%core%multiplier_sign = -1.0_wp
+            copy%mass_damping = opts%mass_damping
         end select
         if (opts%index == 3) then
-            call self%core%model%init_second_order(problem, opts, lsq_normal)
+            call self%core%model%init_second_order(copy, opts, lsq_normal)
         else
-            call self%core%model%init_first_order(new_velocity_index2(problem), opts, lsq_normal)
+            call self%core%model%init_first_order(new_velocity_index2(copy), opts, lsq_normal)
         end if
         call self%start(t0, [x0, v0], opts, stat)
     end subroutine solver_init_second
+
+    subroutine solver_init_higher(self, problem, t0, xs0, opts, stat)
+        class(regdae_solver), intent(inout) :: self
+        class(higher_order_problem), intent(in) :: problem   !! the order-m DAE (copied)
+        real(wp), intent(in) :: t0                   !! initial time
+        real(wp), intent(in) :: xs0(:, :)            !! (n, order): x, x', ..., x^(m-1) at t0
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        class(higher_order_problem), allocatable :: copy
+        real(wp) :: gval(problem%m), gx(problem%m, problem%n), gt(problem%m), gnorm
+        integer :: ustat
+
+        if (problem%order < 3 .or. size(xs0, 2) /= problem%order) then
+            call self%record(regdae_err_bad_input, 'a higher_order_problem needs order >= 3 and xs0(n, order); '// &
+                             'got order '//format_int(problem%order)//' and '//format_int(size(xs0, 2))// &
+                             ' columns', stat)
+            return
+        end if
+        if (.not. self%check_input(t0, xs0(:, 1), xs0(:, 2), problem%n, problem%m, opts, stat)) return
+        if (.not. all(ieee_is_finite(xs0))) then
+            call self%record(regdae_err_bad_input, 'xs0 contains NaN or Inf', stat)
+            return
+        end if
+        allocate (copy, source=problem)
+        ustat = 0
+        call copy%constraint(t0, xs0(:, 1), gval, ustat)
+        if (ustat == 0) call copy%constraint_jacobian(t0, xs0(:, 1), gx, ustat)
+        if (ustat == 0) call copy%constraint_dt(t0, xs0(:, 1), gt, ustat)
+        if (ustat /= 0) then
+            call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
+                             'reported failure (stat = '//format_int(ustat)//')', stat)
+            return
+        end if
+        gnorm = 0.0_wp
+        if (problem%m > 0) gnorm = max(maxval(abs(gval)), maxval(abs(matmul(gx, xs0(:, 2)) + gt)))
+        if (.not. (gnorm <= opts%ic_tol)) then
+            call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
+                             '|G x0'' + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
+            return
+        end if
+        allocate (self%core)
+        self%core%nx = problem%n
+        self%core%second_order = .true.
+        call self%core%model%init_higher_order(copy, opts, lsq_normal)
+        call self%start(t0, reshape(xs0, [size(xs0)]), opts, stat)
+    end subroutine solver_init_higher
 
     ! Common checks of init; false (with stat and message set) if the input is bad.
     logical function check_input(self, t0, x0, v0, n, m, opts, stat) result(ok)
@@ -260,18 +310,14 @@ contains
             return
         end if
         call record_singularity(core, t0)
-        if (core%model%order == 1) then
-            zp0 = core%model%f - matmul(core%model%b, y0)
-        else
-            zp0 = [z0(nx + 1:2*nx), core%model%f - matmul(core%model%b, y0)]
-        end if
+        zp0 = [z0(nx + 1:), core%model%f - matmul(core%model%b, y0)]   ! (x', ..., x^(m-1), x^(m))
 
         core%neq = n
         if (opts%formulation == formulation_multiplier) core%neq = n + m
         allocate (core%excluded(core%neq), source=.false.)
         if (opts%exclusion /= exclusion_off) then
             core%excluded(n + 1:) = .true.
-            if (core%model%order == 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:2*nx) = .true.
+            if (core%model%order >= 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:n) = .true.
         end if
         allocate (core%u_pert(core%neq), core%up_pert(core%neq), core%r_pert(core%neq), core%y_work(m))
         call create_ida(core, t0, [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg)

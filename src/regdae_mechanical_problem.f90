@@ -8,6 +8,12 @@
 !! q'' = M^{-1} f - B y with B = M^{-1} G^T and y = -lambda, factoring M once
 !! per evaluation point by Cholesky (`dpotrf`); M must be symmetric positive
 !! definite. The solver reports lambda, in this type's sign convention.
+!!
+!! With `mass_damping` mu > 0 (solver option `mass_damping`) M may be singular
+!! (a massless coordinate, section 4.3): regdae uses (4.11),
+!! (M^T M + mu I) q'' = M^T f + M^T G^T lambda, i.e. f~ = (M^T M + mu I)^{-1} M^T f and
+!! B = (M^T M + mu I)^{-1} M^T G^T. Note what this does: q'' lies in the range of
+!! M^T, so a coordinate without mass gets no acceleration from it.
 module regdae_mechanical_problem
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_err_mass_matrix
@@ -19,7 +25,9 @@ module regdae_mechanical_problem
     !> Abstract constrained mechanical system.
     type, abstract, extends(second_order_problem), public :: mechanical_problem
         private
-        real(wp), allocatable :: factor(:, :)   ! Cholesky factor of M at (factor_t, factor_q)
+        real(wp), public :: mass_damping = 0.0_wp   !! mu of (4.11); 0: M must be SPD (set by the solver)
+        real(wp), allocatable :: mass(:, :)     ! M at (factor_t, factor_q), kept when mu > 0
+        real(wp), allocatable :: factor(:, :)   ! Cholesky factor of M (mu = 0) or M^T M + mu I
         real(wp), allocatable :: factor_q(:)
         real(wp) :: factor_t = 0.0_wp
         logical :: have_factor = .false.
@@ -54,27 +62,35 @@ module regdae_mechanical_problem
 
 contains
 
-    ! Cholesky factor of M(q, t), reused while (t, q) is unchanged: `rhs` and
-    ! `matrix_b` are evaluated at the same point. stat = regdae_err_mass_matrix
-    ! if M is not symmetric positive definite.
+    ! Cholesky factor of M(q, t) (or of M^T M + mu I), reused while (t, q) is
+    ! unchanged: `rhs` and `matrix_b` are evaluated at the same point.
+    ! stat = regdae_err_mass_matrix if M is not symmetric positive definite (mu = 0).
     subroutine factor_mass(self, t, q, stat)
         class(mechanical_problem), intent(inout) :: self
         real(wp), intent(in) :: t, q(:)
         integer, intent(inout) :: stat
         real(wp), parameter :: symmetry_tol = 1.0e-12_wp
-        integer :: info, n
+        integer :: info, n, i
 
         n = size(q)
         if (self%have_factor) then
             if (self%factor_t == t .and. all(self%factor_q == q)) return
         end if
-        if (.not. allocated(self%factor)) allocate (self%factor(n, n), self%factor_q(n))
+        if (.not. allocated(self%factor)) allocate (self%factor(n, n), self%factor_q(n), self%mass(n, n))
         self%have_factor = .false.
-        call self%mass_matrix(t, q, self%factor, stat)
+        call self%mass_matrix(t, q, self%mass, stat)
         if (stat /= 0) return
-        if (maxval(abs(self%factor - transpose(self%factor))) > symmetry_tol*maxval(abs(self%factor))) then
-            stat = regdae_err_mass_matrix
-            return
+        if (self%mass_damping > 0.0_wp) then
+            self%factor = matmul(transpose(self%mass), self%mass)
+            do i = 1, n
+                self%factor(i, i) = self%factor(i, i) + self%mass_damping
+            end do
+        else
+            if (maxval(abs(self%mass - transpose(self%mass))) > symmetry_tol*maxval(abs(self%mass))) then
+                stat = regdae_err_mass_matrix
+                return
+            end if
+            self%factor = self%mass
         end if
         call dpotrf('L', n, self%factor, n, info)
         if (info /= 0) then
@@ -96,6 +112,7 @@ contains
         if (stat /= 0) return
         call self%forces(t, x, v, val, stat)
         if (stat /= 0) return
+        if (self%mass_damping > 0.0_wp) val = matmul(val, self%mass)   ! M^T f
         call dpotrs('L', self%n, 1, self%factor, self%n, val, self%n, info)
     end subroutine mechanical_rhs
 
@@ -111,6 +128,7 @@ contains
         call self%constraint_jacobian(t, x, gx, stat)
         if (stat /= 0) return
         bt = transpose(gx)
+        if (self%mass_damping > 0.0_wp) bt = matmul(transpose(self%mass), bt)   ! M^T G^T
         call dpotrs('L', self%n, self%m, self%factor, self%n, bt, self%n, info)
         a = bt
     end subroutine mechanical_b

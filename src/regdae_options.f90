@@ -19,6 +19,8 @@
 !! | curvature      | yes, no (index 3: add g_xx(v,v) ...)  | yes            |
 !! | excluded       | y, vy (index 3: left out of the error test) | y        |
 !! | singular_threshold | >= 0 (sigma_min(GB) below: singular) | 0.05        |
+!! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
+!! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
 module regdae_options
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
@@ -65,6 +67,8 @@ module regdae_options
         logical :: curvature = .true.                  !! index 3: add g_xx(v,v) + 2 g_xt v + g_tt to r
         integer :: excluded = excluded_y               !! index 3: which variables leave the error test
         real(wp) :: singular_threshold = 0.05_wp       !! sigma_min(GB) below this at an output: singular
+        real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
+        real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
     end type solver_options
 
     public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name, excluded_name
@@ -134,6 +138,10 @@ contains
             if (code > 0) opts%excluded = code
         case ('singular_threshold')
             call read_real(value, opts%singular_threshold, code)
+        case ('taylor_h')
+            call read_real(value, opts%taylor_h, code)
+        case ('mass_damping')
+            call read_real(value, opts%mass_damping, code)
         case default
             stat = regdae_err_bad_input
             msg = 'unknown option "'//key//'"'
@@ -174,6 +182,10 @@ contains
             msg = 'gamma1 must be finite and > 0'
         else if (.not. (ieee_is_finite(opts%singular_threshold) .and. opts%singular_threshold >= 0.0_wp)) then
             msg = 'singular_threshold must be finite and >= 0'
+        else if (.not. (ieee_is_finite(opts%taylor_h) .and. opts%taylor_h > 0.0_wp)) then
+            msg = 'taylor_h must be finite and > 0'
+        else if (.not. (ieee_is_finite(opts%mass_damping) .and. opts%mass_damping >= 0.0_wp)) then
+            msg = 'mass_damping must be finite and >= 0'
         else if (opts%index /= 2 .and. opts%index /= 3) then
             msg = 'index must be 2 or 3'
         else if (opts%excluded /= excluded_y .and. opts%excluded /= excluded_vy) then

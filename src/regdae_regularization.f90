@@ -3,6 +3,8 @@
 !!
 !! Order 1 (index 2, eq. 2.1): state z = x, x' = f(x, t) - B y, 0 = g(x, t), and
 !! $$ r = G f + g_t + \gamma g. $$
+!! Order m >= 3 (eq. 4.12): z = (x, ..., x^(m-1)) and r = G f + sum_k w_k G x^(k) + w_1 g_t
+!! + w_0 g with the Taylor weights w_k = m!/(k! h^(m-k)) (eq. 4.16).
 !! Order 2 (index 3, eq. 4.1): state z = (x, v), x' = v, v' = f(x, v, t) - B y,
 !! 0 = g(x, t), and (paper, 4.4-4.8, with gamma0 = 2/h^2, gamma1 = 2/h)
 !! $$ r = G f + \gamma_1 (G v + g_t) + \gamma_0 g \; [+\, c], $$
@@ -25,6 +27,7 @@ module regdae_regularization
                              regdae_err_not_psd, regdae_err_singular, regdae_err_mass_matrix, status_message
     use regdae_problem, only: dae_problem
     use regdae_second_order_problem, only: second_order_problem
+    use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
     use regdae_options, only: solver_options, method_baumgarte, method_trust_region, method_direct
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     implicit none
@@ -34,14 +37,14 @@ module regdae_regularization
     !! and the scratch space of the multiplier solves.
     type, public :: regularized_dae
         class(dae_problem), allocatable :: first            !! order-1 problem (a copy), or
-        class(second_order_problem), allocatable :: second  !! order-2 problem (a copy)
-        integer :: order = 1        !! 1 (index 2) or 2 (index 3)
+        class(second_order_problem), allocatable :: second  !! order-2 problem (a copy), or
+        class(higher_order_problem), allocatable :: higher  !! order >= 3 problem (a copy)
+        integer :: order = 1        !! 1 (index 2), 2 (index 3), m (index m + 1)
         integer :: n = 0            !! size of x
         integer :: m = 0            !! number of constraints
         integer :: method = method_trust_region
         integer :: lsq = 0          !! `lsq_normal` or `lsq_stacked` (resolved)
-        real(wp) :: gamma0 = 0.0_wp !! weight of g (order 1: gamma)
-        real(wp) :: gamma1 = 0.0_wp !! weight of G v + g_t (order 2)
+        real(wp), allocatable :: w(:)   !! w(k+1): weight of G x^(k) (k = 0: of g; w(2) also of g_t)
         real(wp) :: eps = 0.0_wp    !! damping
         logical :: curvature = .false.  !! add c to r (order 2)
         real(wp), allocatable :: f(:)        !! f, n
@@ -59,6 +62,8 @@ module regdae_regularization
         procedure :: init_first_order
         !> Take an order-2 problem.
         procedure :: init_second_order
+        !> Take a problem of order >= 3.
+        procedure :: init_higher_order
         !> Evaluate f, B, g, G, g_t (c), GB and r at (t, z).
         procedure :: evaluate
         !> Multiplier y from the pieces of the last `evaluate`.
@@ -69,7 +74,7 @@ module regdae_regularization
         procedure :: residual_eliminated
         !> Residual of the multiplier formulation, unknowns (z, y).
         procedure :: residual_multiplier
-        procedure, private :: allocate_pieces, constraint_terms, dynamics_residual
+        procedure, private :: allocate_pieces, constraint_terms, dynamics_residual, release
     end type regularized_dae
 
 contains
@@ -79,12 +84,10 @@ contains
         class(dae_problem), intent(in) :: problem    !! copied into self
         type(solver_options), intent(in) :: opts
         integer, intent(in) :: lsq                   !! resolved least-squares method
-        if (allocated(self%first)) deallocate (self%first)
-        if (allocated(self%second)) deallocate (self%second)
+        call self%release()
         allocate (self%first, source=problem)
         self%order = 1
-        self%gamma0 = opts%gamma
-        self%gamma1 = 0.0_wp
+        self%w = [opts%gamma]
         self%curvature = .false.
         call self%allocate_pieces(problem%n, problem%m, opts, lsq)
     end subroutine init_first_order
@@ -94,15 +97,33 @@ contains
         class(second_order_problem), intent(in) :: problem    !! copied into self
         type(solver_options), intent(in) :: opts
         integer, intent(in) :: lsq
-        if (allocated(self%first)) deallocate (self%first)
-        if (allocated(self%second)) deallocate (self%second)
+        call self%release()
         allocate (self%second, source=problem)
         self%order = 2
-        self%gamma0 = opts%gamma0
-        self%gamma1 = opts%gamma1
+        self%w = [opts%gamma0, opts%gamma1]
         self%curvature = opts%curvature
         call self%allocate_pieces(problem%n, problem%m, opts, lsq)
     end subroutine init_second_order
+
+    subroutine init_higher_order(self, problem, opts, lsq)
+        class(regularized_dae), intent(inout) :: self
+        class(higher_order_problem), intent(in) :: problem    !! copied into self
+        type(solver_options), intent(in) :: opts
+        integer, intent(in) :: lsq
+        call self%release()
+        allocate (self%higher, source=problem)
+        self%order = problem%order
+        self%w = taylor_weights(problem%order, opts%taylor_h)
+        self%curvature = .false.
+        call self%allocate_pieces(problem%n, problem%m, opts, lsq)
+    end subroutine init_higher_order
+
+    subroutine release(self)
+        class(regularized_dae), intent(inout) :: self
+        if (allocated(self%first)) deallocate (self%first)
+        if (allocated(self%second)) deallocate (self%second)
+        if (allocated(self%higher)) deallocate (self%higher)
+    end subroutine release
 
     subroutine allocate_pieces(self, n, m, opts, lsq)
         class(regularized_dae), intent(inout) :: self
@@ -146,6 +167,17 @@ contains
             if (failed('constraint_jacobian')) return
             call self%first%constraint_dt(t, z, self%gt, ustat)
             if (failed('constraint_dt')) return
+        else if (self%order >= 3) then
+            call self%higher%rhs(t, reshape(z(1:self%order*n), [n, self%order]), self%f, ustat)
+            if (failed('rhs')) return
+            call self%higher%matrix_b(t, reshape(z(1:self%order*n), [n, self%order]), self%b, ustat)
+            if (failed('matrix_b')) return
+            call self%higher%constraint(t, z(1:n), self%g, ustat)
+            if (failed('constraint')) return
+            call self%higher%constraint_jacobian(t, z(1:n), self%gx, ustat)
+            if (failed('constraint_jacobian')) return
+            call self%higher%constraint_dt(t, z(1:n), self%gt, ustat)
+            if (failed('constraint_dt')) return
         else
             call self%second%rhs(t, z(1:n), z(n + 1:2*n), self%f, ustat)
             if (failed('rhs')) return
@@ -188,15 +220,20 @@ contains
         end function failed
     end subroutine evaluate
 
-    ! r - G f: gamma g + g_t (order 1); gamma0 g + gamma1 (G v + g_t) [+ c] (order 2).
+    ! r - G f = w0 g + w1 g_t + sum_{k=1}^{m-1} w_k G x^(k) [+ c] (order 1: g_t with weight 1).
     function constraint_terms(self, z) result(q)
         class(regularized_dae), intent(in) :: self
         real(wp), intent(in) :: z(:)
         real(wp) :: q(self%m)
+        integer :: k, n
+        n = self%n
         if (self%order == 1) then
-            q = self%gt + self%gamma0*self%g
+            q = self%w(1)*self%g + self%gt
         else
-            q = self%gamma0*self%g + self%gamma1*(matmul(self%gx, z(self%n + 1:2*self%n)) + self%gt)
+            q = self%w(1)*self%g + self%w(2)*self%gt
+            do k = 1, self%order - 1
+                q = q + self%w(k + 1)*matmul(self%gx, z(k*n + 1:(k + 1)*n))
+            end do
             if (self%curvature) q = q + self%curv
         end if
     end function constraint_terms
@@ -266,19 +303,18 @@ contains
         call self%dynamics_residual(z, zp, y, res)
     end subroutine residual_eliminated
 
-    ! The differential rows: x' - f + B y (order 1); (x' - v, v' - f + B y) (order 2).
+    ! The differential rows: x^(k)' - x^(k+1) for k < m-1, and x^(m-1)' - f + B y.
     subroutine dynamics_residual(self, z, zp, y, res)
         class(regularized_dae), intent(in) :: self
         real(wp), intent(in) :: z(:), zp(:), y(:)
         real(wp), intent(out) :: res(:)
-        integer :: n
+        integer :: k, n, last
         n = self%n
-        if (self%order == 1) then
-            res(1:n) = zp(1:n) - self%f + matmul(self%b, y)
-        else
-            res(1:n) = zp(1:n) - z(n + 1:2*n)
-            res(n + 1:2*n) = zp(n + 1:2*n) - self%f + matmul(self%b, y)
-        end if
+        do k = 0, self%order - 2
+            res(k*n + 1:(k + 1)*n) = zp(k*n + 1:(k + 1)*n) - z((k + 1)*n + 1:(k + 2)*n)
+        end do
+        last = (self%order - 1)*n
+        res(last + 1:last + n) = zp(last + 1:last + n) - self%f + matmul(self%b, y)
     end subroutine dynamics_residual
 
     !> Multiplier formulation: the differential rows with the given y, and
