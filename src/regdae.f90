@@ -11,6 +11,7 @@ module regdae
     use regdae_problem, only: dae_problem, constraint_dt_difference
     use regdae_second_order_problem, only: second_order_problem, velocity_constraint
     use regdae_mechanical_problem, only: mechanical_problem
+    use regdae_linear_problem, only: linear_dae_problem
     use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
     use regdae_options
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
@@ -20,6 +21,7 @@ module regdae
 
     public :: wp, format_real, format_int, dae_problem, constraint_dt_difference, regdae_solver, solver_stats
     public :: second_order_problem, velocity_constraint, mechanical_problem, higher_order_problem, taylor_weights
+    public :: linear_dae_problem
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     ! regdae_status
     public :: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, regdae_err_inconsistent_ic, &

@@ -32,6 +32,7 @@ module regdae_ida_solver
     use regdae_second_order_problem, only: second_order_problem, velocity_constraint
     use regdae_mechanical_problem, only: mechanical_problem
     use regdae_higher_order_problem, only: higher_order_problem
+    use regdae_linear_problem, only: linear_dae_problem
     use regdae_velocity_index2, only: new_velocity_index2
     use regdae_options
     use regdae_regularization, only: regularized_dae
@@ -134,6 +135,10 @@ contains
         if (.not. self%check_input(t0, x0, x0, problem%n, problem%m, opts, stat)) return
         allocate (self%core)
         self%core%nx = problem%n
+        select type (problem)
+        class is (linear_dae_problem)
+            self%core%multiplier_sign = -1.0_wp   ! section 3 writes x' = A x + B y + q
+        end select
         call self%core%model%init_first_order(problem, opts, lsq_normal)
         call self%start(t0, x0, opts, stat)
     end subroutine solver_init_first
