@@ -7,6 +7,7 @@ program regdae_tester
     use test_residuals, only: residual_tests
     use test_solver, only: solver_tests
     use test_mechanics, only: mechanics_tests
+    use test_theory, only: theory_tests
     implicit none
     character(len=64) :: suite
     integer :: nfailed, ntotal
@@ -22,8 +23,9 @@ program regdae_tester
     call maybe_run('residuals', residual_tests())
     call maybe_run('solver', solver_tests())
     call maybe_run('mechanics', mechanics_tests())
+    call maybe_run('theory', theory_tests())
     if (.not. known) then
-        write (*, '(a)') 'regdae_tester: unknown suite "'//trim(suite)//'" (lsq, residuals, solver, mechanics)'
+        write (*, '(a)') 'regdae_tester: unknown suite "'//trim(suite)//'" (lsq, residuals, solver, mechanics, theory)'
         stop 2
     end if
     write (*, '(i0,a,i0,a)') ntotal - nfailed, ' passed, ', nfailed, ' failed'
