@@ -1,7 +1,7 @@
 #!/bin/sh
 # The main job: install missing packages, build regdae in build/, reproduce the
 # paper's examples and write the report build/report/report.md (with figures),
-# and regenerate doc/reproduction.md and doc/figures/.
+# and regenerate doc/reproduction.md, doc/theory.md and their figures in doc/figures/.
 # Usage: tools/reproduce.sh
 set -eu
 cd "$(dirname "$0")/.."
@@ -26,7 +26,8 @@ mkdir -p "$tmp"
     sh drivers/report/ex52_report.sh build/bin "$tmp"
 } >"$tmp/report.md"
 sh drivers/report/reproduction_doc.sh build/bin .
+sh drivers/report/theory_doc.sh build/bin .
 # Replace the previous report only when the new one is complete.
 rm -rf "$report"
 mv "$tmp" "$report"
-echo "regdae: report written to $report/report.md; doc/reproduction.md and doc/figures/ regenerated"
+echo "regdae: report written to $report/report.md; doc/reproduction.md, doc/theory.md and doc/figures/ regenerated"

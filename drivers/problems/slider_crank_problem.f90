@@ -32,6 +32,15 @@ module slider_crank_problem
         procedure :: energy => crank_energy
     end type slider_crank
 
+    !> The slider crank with its constraint given twice (m = 2): GB has rank 1 for
+    !! all t, the multiplier is not unique (only lambda1 + lambda2 is), x is.
+    type, extends(slider_crank), public :: redundant_slider_crank
+    contains
+        procedure :: constraint => redundant_g
+        procedure :: constraint_jacobian => redundant_gx
+        procedure :: constraint_dt => redundant_gt
+    end type redundant_slider_crank
+
     !> The reduced ODE on the physical branch, state (th1, th1').
     type, extends(ode_system), public :: slider_crank_reduced
         real(wp) :: gravity = 9.8_wp
@@ -39,7 +48,7 @@ module slider_crank_problem
         procedure :: rhs => reduced_rhs
     end type slider_crank_reduced
 
-    public :: new_slider_crank
+    public :: new_slider_crank, new_redundant_slider_crank
 
 contains
 
@@ -50,6 +59,39 @@ contains
         p%m = 1
         p%gravity = gravity
     end function new_slider_crank
+
+    function new_redundant_slider_crank(gravity) result(p)
+        real(wp), intent(in) :: gravity
+        type(redundant_slider_crank) :: p
+        p%n = 2
+        p%m = 2
+        p%gravity = gravity
+    end function new_redundant_slider_crank
+
+    subroutine redundant_g(self, t, x, val, stat)
+        class(redundant_slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        val = -cos(x(1)) - cos(x(2))
+    end subroutine redundant_g
+
+    subroutine redundant_gx(self, t, x, a, stat)
+        class(redundant_slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
+        a(1, :) = [sin(x(1)), sin(x(2))]
+        a(2, :) = a(1, :)
+    end subroutine redundant_gx
+
+    subroutine redundant_gt(self, t, x, val, stat)
+        class(redundant_slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        val = 0.0_wp
+    end subroutine redundant_gt
 
     subroutine crank_mass(self, t, q, mass, stat)
         class(slider_crank), intent(inout) :: self

@@ -50,7 +50,7 @@ TXT
   We cannot reproduce the paper's failure; the trust-region verdict (Fig. 5.14) agrees.
 TXT
 } >"$tmp/reproduction.md"
-rm -rf "$src/doc/figures"
 mkdir -p "$src/doc/figures"
+rm -f "$src"/doc/figures/fig5_*.png
 cp "$tmp"/figures/fig5_*.png "$src/doc/figures/"
 mv "$tmp/reproduction.md" "$src/doc/reproduction.md"
