@@ -24,6 +24,7 @@ mkdir -p "$tmp"
     echo
     sh drivers/report/ex51_report.sh build/bin/ex51 "$tmp"
     sh drivers/report/ex52_report.sh build/bin "$tmp"
+    sh drivers/report/section4_report.sh build/bin "$tmp"
 } >"$tmp/report.md"
 sh drivers/report/reproduction_doc.sh build/bin .
 sh drivers/report/theory_doc.sh build/bin .
