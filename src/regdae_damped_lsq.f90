@@ -125,6 +125,18 @@ contains
         end if
         stat = regdae_success
         if (q == 0) return
+        if (p == 1 .and. q == 1 .and. (method == lsq_normal .or. method == lsq_stacked)) then
+            ! One constraint: both ways are y = a r / (a^2 + eps), to rounding, without
+            ! LAPACK's call overhead (the minimum-norm y = 0 when a = eps = 0).
+            if (a(1, 1)**2 + eps > 0.0_wp) then
+                y(1) = a(1, 1)*r(1)/(a(1, 1)**2 + eps)
+            else if (method == lsq_stacked) then
+                y(1) = 0.0_wp
+            else
+                stat = regdae_err_singular
+            end if
+            return
+        end if
         select case (method)
         case (lsq_normal)
             ws%mat(1:q, 1:q) = matmul(transpose(a), a)
@@ -176,6 +188,14 @@ contains
         end if
         stat = regdae_success
         if (q == 0) return
+        if (q == 1) then   ! one constraint: no LAPACK call
+            if (a(1, 1) + eps > 0.0_wp) then
+                y(1) = r(1)/(a(1, 1) + eps)
+            else
+                stat = regdae_err_not_psd
+            end if
+            return
+        end if
         if (maxval(abs(a - transpose(a))) > symmetry_tol*maxval(abs(a))) then
             stat = regdae_err_not_psd
             return
@@ -207,6 +227,14 @@ contains
         end if
         stat = regdae_success
         if (q == 0) return
+        if (q == 1) then   ! one constraint: no LAPACK call
+            if (a(1, 1) /= 0.0_wp) then
+                y(1) = r(1)/a(1, 1)
+            else
+                stat = regdae_err_singular
+            end if
+            return
+        end if
         ws%mat(1:q, 1:q) = a
         y = r
         call dgesv(q, 1, ws%mat, size(ws%mat, 1), ws%ipiv, y, q, info)
