@@ -22,6 +22,10 @@ module regdae_mechanical_problem
     implicit none
     private
 
+    ! Up to this size M is factored by the loops below instead of LAPACK, whose
+    ! call overhead dominates for a handful of coordinates.
+    integer, parameter :: small_n = 8
+
     !> Abstract constrained mechanical system.
     type, abstract, extends(second_order_problem), public :: mechanical_problem
         private
@@ -92,7 +96,11 @@ contains
             end if
             self%factor = self%mass
         end if
-        call dpotrf('L', n, self%factor, n, info)
+        if (n <= small_n) then
+            call small_cholesky(self%factor, info)
+        else
+            call dpotrf('L', n, self%factor, n, info)
+        end if
         if (info /= 0) then
             stat = regdae_err_mass_matrix
             return
@@ -113,7 +121,11 @@ contains
         call self%forces(t, x, v, val, stat)
         if (stat /= 0) return
         if (self%mass_damping > 0.0_wp) val = matmul(val, self%mass)   ! M^T f
-        call dpotrs('L', self%n, 1, self%factor, self%n, val, self%n, info)
+        if (self%n <= small_n) then
+            call small_cholesky_solve(self%factor, val)
+        else
+            call dpotrs('L', self%n, 1, self%factor, self%n, val, self%n, info)
+        end if
     end subroutine mechanical_rhs
 
     subroutine mechanical_b(self, t, x, v, a, stat)
@@ -122,15 +134,54 @@ contains
         real(wp), intent(out) :: a(:, :)
         integer, intent(inout) :: stat
         real(wp) :: gx(self%m, self%n), bt(self%n, self%m)
-        integer :: info
+        integer :: info, j
         call factor_mass(self, t, x, stat)
         if (stat /= 0) return
         call self%constraint_jacobian(t, x, gx, stat)
         if (stat /= 0) return
         bt = transpose(gx)
         if (self%mass_damping > 0.0_wp) bt = matmul(transpose(self%mass), bt)   ! M^T G^T
-        call dpotrs('L', self%n, self%m, self%factor, self%n, bt, self%n, info)
+        if (self%n <= small_n) then
+            do j = 1, self%m
+                call small_cholesky_solve(self%factor, bt(:, j))
+            end do
+        else
+            call dpotrs('L', self%n, self%m, self%factor, self%n, bt, self%n, info)
+        end if
         a = bt
     end subroutine mechanical_b
+
+    ! In-place Cholesky factor L (lower triangle) of a small SPD matrix; info > 0
+    ! if it is not positive definite.
+    pure subroutine small_cholesky(a, info)
+        real(wp), intent(inout) :: a(:, :)
+        integer, intent(out) :: info
+        integer :: j, n
+        n = size(a, 1)
+        info = 0
+        do j = 1, n
+            a(j, j) = a(j, j) - sum(a(j, 1:j - 1)**2)
+            if (.not. (a(j, j) > 0.0_wp)) then
+                info = j
+                return
+            end if
+            a(j, j) = sqrt(a(j, j))
+            a(j + 1:n, j) = (a(j + 1:n, j) - matmul(a(j + 1:n, 1:j - 1), a(j, 1:j - 1)))/a(j, j)
+        end do
+    end subroutine small_cholesky
+
+    ! Solve L L^T x = b in place with the factor of `small_cholesky`.
+    pure subroutine small_cholesky_solve(l, b)
+        real(wp), intent(in) :: l(:, :)
+        real(wp), intent(inout) :: b(:)
+        integer :: j, n
+        n = size(b)
+        do j = 1, n
+            b(j) = (b(j) - dot_product(l(j, 1:j - 1), b(1:j - 1)))/l(j, j)
+        end do
+        do j = n, 1, -1
+            b(j) = (b(j) - dot_product(l(j + 1:n, j), b(j + 1:n)))/l(j, j)
+        end do
+    end subroutine small_cholesky_solve
 
 end module regdae_mechanical_problem
