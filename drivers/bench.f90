@@ -1,0 +1,223 @@
+!> Benchmark (not a test): error against run time for regdae's configurations
+!! and the oracles, over rtol = atol = 1e-3 ... 1e-10.
+!!
+!! Problems: the slider crank (index 3 and 2, 1001 outputs on [0, 10], error in theta
+!! against the reduced ODE by CVODE at 1e-13) and Example 5.1 (201 outputs on [-1, 1],
+!! error in x against t + 1). Oracles on the slider crank's reduced ODE (they know the
+!! branch): the project's Dormand-Prince 5(4) and CVODE Adams. Time: median of `reps`
+!! repetitions inside this process, setup included; outputs are interpolated (no
+!! stop at output times) and nothing is printed while timing.
+!!
+!! Usage: bench [reps=5] [tol_from=3] [tol_to=10] [problem=all|crank|ex51]
+!! Output: '#' lines and rows 'problem config rtol max_err seconds steps res_evals jac_evals status',
+!! status ok, failed, or off_branch (a slider-crank run with max |th1 + th2 - pi| > 0.1).
+program bench_driver
+    use, intrinsic :: iso_fortran_env, only: int64
+    use regdae
+    use slider_crank_problem, only: slider_crank_reduced, new_slider_crank
+    use ex51_problem, only: new_ex51, orientation_psd
+    use reference_ode, only: integrate_reference
+    use dopri5, only: dopri5_integrate
+    use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number
+    implicit none
+    character(len=*), parameter :: prog = 'bench'
+    real(wp), parameter :: pi = acos(-1.0_wp)
+    integer, parameter :: branch_left = 1000   ! status of a run off the physical branch
+    real(wp) :: crank_times(1001), ex51_times(201), ref(2, 1001), reps_r, from_r, to_r, tol
+    integer :: i, k, reps, stat
+    character(len=:), allocatable :: key, value, which
+    logical :: ok
+    type(slider_crank_reduced) :: reduced
+
+    reps_r = 5
+    from_r = 3
+    to_r = 10
+    which = 'all'
+    do i = 1, command_argument_count()
+        call split_key_value(argument(i), key, value, ok)
+        if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
+        select case (key)
+        case ('reps'); call read_number(prog, key, value, reps_r)
+        case ('tol_from'); call read_number(prog, key, value, from_r)
+        case ('tol_to'); call read_number(prog, key, value, to_r)
+        case ('problem'); which = value
+            if (which /= 'all' .and. which /= 'crank' .and. which /= 'ex51') call die_usage(prog, 'bad problem '//value)
+        case default; call die_usage(prog, 'unknown option "'//key//'"')
+        end select
+    end do
+    reps = max(1, nint(reps_r))
+    crank_times = [(0.01_wp*k, k=0, 1000)]
+    ex51_times = [(-1.0_wp + 0.01_wp*k, k=0, 200)]
+    call integrate_reference(reduced, 0.0_wp, [pi/2, 0.0_wp], crank_times, ref, 1.0e-13_wp, 1.0e-13_wp, stat)
+    write (*, '(a)') '# regdae bench: median of '//format_int(reps)//' runs in one process, setup included'
+    write (*, '(a)') '# problem config rtol max_err seconds steps res_evals jac_evals status'
+    do k = nint(from_r), nint(to_r)
+        tol = 10.0_wp**(-k)
+        if (which == 'all' .or. which == 'crank') then
+            call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol)
+            call crank('crank3', 'trust_region eps=1e-6', 3, 'trust_region', 1.0e-6_wp, tol)
+            call crank('crank3', 'trust_region eps=1e-12 excluded=vy', 3, 'trust_region', 1.0e-12_wp, tol, excl='vy')
+            call crank('crank3', 'baumgarte', 3, 'baumgarte', 1.0e-12_wp, tol)
+            call crank('crank2', 'trust_region gamma=1e6 eps=1e-12', 2, 'trust_region', 1.0e-12_wp, tol)
+            call oracle_dopri(tol)
+            call oracle_cvode(tol)
+        end if
+        if (which == 'all' .or. which == 'ex51') then
+            call ex51_run('trust_region eps=1e-12', 'trust_region', 1.0e-12_wp, tol)
+            call ex51_run('direct eps=1e-12', 'direct', 1.0e-12_wp, tol)
+        end if
+    end do
+
+contains
+
+    subroutine crank(name, config, index, method, eps, tol, excl)
+        character(len=*), intent(in) :: name, config, method
+        integer, intent(in) :: index
+        real(wp), intent(in) :: eps, tol
+        character(len=*), intent(in), optional :: excl
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        character(len=:), allocatable :: msg
+        real(wp) :: th(2), w(2), lam(1), err, dev, seconds(reps)
+        integer(int64) :: c0, c1, rate
+        integer :: r, j, stat
+        dev = 0.0_wp
+        opts%index = index
+        opts%rtol = tol
+        opts%atol = tol
+        opts%eps = eps
+        opts%gamma = 1.0e6_wp
+        call set_option(opts, 'method', method, stat, msg)
+        if (present(excl)) call set_option(opts, 'excluded', excl, stat, msg)
+        do r = 1, reps
+            call system_clock(c0, rate)
+            err = 0.0_wp
+            call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+            do j = 1, size(crank_times)
+                if (stat /= regdae_success) exit
+                call solver%advance(crank_times(j), th, lam, stat, w)
+                if (stat > 0) stat = regdae_success
+                err = max(err, abs(th(1) - ref(1, j)), abs(th(2) - (pi - ref(1, j))))
+                dev = max(dev, abs(modulo(th(1) + th(2), 2*pi) - pi))
+            end do
+            call system_clock(c1)
+            seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+            st = solver%statistics()
+            call solver%destroy()
+        end do
+        ! A run that left the physical branch (|th1 + th2 - pi| > 0.1) is not a good run.
+        if (stat == regdae_success .and. dev > 0.1_wp) stat = branch_left
+        call row(name, config, tol, err, median(seconds), st, stat)
+    end subroutine crank
+
+    subroutine ex51_run(config, method, eps, tol)
+        character(len=*), intent(in) :: config, method
+        real(wp), intent(in) :: eps, tol
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        character(len=:), allocatable :: msg
+        real(wp) :: x(1), y(1), err, seconds(reps)
+        integer(int64) :: c0, c1, rate
+        integer :: r, j, stat
+        opts%rtol = tol
+        opts%atol = tol
+        opts%eps = eps
+        opts%stop_at_output = .true.   ! otherwise IDA steps over the singular layer (doc/ex51.md)
+        call set_option(opts, 'method', method, stat, msg)
+        do r = 1, reps
+            call system_clock(c0, rate)
+            err = 0.0_wp
+            call solver%init(new_ex51(orientation_psd), -1.0_wp, [0.0_wp], opts, stat)
+            do j = 1, size(ex51_times)
+                if (stat /= regdae_success) exit
+                call solver%advance(ex51_times(j), x, y, stat)
+                if (stat > 0) stat = regdae_success
+                err = max(err, abs(x(1) - (ex51_times(j) + 1.0_wp)))
+            end do
+            call system_clock(c1)
+            seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+            st = solver%statistics()
+            call solver%destroy()
+        end do
+        call row('ex51', config, tol, err, median(seconds), st, stat)
+    end subroutine ex51_run
+
+    subroutine oracle_dopri(tol)
+        real(wp), intent(in) :: tol
+        type(slider_crank_reduced) :: sys
+        type(solver_stats) :: st
+        real(wp) :: states(2, 1001), seconds(reps)
+        integer(int64) :: c0, c1, rate
+        integer :: r, steps, evals
+        do r = 1, reps
+            call system_clock(c0, rate)
+            call dopri5_integrate(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, steps, evals)
+            call system_clock(c1)
+            seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+        end do
+        st%steps = steps
+        st%res_evals = evals
+        call row('crank_oracle', 'dopri5 reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), median(seconds), &
+                 st, regdae_success)
+    end subroutine oracle_dopri
+
+    subroutine oracle_cvode(tol)
+        real(wp), intent(in) :: tol
+        type(slider_crank_reduced) :: sys
+        type(solver_stats) :: st
+        real(wp) :: states(2, 1001), seconds(reps)
+        integer(int64) :: c0, c1, rate
+        integer :: r, stat
+        do r = 1, reps
+            call system_clock(c0, rate)
+            call integrate_reference(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, stat)
+            call system_clock(c1)
+            seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+        end do
+        call row('crank_oracle', 'cvode_adams reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), &
+                 median(seconds), st, merge(regdae_success, regdae_err_integration, stat == 0))
+    end subroutine oracle_cvode
+
+    subroutine row(name, config, tol, err, seconds, st, stat)
+        character(len=*), intent(in) :: name, config
+        real(wp), intent(in) :: tol, err, seconds
+        type(solver_stats), intent(in) :: st
+        integer, intent(in) :: stat
+        write (*, '(a)') name//' "'//config//'" '//num(tol)//' '//num(err)//' '//num(seconds)//' '// &
+            format_int(int(st%steps))//' '//format_int(int(st%res_evals))//' '//format_int(int(st%jac_evals))//' '// &
+            trim(status_word(stat))
+    end subroutine row
+
+    pure function status_word(stat) result(w)
+        integer, intent(in) :: stat
+        character(len=:), allocatable :: w
+        if (stat == regdae_success) then
+            w = 'ok'
+        else if (stat == branch_left) then
+            w = 'off_branch'
+        else
+            w = 'failed'
+        end if
+    end function status_word
+
+    pure real(wp) function median(v)
+        real(wp), intent(in) :: v(:)
+        real(wp) :: s(size(v)), tmp
+        integer :: i, j
+        s = v
+        do i = 2, size(s)
+            tmp = s(i)
+            j = i - 1
+            do while (j >= 1)
+                if (s(j) <= tmp) exit
+                s(j + 1) = s(j)
+                j = j - 1
+            end do
+            s(j + 1) = tmp
+        end do
+        median = s((size(s) + 1)/2)
+    end function median
+
+end program bench_driver

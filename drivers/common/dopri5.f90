@@ -1,0 +1,85 @@
+!> A small explicit Dormand-Prince 5(4) integrator with step-size control and
+!! cubic Hermite output: the benchmark's oracle for the slider crank's reduced
+!! ODE (the speed any DAE method here is measured against). Written for the
+!! project from the published method coefficients (Dormand & Prince 1980).
+module dopri5
+    use regdae, only: wp
+    use reference_ode, only: ode_system
+    implicit none
+    private
+    public :: dopri5_integrate
+
+    real(wp), parameter :: c2 = 1.0_wp/5, c3 = 3.0_wp/10, c4 = 4.0_wp/5, c5 = 8.0_wp/9
+    real(wp), parameter :: a21 = 1.0_wp/5
+    real(wp), parameter :: a31 = 3.0_wp/40, a32 = 9.0_wp/40
+    real(wp), parameter :: a41 = 44.0_wp/45, a42 = -56.0_wp/15, a43 = 32.0_wp/9
+    real(wp), parameter :: a51 = 19372.0_wp/6561, a52 = -25360.0_wp/2187, a53 = 64448.0_wp/6561, &
+                           a54 = -212.0_wp/729
+    real(wp), parameter :: a61 = 9017.0_wp/3168, a62 = -355.0_wp/33, a63 = 46732.0_wp/5247, a64 = 49.0_wp/176, &
+                           a65 = -5103.0_wp/18656
+    real(wp), parameter :: b1 = 35.0_wp/384, b3 = 500.0_wp/1113, b4 = 125.0_wp/192, b5 = -2187.0_wp/6784, &
+                           b6 = 11.0_wp/84
+    ! b - b_hat (5th minus 4th order weights): the local error estimate.
+    real(wp), parameter :: e1 = 71.0_wp/57600, e3 = -71.0_wp/16695, e4 = 71.0_wp/1920, e5 = -17253.0_wp/339200, &
+                           e6 = 22.0_wp/525, e7 = -1.0_wp/40
+
+contains
+
+    !> Integrate y' = F(t, y) from (t0, y0) to the ascending `times`; states(:, k)
+    !! at times(k) by cubic Hermite interpolation between steps. `steps` counts
+    !! accepted steps, `evals` right-hand-side evaluations.
+    subroutine dopri5_integrate(system, t0, y0, times, states, rtol, atol, steps, evals)
+        class(ode_system), intent(inout) :: system
+        real(wp), intent(in) :: t0, y0(:), times(:), rtol, atol
+        real(wp), intent(out) :: states(:, :)
+        integer, intent(out) :: steps, evals
+        real(wp), dimension(size(y0)) :: y, ynew, k1, k2, k3, k4, k5, k6, k7, err
+        real(wp) :: t, h, tend, e, theta, fac
+        integer :: iout, n
+
+        n = size(y0)
+        y = y0
+        t = t0
+        tend = times(size(times))
+        call system%rhs(t, y, k1)
+        evals = 1
+        steps = 0
+        h = 0.01_wp*max(abs(tend - t0), 1.0_wp)*min(1.0_wp, (rtol/1.0e-3_wp)**0.2_wp)
+        iout = 1
+        do while (iout <= size(times))
+            if (times(iout) <= t) then   ! outputs at or before the start
+                states(:, iout) = y
+                iout = iout + 1
+                cycle
+            end if
+            h = min(h, tend - t)
+            call system%rhs(t + c2*h, y + h*a21*k1, k2)
+            call system%rhs(t + c3*h, y + h*(a31*k1 + a32*k2), k3)
+            call system%rhs(t + c4*h, y + h*(a41*k1 + a42*k2 + a43*k3), k4)
+            call system%rhs(t + c5*h, y + h*(a51*k1 + a52*k2 + a53*k3 + a54*k4), k5)
+            call system%rhs(t + h, y + h*(a61*k1 + a62*k2 + a63*k3 + a64*k4 + a65*k5), k6)
+            ynew = y + h*(b1*k1 + b3*k3 + b4*k4 + b5*k5 + b6*k6)
+            call system%rhs(t + h, ynew, k7)
+            evals = evals + 6
+            err = h*(e1*k1 + e3*k3 + e4*k4 + e5*k5 + e6*k6 + e7*k7)
+            e = sqrt(sum((err/(atol + rtol*max(abs(y), abs(ynew))))**2)/n)
+            if (e <= 1.0_wp) then
+                ! Outputs in (t, t + h]: cubic Hermite with y, y' at both ends.
+                do while (iout <= size(times))
+                    if (times(iout) > t + h) exit
+                    theta = (times(iout) - t)/h
+                    states(:, iout) = (1 - theta)*y + theta*ynew + theta*(theta - 1)* &
+                                      ((1 - 2*theta)*(ynew - y) + (theta - 1)*h*k1 + theta*h*k7)
+                    iout = iout + 1
+                end do
+                t = t + h
+                y = ynew
+                k1 = k7   ! first same as last
+                steps = steps + 1
+            end if
+            fac = 0.9_wp*max(e, 1.0e-10_wp)**(-0.2_wp)
+            h = h*min(5.0_wp, max(0.2_wp, fac))
+        end do
+    end subroutine dopri5_integrate
+
+end module dopri5
