@@ -18,6 +18,7 @@ program bench_driver
     use ex51_problem, only: new_ex51, orientation_psd
     use reference_ode, only: integrate_reference
     use dopri5, only: dopri5_integrate
+    use ida_peers, only: run_peer, peer_kkt, peer_index2
     use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number
     implicit none
     character(len=*), parameter :: prog = 'bench'
@@ -61,6 +62,8 @@ program bench_driver
             call crank('crank2', 'trust_region gamma=1e6 eps=1e-12', 2, 'trust_region', 1.0e-12_wp, tol)
             call oracle_dopri(tol)
             call oracle_cvode(tol)
+            call peer(peer_kkt, 'ida index-1 KKT, no regularization', tol)
+            call peer(peer_index2, 'ida index-2, no regularization', tol)
         end if
         if (which == 'all' .or. which == 'ex51') then
             call ex51_run('trust_region eps=1e-12', 'trust_region', 1.0e-12_wp, tol)
@@ -179,6 +182,38 @@ contains
         call row('crank_oracle', 'cvode_adams reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), &
                  median(seconds), st, merge(regdae_success, regdae_err_integration, stat == 0))
     end subroutine oracle_cvode
+
+    ! IDA on the unregularized formulations (drivers/common/ida_peers.f90).
+    subroutine peer(kind, config, tol)
+        integer, intent(in) :: kind
+        character(len=*), intent(in) :: config
+        real(wp), intent(in) :: tol
+        type(solver_stats) :: st
+        real(wp) :: theta(2, 1001), seconds(reps), err, dev
+        integer(int64) :: c0, c1, rate
+        integer :: r, steps, evals, stat, j
+        do r = 1, reps
+            call system_clock(c0, rate)
+            call run_peer(kind, tol, crank_times, theta, steps, evals, stat)
+            call system_clock(c1)
+            seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+        end do
+        err = 0.0_wp
+        dev = 0.0_wp
+        do j = 1, size(crank_times)
+            if (theta(1, j) /= theta(1, j)) exit
+            err = max(err, abs(theta(1, j) - ref(1, j)), abs(theta(2, j) - (pi - ref(1, j))))
+            dev = max(dev, abs(modulo(theta(1, j) + theta(2, j), 2*pi) - pi))
+        end do
+        st%steps = steps
+        st%res_evals = evals
+        if (stat /= 0) then
+            stat = regdae_err_integration
+        else if (dev > 0.1_wp) then
+            stat = branch_left
+        end if
+        call row('crank_peer', config, tol, err, median(seconds), st, stat)
+    end subroutine peer
 
     subroutine row(name, config, tol, err, seconds, st, stat)
         character(len=*), intent(in) :: name, config
