@@ -14,7 +14,7 @@
 program bench_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use regdae
-    use slider_crank_problem, only: slider_crank_reduced, new_slider_crank
+    use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
     use ex51_problem, only: new_ex51, orientation_psd
     use reference_ode, only: integrate_reference
     use dopri5, only: dopri5_integrate
@@ -59,6 +59,8 @@ program bench_driver
             call crank('crank3', 'trust_region eps=1e-6', 3, 'trust_region', 1.0e-6_wp, tol)
             call crank('crank3', 'trust_region eps=1e-12 excluded=vy', 3, 'trust_region', 1.0e-12_wp, tol, excl='vy')
             call crank('crank3', 'baumgarte', 3, 'baumgarte', 1.0e-12_wp, tol)
+            call crank('crank3', 'trust_region eps=1e-12 dopri5 gamma1=20', 3, 'trust_region', 1.0e-12_wp, tol, &
+                       rk=.true.)
             call crank('crank2', 'trust_region gamma=1e6 eps=1e-12', 2, 'trust_region', 1.0e-12_wp, tol)
             call oracle_dopri(tol)
             call oracle_cvode(tol)
@@ -73,15 +75,17 @@ program bench_driver
 
 contains
 
-    subroutine crank(name, config, index, method, eps, tol, excl)
+    subroutine crank(name, config, index, method, eps, tol, excl, rk)
         character(len=*), intent(in) :: name, config, method
         integer, intent(in) :: index
         real(wp), intent(in) :: eps, tol
         character(len=*), intent(in), optional :: excl
+        logical, intent(in), optional :: rk   ! explicit integrator with gamma1 = 20, gamma0 = 200
         type(solver_options) :: opts
         type(regdae_solver) :: solver
         type(solver_stats) :: st
         character(len=:), allocatable :: msg
+        type(slider_crank) :: crank_problem
         real(wp) :: th(2), w(2), lam(1), err, dev, seconds(reps)
         integer(int64) :: c0, c1, rate
         integer :: r, j, stat
@@ -93,10 +97,19 @@ contains
         opts%gamma = 1.0e6_wp
         call set_option(opts, 'method', method, stat, msg)
         if (present(excl)) call set_option(opts, 'excluded', excl, stat, msg)
+        if (present(rk)) then
+            if (rk) then
+                opts%integrator = integrator_dopri5
+                opts%gamma1 = 20.0_wp
+                opts%gamma0 = 200.0_wp
+            end if
+        end if
+        crank_problem = new_slider_crank(9.8_wp)
+        crank_problem%analytic_curvature = .true.   ! the user-supplied g_xx(v, v) (doc/performance.md)
         do r = 1, reps
             call system_clock(c0, rate)
             err = 0.0_wp
-            call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+            call solver%init(crank_problem, 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
             do j = 1, size(crank_times)
                 if (stat /= regdae_success) exit
                 call solver%advance(crank_times(j), th, lam, stat, w)

@@ -9,7 +9,7 @@ module regdae
     use regdae_format, only: format_real, format_int
     use regdae_status
     use regdae_problem, only: dae_problem, constraint_dt_difference
-    use regdae_second_order_problem, only: second_order_problem, velocity_constraint
+    use regdae_second_order_problem, only: second_order_problem, velocity_constraint, curvature_difference
     use regdae_mechanical_problem, only: mechanical_problem
     use regdae_linear_problem, only: linear_dae_problem
     use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
@@ -20,7 +20,8 @@ module regdae
     private
 
     public :: wp, format_real, format_int, dae_problem, constraint_dt_difference, regdae_solver, solver_stats
-    public :: second_order_problem, velocity_constraint, mechanical_problem, higher_order_problem, taylor_weights
+    public :: second_order_problem, velocity_constraint, curvature_difference, mechanical_problem, &
+              higher_order_problem, taylor_weights
     public :: linear_dae_problem
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     ! regdae_status
@@ -33,5 +34,5 @@ module regdae
     public :: solver_options, set_option, validate_options, method_name, formulation_name, lsq_name, &
               exclusion_name, method_baumgarte, method_trust_region, method_direct, formulation_multiplier, &
               formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, exclusion_suppress, exclusion_weights, &
-              exclusion_off, excluded_y, excluded_vy, excluded_name
+              exclusion_off, excluded_y, excluded_vy, excluded_name, integrator_ida, integrator_dopri5, integrator_name
 end module regdae

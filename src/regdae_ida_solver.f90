@@ -36,6 +36,7 @@ module regdae_ida_solver
     use regdae_velocity_index2, only: new_velocity_index2
     use regdae_options
     use regdae_regularization, only: regularized_dae
+    use regdae_explicit_rk, only: rk_integrator
     use regdae_format, only: format_real, format_int
     implicit none
     private
@@ -60,6 +61,8 @@ module regdae_ida_solver
     ! so that its address stays fixed.
     type :: solver_core
         type(regularized_dae) :: model
+        type(rk_integrator) :: rk          ! used with integrator=dopri5 instead of IDA
+        real(wp), allocatable :: z_rk(:)   ! dopri5: the state at the last output time
         type(solver_options) :: opts
         integer :: n = 0, m = 0, neq = 0   ! n: size of the state z; neq: IDA unknowns
         integer :: nx = 0                  ! size of x reported to the user
@@ -325,6 +328,16 @@ contains
             if (core%model%order >= 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:n) = .true.
         end if
         allocate (core%u_pert(core%neq), core%up_pert(core%neq), core%r_pert(core%neq), core%y_work(m))
+        if (opts%integrator == integrator_dopri5) then
+            core%z_rk = z0
+            call core%rk%start(core%model, t0, z0, opts%h_init, stat)
+            if (stat /= regdae_success) then
+                call fail(stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
+                return
+            end if
+            call self%record(regdae_success, '', stat)
+            return
+        end if
         call create_ida(core, t0, [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg)
         if (stat /= regdae_success) then
             call fail(stat, msg)
@@ -496,31 +509,47 @@ contains
         end if
         core%pending_stat = regdae_success
         core%pending_message = ''
-        u => FN_VGetArrayPointer(core%uu)
-        if (tout > core%t) then
-            ! SUNDIALS 6.4.1 keeps a stop time in force after returning at it: set it anew each call.
-            ierr = 0
-            if (core%opts%stop_at_output) ierr = FIDASetStopTime(core%ida_mem, tout)
-            if (ierr == 0) ierr = FIDASolve(core%ida_mem, tout, tret, core%uu, core%up, IDA_NORMAL)
-            if (ierr < 0) then
-                core%t = tret(1)
-                call copy_state()
-                y = ieee_value(1.0_wp, ieee_quiet_nan)
-                if (core%pending_stat /= regdae_success .and. .not. core%pending_recoverable) then
-                    stat = core%pending_stat
-                else
-                    stat = regdae_err_integration
+        if (core%opts%integrator == integrator_dopri5) then
+            u => core%z_rk
+            if (tout > core%t) then
+                call core%rk%advance(core%model, tout, core%opts%rtol, core%opts%atol, core%opts%h_max, &
+                                     core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat)
+                if (stat /= regdae_success) then
+                    core%t = core%rk%t
+                    call copy_state()
+                    y = ieee_value(1.0_wp, ieee_quiet_nan)
+                    call fail(stat, core%rk%message)
+                    return
                 end if
-                call fail(stat, 'IDA failed at t = '//format_real(tret(1))//' (flag '//format_int(int(ierr))//'): '// &
-                          core%ida_message//merge_text(' | last residual failure: ', core%pending_message))
-                return
+                core%t = tout
             end if
-            if (tret(1) /= tout) then
-                call fail(regdae_err_integration, 'IDA returned at t = '//format_real(tret(1))// &
-                          ' instead of the requested '//format_real(tout))
-                return
+        else
+            u => FN_VGetArrayPointer(core%uu)
+            if (tout > core%t) then
+                ! SUNDIALS 6.4.1 keeps a stop time in force after returning at it: set it anew each call.
+                ierr = 0
+                if (core%opts%stop_at_output) ierr = FIDASetStopTime(core%ida_mem, tout)
+                if (ierr == 0) ierr = FIDASolve(core%ida_mem, tout, tret, core%uu, core%up, IDA_NORMAL)
+                if (ierr < 0) then
+                    core%t = tret(1)
+                    call copy_state()
+                    y = ieee_value(1.0_wp, ieee_quiet_nan)
+                    if (core%pending_stat /= regdae_success .and. .not. core%pending_recoverable) then
+                        stat = core%pending_stat
+                    else
+                        stat = regdae_err_integration
+                    end if
+                    call fail(stat, 'IDA failed at t = '//format_real(tret(1))//' (flag '//format_int(int(ierr))// &
+                              '): '//core%ida_message//merge_text(' | last residual failure: ', core%pending_message))
+                    return
+                end if
+                if (tret(1) /= tout) then
+                    call fail(regdae_err_integration, 'IDA returned at t = '//format_real(tret(1))// &
+                              ' instead of the requested '//format_real(tout))
+                    return
+                end if
+                core%t = tout
             end if
-            core%t = tout
         end if
         self%t = core%t
         call copy_state()
@@ -562,6 +591,15 @@ contains
 
         st%t = self%t
         if (.not. associated(self%core)) return
+        if (self%core%opts%integrator == integrator_dopri5) then
+            st%steps = self%core%rk%steps
+            st%res_evals = self%core%rk%evals
+            st%err_test_fails = self%core%rk%rejects
+            st%h_last = self%core%rk%h_last
+            st%singular_passes = self%core%n_singular
+            st%sigma_min = self%core%sigma_min
+            return
+        end if
         associate (mem => self%core%ida_mem)
             ierr = FIDAGetNumSteps(mem, k); st%steps = k(1)
             ierr = FIDAGetNumResEvals(mem, k); st%res_evals = k(1) + self%core%jac_res_evals

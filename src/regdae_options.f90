@@ -21,6 +21,7 @@
 !! | singular_threshold | >= 0 (sigma_min(GB) below: singular) | 0.05        |
 !! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
+!! | integrator     | ida, dopri5 (explicit, eliminated formulation only) | ida |
 module regdae_options
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
@@ -42,6 +43,9 @@ module regdae_options
     integer, parameter, public :: exclusion_suppress = 1  !! FIDASetId + FIDASetSuppressAlg
     integer, parameter, public :: exclusion_weights = 2   !! zero error weights (FIDAWFtolerances)
     integer, parameter, public :: exclusion_off = 3       !! y stays in the error test
+
+    integer, parameter, public :: integrator_ida = 1     !! SUNDIALS IDA (BDF), any stiffness
+    integer, parameter, public :: integrator_dopri5 = 2  !! explicit Dormand-Prince 5(4): non-stiff regularized systems
 
     integer, parameter, public :: excluded_y = 1    !! index 3: only y leaves the error test
     integer, parameter, public :: excluded_vy = 2   !! index 3: v and y leave it (the paper's choice)
@@ -69,9 +73,11 @@ module regdae_options
         real(wp) :: singular_threshold = 0.05_wp       !! sigma_min(GB) below this at an output: singular
         real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
+        integer :: integrator = integrator_ida         !! ida, or dopri5 (explicit; eliminated formulation)
     end type solver_options
 
-    public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name, excluded_name
+    public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name, excluded_name, &
+              integrator_name
 
 contains
 
@@ -142,6 +148,9 @@ contains
             call read_real(value, opts%taylor_h, code)
         case ('mass_damping')
             call read_real(value, opts%mass_damping, code)
+        case ('integrator')
+            call lookup(value, [character(len=12) :: 'ida', 'dopri5'], code)
+            if (code > 0) opts%integrator = code
         case default
             stat = regdae_err_bad_input
             msg = 'unknown option "'//key//'"'
@@ -186,6 +195,10 @@ contains
             msg = 'taylor_h must be finite and > 0'
         else if (.not. (ieee_is_finite(opts%mass_damping) .and. opts%mass_damping >= 0.0_wp)) then
             msg = 'mass_damping must be finite and >= 0'
+        else if (opts%integrator /= integrator_ida .and. opts%integrator /= integrator_dopri5) then
+            msg = 'integrator must be ida or dopri5'
+        else if (opts%integrator == integrator_dopri5 .and. opts%formulation /= formulation_eliminated) then
+            msg = 'integrator=dopri5 needs formulation=eliminated'
         else if (opts%index /= 2 .and. opts%index /= 3) then
             msg = 'index must be 2 or 3'
         else if (opts%excluded /= excluded_y .and. opts%excluded /= excluded_vy) then
@@ -252,6 +265,17 @@ contains
         case default; name = 'unknown'
         end select
     end function exclusion_name
+
+    !> Name of an integrator code.
+    pure function integrator_name(code) result(name)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: name
+        select case (code)
+        case (integrator_ida); name = 'ida'
+        case (integrator_dopri5); name = 'dopri5'
+        case default; name = 'unknown'
+        end select
+    end function integrator_name
 
     !> Name of an error-test set code (index 3).
     pure function excluded_name(code) result(name)

@@ -72,7 +72,7 @@ module regdae_second_order_problem
         end subroutine position_matrix
     end interface
 
-    public :: velocity_constraint
+    public :: velocity_constraint, curvature_difference
 
 contains
 
@@ -110,9 +110,18 @@ contains
         val = val + matmul(gx, v)
     end subroutine velocity_constraint
 
-    !> c = d/ds [G v + g_t](x + s v, t + s) at s = 0 by a central difference,
-    !! step d = u^(1/3) max(1, |x|) / max(1, |v|): error ~ u^(2/3) relative.
     subroutine default_constraint_curvature(self, t, x, v, val, stat)
+        class(second_order_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        call curvature_difference(self, t, x, v, val, stat)
+    end subroutine default_constraint_curvature
+
+    !> c = d/ds [G v + g_t](x + s v, t + s) at s = 0 by a central difference,
+    !! step d = u^(1/3) max(1, |x|) / max(1, |v|): error ~ u^(2/3) relative. The
+    !! default `constraint_curvature`; callable from an override.
+    subroutine curvature_difference(self, t, x, v, val, stat)
         class(second_order_problem), intent(inout) :: self
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: val(:)
@@ -125,6 +134,6 @@ contains
         call velocity_constraint(self, t - d, x - d*v, v, minus, stat)
         if (stat /= 0) return
         val = (val - minus)/(2.0_wp*d)
-    end subroutine default_constraint_curvature
+    end subroutine curvature_difference
 
 end module regdae_second_order_problem

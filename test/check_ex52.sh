@@ -45,7 +45,16 @@ for m in direct baumgarte; do
     done
 done
 
-# 5. Bad arguments.
+# 5. The explicit integrator on the eliminated regularized system (moderate gamma: not stiff).
+run rk method=trust_region index=3 integrator=dopri5 gamma0=200 gamma1=20 eps=1e-12 rtol=1e-8 atol=1e-8
+[ "$(rc rk)" = 0 ] && [ "$(field rk singular_passes)" = 6 ] && le "$(field rk max_err_th)" 1e-6 && \
+    le "$(field rk max_branch_dev)" 1e-3
+check "integrator=dopri5 gamma1=20: max_err_th=$(field rk max_err_th) <= 1e-6, 6 passes" $?
+run rkbad integrator=dopri5 formulation=multiplier
+[ "$(rc rkbad)" = 2 ] && grep -q 'dopri5 needs formulation=eliminated' "$tmp/rkbad.err"
+check "integrator=dopri5 with the multiplier formulation: refused" $?
+
+# 6. Bad arguments.
 run badindex index=4
 [ "$(rc badindex)" = 2 ] && grep -q index "$tmp/badindex.err"
 check "index=4: exit 2, message names index" $?

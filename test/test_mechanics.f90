@@ -116,9 +116,14 @@ contains
             q = [0.3_wp*i - 0.8_wp, 2.0_wp - 0.4_wp*i]
             w = [1.5_wp - 0.7_wp*i, 0.9_wp*i - 2.0_wp]
             stat = 0
-            call crank%constraint_curvature(0.0_wp, q, w, c, stat)
+            call curvature_difference(crank, 0.0_wp, q, w, c, stat)
             call chk%close(c(1), cos(q(1))*w(1)**2 + cos(q(2))*w(2)**2, 1.0e-9_wp*max(1.0_wp, sum(w**2)), &
-                           'slider crank g_xx(v, v)')
+                           'slider crank g_xx(v, v) by difference quotient')
+            crank%analytic_curvature = .true.
+            call crank%constraint_curvature(0.0_wp, q, w, c, stat)
+            crank%analytic_curvature = .false.
+            call chk%close(c(1), cos(q(1))*w(1)**2 + cos(q(2))*w(2)**2, 1.0e-14_wp*max(1.0_wp, sum(w**2)), &
+                           'slider crank analytic override')
             call pend%constraint_curvature(0.0_wp, [sin(q(1)), -cos(q(1))], w, c, stat)
             call chk%close(c(1), 2.0_wp*sum(w**2), 1.0e-9_wp*max(1.0_wp, sum(w**2)), 'pendulum 2 |v|^2')
         end do

@@ -14,7 +14,7 @@
 !! $$ \theta_1'' = \sin\theta_1 \,(4 \cos\theta_1\, \theta_1'^2 - g) / (1 + 4\cos^2\theta_1), $$
 !! the reduced ODE `slider_crank_reduced` integrates for the reference.
 module slider_crank_problem
-    use regdae, only: wp, mechanical_problem
+    use regdae, only: wp, mechanical_problem, curvature_difference
     use reference_ode, only: ode_system
     implicit none
     private
@@ -22,12 +22,16 @@ module slider_crank_problem
     !> The slider crank (n = 2 angles, m = 1 constraint).
     type, extends(mechanical_problem), public :: slider_crank
         real(wp) :: gravity = 9.8_wp   !! gravitational acceleration
+        logical :: analytic_curvature = .false.   !! c = g_xx(v, v) analytic instead of regdae's difference quotient
     contains
         procedure :: mass_matrix => crank_mass
         procedure :: forces => crank_forces
         procedure :: constraint => crank_g
         procedure :: constraint_jacobian => crank_gx
         procedure :: constraint_dt => crank_gt
+        !> c = g_xx(v, v) = cos th1 th1'^2 + cos th2 th2'^2: analytic if `analytic_curvature`
+        !! (the benchmark), else the library's default difference quotient (the drivers).
+        procedure :: constraint_curvature => crank_curvature
         !> Total energy T + V of a state (th, w).
         procedure :: energy => crank_energy
     end type slider_crank
@@ -137,6 +141,18 @@ contains
         integer, intent(inout) :: stat
         val = 0.0_wp
     end subroutine crank_gt
+
+    subroutine crank_curvature(self, t, x, v, val, stat)
+        class(slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        if (self%analytic_curvature) then
+            val = cos(x(1))*v(1)**2 + cos(x(2))*v(2)**2
+        else
+            call curvature_difference(self, t, x, v, val, stat)
+        end if
+    end subroutine crank_curvature
 
     pure real(wp) function crank_energy(self, th, w) result(e)
         class(slider_crank), intent(in) :: self

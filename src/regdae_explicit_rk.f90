@@ -1,0 +1,179 @@
+!> An explicit Dormand-Prince 5(4) integrator for the eliminated regularized
+!! system z' = F(z, t) (option `integrator=dopri5`), an alternative to IDA when the
+!! regularized system is not stiff: moderate Baumgarte weights (e.g. gamma1 = 20,
+!! gamma0 = gamma1^2/2 for index 3) and no stiff forces. Step-size control on the
+!! embedded 4th-order solution, first-same-as-last stages, cubic Hermite output.
+!! F comes from the same regularized residual IDA uses (`residual_eliminated` with
+!! z' = 0 gives -F), so every method, order and problem type works unchanged.
+module regdae_explicit_rk
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use regdae_kinds, only: wp
+    use regdae_status, only: regdae_success, regdae_err_integration
+    use regdae_format, only: format_real
+    use regdae_regularization, only: regularized_dae
+    implicit none
+    private
+
+    real(wp), parameter :: c2 = 1.0_wp/5, c3 = 3.0_wp/10, c4 = 4.0_wp/5, c5 = 8.0_wp/9
+    real(wp), parameter :: a21 = 1.0_wp/5
+    real(wp), parameter :: a31 = 3.0_wp/40, a32 = 9.0_wp/40
+    real(wp), parameter :: a41 = 44.0_wp/45, a42 = -56.0_wp/15, a43 = 32.0_wp/9
+    real(wp), parameter :: a51 = 19372.0_wp/6561, a52 = -25360.0_wp/2187, a53 = 64448.0_wp/6561, &
+                           a54 = -212.0_wp/729
+    real(wp), parameter :: a61 = 9017.0_wp/3168, a62 = -355.0_wp/33, a63 = 46732.0_wp/5247, a64 = 49.0_wp/176, &
+                           a65 = -5103.0_wp/18656
+    real(wp), parameter :: b1 = 35.0_wp/384, b3 = 500.0_wp/1113, b4 = 125.0_wp/192, b5 = -2187.0_wp/6784, &
+                           b6 = 11.0_wp/84
+    real(wp), parameter :: e1 = 71.0_wp/57600, e3 = -71.0_wp/16695, e4 = 71.0_wp/1920, e5 = -17253.0_wp/339200, &
+                           e6 = 22.0_wp/525, e7 = -1.0_wp/40
+
+    !> The integrator's state: the last accepted step [t_old, t] and its end values.
+    type, public :: rk_integrator
+        real(wp) :: t = 0.0_wp, t_old = 0.0_wp, h = 0.0_wp, h_last = 0.0_wp
+        real(wp), allocatable :: z(:), k1(:), z_old(:), k_old(:)
+        real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:), z_new(:), work(:), y_work(:)
+        integer :: steps = 0, evals = 0, rejects = 0
+        character(len=:), allocatable :: message
+    contains
+        !> Start at (t0, z0) with the slope at z0.
+        procedure :: start => rk_start
+        !> Step until the solution is known at tout; return z(tout).
+        procedure :: advance => rk_advance
+    end type rk_integrator
+
+contains
+
+    ! F(t, z) from the regularized residual; stat /= 0 on failure (message in model).
+    subroutine slope(self, model, t, z, f, stat)
+        class(rk_integrator), intent(inout) :: self
+        type(regularized_dae), intent(inout) :: model
+        real(wp), intent(in) :: t, z(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(out) :: stat
+        logical :: recoverable
+        self%work = 0.0_wp
+        call model%residual_eliminated(t, z, self%work, f, self%y_work, stat, recoverable)
+        f = -f
+        self%evals = self%evals + 1
+        if (stat == regdae_success .and. .not. all(ieee_is_finite(f))) stat = regdae_err_integration
+    end subroutine slope
+
+    subroutine rk_start(self, model, t0, z0, h0, stat)
+        class(rk_integrator), intent(inout) :: self
+        type(regularized_dae), intent(inout) :: model
+        real(wp), intent(in) :: t0, z0(:)
+        real(wp), intent(in) :: h0        !! first step (0: chosen here)
+        integer, intent(out) :: stat
+        integer :: n
+        n = size(z0)
+        allocate (self%z(n), self%k1(n), self%z_old(n), self%k_old(n), self%k2(n), self%k3(n), self%k4(n), &
+                  self%k5(n), self%k6(n), self%k7(n), self%z_new(n), self%work(n), self%y_work(model%m))
+        self%t = t0
+        self%t_old = t0
+        self%z = z0
+        self%z_old = z0
+        self%h = h0
+        if (.not. (h0 > 0.0_wp)) self%h = 1.0e-3_wp*max(1.0_wp, abs(t0))
+        self%message = ''
+        call slope(self, model, t0, z0, self%k1, stat)
+        self%k_old = self%k1
+    end subroutine rk_start
+
+    !> Advance to tout (> the current output time): steps until t >= tout (or, with
+    !! `land_on_tout`, exactly to tout) and interpolates. stat: regdae_success or
+    !! regdae_err_integration with `message`.
+    subroutine rk_advance(self, model, tout, rtol, atol, h_max, max_steps, land_on_tout, zout, stat)
+        class(rk_integrator), intent(inout) :: self
+        type(regularized_dae), intent(inout) :: model
+        real(wp), intent(in) :: tout, rtol, atol, h_max
+        integer, intent(in) :: max_steps
+        logical, intent(in) :: land_on_tout
+        real(wp), intent(out) :: zout(:)
+        integer, intent(out) :: stat
+        real(wp) :: h, e, theta, fac
+        integer :: taken, n
+
+        n = size(self%z)
+        stat = regdae_success
+        taken = 0
+        do while (self%t < tout)
+            if (taken >= max_steps) then
+                call fail('max_steps steps taken before reaching tout')
+                return
+            end if
+            h = self%h
+            if (h_max > 0.0_wp) h = min(h, h_max)
+            if (land_on_tout .and. self%t + h > tout) h = tout - self%t
+            if (h <= 16*epsilon(1.0_wp)*max(1.0_wp, abs(self%t))) then
+                call fail('step size too small (h = '//format_real(h)//')')
+                return
+            end if
+            call self_step(h, e, stat)
+            if (stat /= regdae_success .or. .not. (e <= 1.0_wp)) then
+                ! A rejected step, or a failed evaluation: retry smaller.
+                self%rejects = self%rejects + 1
+                fac = 0.2_wp
+                if (stat == regdae_success .and. e == e) fac = max(0.2_wp, 0.9_wp*e**(-0.25_wp))
+                self%h = h*fac
+                stat = regdae_success
+                cycle
+            end if
+            self%t_old = self%t
+            self%z_old = self%z
+            self%k_old = self%k1
+            self%t = self%t + h
+            if (land_on_tout .and. abs(self%t - tout) <= 4*epsilon(1.0_wp)*max(1.0_wp, abs(tout))) self%t = tout
+            self%z = self%z_new
+            self%k1 = self%k7
+            self%h_last = h
+            self%steps = self%steps + 1
+            taken = taken + 1
+            fac = 0.9_wp*max(e, 1.0e-10_wp)**(-0.2_wp)
+            self%h = h*min(5.0_wp, max(0.2_wp, fac))
+        end do
+        ! Cubic Hermite interpolation on [t_old, t] (exact at the ends).
+        if (tout >= self%t) then
+            zout = self%z
+        else
+            h = self%t - self%t_old
+            theta = (tout - self%t_old)/h
+            zout = (1 - theta)*self%z_old + theta*self%z + theta*(theta - 1)* &
+                   ((1 - 2*theta)*(self%z - self%z_old) + (theta - 1)*h*self%k_old + theta*h*self%k1)
+        end if
+    contains
+        subroutine self_step(h, err_norm, stat)
+            real(wp), intent(in) :: h
+            real(wp), intent(out) :: err_norm
+            integer, intent(out) :: stat
+            real(wp) :: t
+            t = self%t
+            err_norm = huge(1.0_wp)
+            call slope(self, model, t + c2*h, self%z + h*a21*self%k1, self%k2, stat)
+            if (stat /= 0) return
+            call slope(self, model, t + c3*h, self%z + h*(a31*self%k1 + a32*self%k2), self%k3, stat)
+            if (stat /= 0) return
+            call slope(self, model, t + c4*h, self%z + h*(a41*self%k1 + a42*self%k2 + a43*self%k3), self%k4, stat)
+            if (stat /= 0) return
+            call slope(self, model, t + c5*h, self%z + h*(a51*self%k1 + a52*self%k2 + a53*self%k3 + a54*self%k4), &
+                       self%k5, stat)
+            if (stat /= 0) return
+            call slope(self, model, t + h, self%z + h*(a61*self%k1 + a62*self%k2 + a63*self%k3 + a64*self%k4 + &
+                                                         a65*self%k5), self%k6, stat)
+            if (stat /= 0) return
+            self%z_new = self%z + h*(b1*self%k1 + b3*self%k3 + b4*self%k4 + b5*self%k5 + b6*self%k6)
+            call slope(self, model, t + h, self%z_new, self%k7, stat)
+            if (stat /= 0) return
+            self%work = h*(e1*self%k1 + e3*self%k3 + e4*self%k4 + e5*self%k5 + e6*self%k6 + e7*self%k7)
+            err_norm = sqrt(sum((self%work/(atol + rtol*max(abs(self%z), abs(self%z_new))))**2)/n)
+        end subroutine self_step
+
+        subroutine fail(text)
+            character(len=*), intent(in) :: text
+            stat = regdae_err_integration
+            self%message = 'dopri5 at t = '//format_real(self%t)//': '//text
+            if (len(model%message) > 0) self%message = self%message//' | last evaluation failure: '//model%message
+            zout = self%z
+        end subroutine fail
+    end subroutine rk_advance
+
+end module regdae_explicit_rk
