@@ -157,7 +157,7 @@ echo "## The fits (gamma = 1e2, 1e3, 1e4), as printed by the rates driver"
 echo
 echo '```'
 grep '^fit' "$tmp/rates.out"
-tail -n 1 "$tmp/rates.out"
+tail -n 1 "$tmp/rates.out" | sed "s/ seconds=.*//"
 echo '```'
 } >"$tmp/theory.md"
 mkdir -p "$src/doc/figures"
