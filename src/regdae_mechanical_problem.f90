@@ -31,6 +31,7 @@ module regdae_mechanical_problem
         private
         real(wp), public :: mass_damping = 0.0_wp   !! mu of (4.11); 0: M must be SPD (set by the solver)
         real(wp), allocatable :: mass(:, :)     ! M at (factor_t, factor_q), kept when mu > 0
+        real(wp), allocatable :: gx_work(:, :), bt_work(:, :)   ! scratch of matrix_b: G, B
         real(wp), allocatable :: factor(:, :)   ! Cholesky factor of M (mu = 0) or M^T M + mu I
         real(wp), allocatable :: factor_q(:)
         real(wp) :: factor_t = 0.0_wp
@@ -80,7 +81,8 @@ contains
         if (self%have_factor) then
             if (self%factor_t == t .and. all(self%factor_q == q)) return
         end if
-        if (.not. allocated(self%factor)) allocate (self%factor(n, n), self%factor_q(n), self%mass(n, n))
+        if (.not. allocated(self%factor)) allocate (self%factor(n, n), self%factor_q(n), self%mass(n, n), &
+                                                    self%gx_work(self%m, n), self%bt_work(n, self%m))
         self%have_factor = .false.
         call self%mass_matrix(t, q, self%mass, stat)
         if (stat /= 0) return
@@ -90,7 +92,7 @@ contains
                 self%factor(i, i) = self%factor(i, i) + self%mass_damping
             end do
         else
-            if (maxval(abs(self%mass - transpose(self%mass))) > symmetry_tol*maxval(abs(self%mass))) then
+            if (.not. symmetric(self%mass, symmetry_tol)) then
                 stat = regdae_err_mass_matrix
                 return
             end if
@@ -133,23 +135,38 @@ contains
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: a(:, :)
         integer, intent(inout) :: stat
-        real(wp) :: gx(self%m, self%n), bt(self%n, self%m)
         integer :: info, j
         call factor_mass(self, t, x, stat)
         if (stat /= 0) return
-        call self%constraint_jacobian(t, x, gx, stat)
-        if (stat /= 0) return
-        bt = transpose(gx)
-        if (self%mass_damping > 0.0_wp) bt = matmul(transpose(self%mass), bt)   ! M^T G^T
-        if (self%n <= small_n) then
-            do j = 1, self%m
-                call small_cholesky_solve(self%factor, bt(:, j))
-            end do
-        else
-            call dpotrs('L', self%n, self%m, self%factor, self%n, bt, self%n, info)
-        end if
-        a = bt
+        associate (gx => self%gx_work, bt => self%bt_work)
+            call self%constraint_jacobian(t, x, gx, stat)
+            if (stat /= 0) return
+            bt = transpose(gx)
+            if (self%mass_damping > 0.0_wp) bt = matmul(transpose(self%mass), bt)   ! M^T G^T
+            if (self%n <= small_n) then
+                do j = 1, self%m
+                    call small_cholesky_solve(self%factor, bt(:, j))
+                end do
+            else
+                call dpotrs('L', self%n, self%m, self%factor, self%n, bt, self%n, info)
+            end if
+            a = bt
+        end associate
     end subroutine mechanical_b
+
+    ! max |A - A^T| <= tol max |A|, without a temporary.
+    pure logical function symmetric(a, tol)
+        real(wp), intent(in) :: a(:, :), tol
+        integer :: i, j
+        real(wp) :: bound
+        bound = tol*maxval(abs(a))
+        symmetric = .true.
+        do j = 1, size(a, 2)
+            do i = j + 1, size(a, 1)
+                if (abs(a(i, j) - a(j, i)) > bound) symmetric = .false.
+            end do
+        end do
+    end function symmetric
 
     ! In-place Cholesky factor L (lower triangle) of a small SPD matrix; info > 0
     ! if it is not positive definite.

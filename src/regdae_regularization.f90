@@ -55,6 +55,7 @@ module regdae_regularization
         real(wp), allocatable :: curv(:)     !! c (order 2 with curvature), m
         real(wp), allocatable :: gb(:, :)    !! G B, m x m
         real(wp), allocatable :: r(:)        !! right-hand side of the multiplier equation, m
+        real(wp), allocatable :: q(:)        !! scratch: r - G f, m
         type(damped_lsq_workspace) :: lsq_ws
         character(len=:), allocatable :: message  !! details of the last failure
     contains
@@ -134,9 +135,9 @@ contains
         self%method = opts%method
         self%lsq = lsq
         self%eps = opts%eps
-        if (allocated(self%f)) deallocate (self%f, self%b, self%g, self%gx, self%gt, self%curv, self%gb, self%r)
+        if (allocated(self%f)) deallocate (self%f, self%b, self%g, self%gx, self%gt, self%curv, self%gb, self%r, self%q)
         allocate (self%f(n), self%b(n, m), self%g(m), self%gx(m, n), self%gt(m), self%curv(m), self%gb(m, m), &
-                  self%r(m), source=0.0_wp)
+                  self%r(m), self%q(m), source=0.0_wp)
         call self%lsq_ws%init(m, m)
         self%message = ''
     end subroutine allocate_pieces
@@ -202,7 +203,8 @@ contains
             return
         end if
         self%gb = matmul(self%gx, self%b)
-        self%r = matmul(self%gx, self%f) + self%constraint_terms(z)
+        call self%constraint_terms(z, self%q)
+        self%r = matmul(self%gx, self%f) + self%q
     contains
         logical function failed(name)
             character(len=*), intent(in) :: name
@@ -220,11 +222,11 @@ contains
         end function failed
     end subroutine evaluate
 
-    ! r - G f = w0 g + w1 g_t + sum_{k=1}^{m-1} w_k G x^(k) [+ c] (order 1: g_t with weight 1).
-    function constraint_terms(self, z) result(q)
+    ! q = r - G f = w0 g + w1 g_t + sum_{k=1}^{m-1} w_k G x^(k) [+ c] (order 1: g_t with weight 1).
+    subroutine constraint_terms(self, z, q)
         class(regularized_dae), intent(in) :: self
         real(wp), intent(in) :: z(:)
-        real(wp) :: q(self%m)
+        real(wp), intent(out) :: q(:)
         integer :: k, n
         n = self%n
         if (self%order == 1) then
@@ -236,7 +238,7 @@ contains
             end do
             if (self%curvature) q = q + self%curv
         end if
-    end function constraint_terms
+    end subroutine constraint_terms
 
     !> The multiplier of the chosen regularization from the last `evaluate`.
     !! Failures: `regdae_err_not_psd` (direct, GB not symmetric PSD),
@@ -350,7 +352,8 @@ contains
             end if
             res_y = matmul(self%gb, y) + self%eps*y - self%r
         case default
-            res_y = self%constraint_terms(z) + matmul(self%gx, zp((self%order - 1)*n + 1:self%order*n))
+            call self%constraint_terms(z, self%q)
+            res_y = self%q + matmul(self%gx, zp((self%order - 1)*n + 1:self%order*n))
         end select
     end subroutine residual_multiplier
 

@@ -104,7 +104,10 @@ contains
         integer, intent(inout) :: stat
         real(wp) :: c
         c = cos(q(2) - q(1))
-        mass = reshape([2.0_wp, c, c, 1.0_wp], [2, 2])
+        mass(1, 1) = 2.0_wp
+        mass(2, 1) = c
+        mass(1, 2) = c
+        mass(2, 2) = 1.0_wp
     end subroutine crank_mass
 
     subroutine crank_forces(self, t, q, qd, f, stat)
