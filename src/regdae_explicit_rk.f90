@@ -11,21 +11,9 @@ module regdae_explicit_rk
     use regdae_status, only: regdae_success, regdae_err_integration
     use regdae_format, only: format_real
     use regdae_regularization, only: regularized_dae
+    use regdae_dopri_tableau
     implicit none
     private
-
-    real(wp), parameter :: c2 = 1.0_wp/5, c3 = 3.0_wp/10, c4 = 4.0_wp/5, c5 = 8.0_wp/9
-    real(wp), parameter :: a21 = 1.0_wp/5
-    real(wp), parameter :: a31 = 3.0_wp/40, a32 = 9.0_wp/40
-    real(wp), parameter :: a41 = 44.0_wp/45, a42 = -56.0_wp/15, a43 = 32.0_wp/9
-    real(wp), parameter :: a51 = 19372.0_wp/6561, a52 = -25360.0_wp/2187, a53 = 64448.0_wp/6561, &
-                           a54 = -212.0_wp/729
-    real(wp), parameter :: a61 = 9017.0_wp/3168, a62 = -355.0_wp/33, a63 = 46732.0_wp/5247, a64 = 49.0_wp/176, &
-                           a65 = -5103.0_wp/18656
-    real(wp), parameter :: b1 = 35.0_wp/384, b3 = 500.0_wp/1113, b4 = 125.0_wp/192, b5 = -2187.0_wp/6784, &
-                           b6 = 11.0_wp/84
-    real(wp), parameter :: e1 = 71.0_wp/57600, e3 = -71.0_wp/16695, e4 = 71.0_wp/1920, e5 = -17253.0_wp/339200, &
-                           e6 = 22.0_wp/525, e7 = -1.0_wp/40
 
     !> The integrator's state: the last accepted step [t_old, t] and its end values.
     type, public :: rk_integrator

@@ -1,27 +1,14 @@
 !> A small explicit Dormand-Prince 5(4) integrator with step-size control and
 !! cubic Hermite output: the benchmark's oracle for the slider crank's reduced
-!! ODE (the speed any DAE method here is measured against). Written for the
-!! project from the published method coefficients (Dormand & Prince 1980).
+!! ODE (the speed any DAE method here is measured against), with the tableau
+!! of `regdae_dopri_tableau`.
 module dopri5
     use regdae, only: wp
     use reference_ode, only: ode_system
+    use regdae_dopri_tableau
     implicit none
     private
     public :: dopri5_integrate
-
-    real(wp), parameter :: c2 = 1.0_wp/5, c3 = 3.0_wp/10, c4 = 4.0_wp/5, c5 = 8.0_wp/9
-    real(wp), parameter :: a21 = 1.0_wp/5
-    real(wp), parameter :: a31 = 3.0_wp/40, a32 = 9.0_wp/40
-    real(wp), parameter :: a41 = 44.0_wp/45, a42 = -56.0_wp/15, a43 = 32.0_wp/9
-    real(wp), parameter :: a51 = 19372.0_wp/6561, a52 = -25360.0_wp/2187, a53 = 64448.0_wp/6561, &
-                           a54 = -212.0_wp/729
-    real(wp), parameter :: a61 = 9017.0_wp/3168, a62 = -355.0_wp/33, a63 = 46732.0_wp/5247, a64 = 49.0_wp/176, &
-                           a65 = -5103.0_wp/18656
-    real(wp), parameter :: b1 = 35.0_wp/384, b3 = 500.0_wp/1113, b4 = 125.0_wp/192, b5 = -2187.0_wp/6784, &
-                           b6 = 11.0_wp/84
-    ! b - b_hat (5th minus 4th order weights): the local error estimate.
-    real(wp), parameter :: e1 = 71.0_wp/57600, e3 = -71.0_wp/16695, e4 = 71.0_wp/1920, e5 = -17253.0_wp/339200, &
-                           e6 = 22.0_wp/525, e7 = -1.0_wp/40
 
 contains
 
