@@ -4,11 +4,12 @@
 !! Problems: the slider crank (index 3 and 2, 1001 outputs on [0, 10], error in theta
 !! against the reduced ODE by CVODE at 1e-13) and Example 5.1 (201 outputs on [-1, 1],
 !! error in x against t + 1). Oracles on the slider crank's reduced ODE (they know the
-!! branch): the project's Dormand-Prince 5(4) and CVODE Adams. Time: median of `reps`
-!! repetitions inside this process, setup included; outputs are interpolated (no
+!! branch): the project's Dormand-Prince 5(4) and CVODE Adams. Time: median of at least
+!! `reps` repetitions inside this process, repeated until they take `min_time` seconds
+!! in all (at most 201; the machine's timing noise shrinks with the count), setup included; outputs are interpolated (no
 !! stop at output times) and nothing is printed while timing.
 !!
-!! Usage: bench [reps=5] [tol_from=3] [tol_to=10] [problem=all|crank|ex51]
+!! Usage: bench [reps=5] [min_time=0.05] [tol_from=3] [tol_to=10] [problem=all|crank|ex51]
 !! Output: '#' lines and rows 'problem config rtol max_err seconds steps res_evals jac_evals status',
 !! status ok, failed, or off_branch (a slider-crank run with max |th1 + th2 - pi| > 0.1).
 program bench_driver
@@ -24,13 +25,15 @@ program bench_driver
     character(len=*), parameter :: prog = 'bench'
     real(wp), parameter :: pi = acos(-1.0_wp)
     integer, parameter :: branch_left = 1000   ! status of a run off the physical branch
-    real(wp) :: crank_times(1001), ex51_times(201), ref(2, 1001), reps_r, from_r, to_r, tol
+    integer, parameter :: max_reps = 201
+    real(wp) :: crank_times(1001), ex51_times(201), ref(2, 1001), reps_r, from_r, to_r, tol, min_time
     integer :: i, k, reps, stat
     character(len=:), allocatable :: key, value, which
     logical :: ok
     type(slider_crank_reduced) :: reduced
 
     reps_r = 5
+    min_time = 0.05_wp
     from_r = 3
     to_r = 10
     which = 'all'
@@ -39,6 +42,7 @@ program bench_driver
         if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
         select case (key)
         case ('reps'); call read_number(prog, key, value, reps_r)
+        case ('min_time'); call read_number(prog, key, value, min_time)
         case ('tol_from'); call read_number(prog, key, value, from_r)
         case ('tol_to'); call read_number(prog, key, value, to_r)
         case ('problem'); which = value
@@ -46,11 +50,12 @@ program bench_driver
         case default; call die_usage(prog, 'unknown option "'//key//'"')
         end select
     end do
-    reps = max(1, nint(reps_r))
+    reps = max(1, min(max_reps, nint(reps_r)))
     crank_times = [(0.01_wp*k, k=0, 1000)]
     ex51_times = [(-1.0_wp + 0.01_wp*k, k=0, 200)]
     call integrate_reference(reduced, 0.0_wp, [pi/2, 0.0_wp], crank_times, ref, 1.0e-13_wp, 1.0e-13_wp, stat)
-    write (*, '(a)') '# regdae bench: median of '//format_int(reps)//' runs in one process, setup included'
+    write (*, '(a)') '# regdae bench: median of at least '//format_int(reps)//' runs (and '//num(min_time)// &
+        ' s) in one process, setup included'
     write (*, '(a)') '# problem config rtol max_err seconds steps res_evals jac_evals status'
     do k = nint(from_r), nint(to_r)
         tol = 10.0_wp**(-k)
@@ -86,7 +91,7 @@ contains
         type(solver_stats) :: st
         character(len=:), allocatable :: msg
         type(slider_crank) :: crank_problem
-        real(wp) :: th(2), w(2), lam(1), err, dev, seconds(reps)
+        real(wp) :: th(2), w(2), err, dev, seconds(max_reps)
         integer(int64) :: c0, c1, rate
         integer :: r, j, stat
         dev = 0.0_wp
@@ -106,13 +111,13 @@ contains
         end if
         crank_problem = new_slider_crank(9.8_wp)
         crank_problem%analytic_curvature = .true.   ! the user-supplied g_xx(v, v) (doc/performance.md)
-        do r = 1, reps
+        do r = 1, max_reps
             call system_clock(c0, rate)
             err = 0.0_wp
             call solver%init(crank_problem, 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
             do j = 1, size(crank_times)
                 if (stat /= regdae_success) exit
-                call solver%advance(crank_times(j), th, lam, stat, w)
+                call solver%advance(crank_times(j), th, stat=stat, v=w)   ! x only: no multiplier at the outputs
                 if (stat > 0) stat = regdae_success
                 err = max(err, abs(th(1) - ref(1, j)), abs(th(2) - (pi - ref(1, j))))
                 dev = max(dev, abs(modulo(th(1) + th(2), 2*pi) - pi))
@@ -121,10 +126,11 @@ contains
             seconds(r) = real(c1 - c0, wp)/real(rate, wp)
             st = solver%statistics()
             call solver%destroy()
+            if (enough(r, seconds)) exit
         end do
         ! A run that left the physical branch (|th1 + th2 - pi| > 0.1) is not a good run.
         if (stat == regdae_success .and. dev > 0.1_wp) stat = branch_left
-        call row(name, config, tol, err, median(seconds), st, stat)
+        call row(name, config, tol, err, median(seconds(1:r)), st, stat)
     end subroutine crank
 
     subroutine ex51_run(config, method, eps, tol)
@@ -134,7 +140,7 @@ contains
         type(regdae_solver) :: solver
         type(solver_stats) :: st
         character(len=:), allocatable :: msg
-        real(wp) :: x(1), y(1), err, seconds(reps)
+        real(wp) :: x(1), y(1), err, seconds(max_reps)
         integer(int64) :: c0, c1, rate
         integer :: r, j, stat
         opts%rtol = tol
@@ -142,7 +148,7 @@ contains
         opts%eps = eps
         opts%stop_at_output = .true.   ! otherwise IDA steps over the singular layer (doc/ex51.md)
         call set_option(opts, 'method', method, stat, msg)
-        do r = 1, reps
+        do r = 1, max_reps
             call system_clock(c0, rate)
             err = 0.0_wp
             call solver%init(new_ex51(orientation_psd), -1.0_wp, [0.0_wp], opts, stat)
@@ -156,26 +162,28 @@ contains
             seconds(r) = real(c1 - c0, wp)/real(rate, wp)
             st = solver%statistics()
             call solver%destroy()
+            if (enough(r, seconds)) exit
         end do
-        call row('ex51', config, tol, err, median(seconds), st, stat)
+        call row('ex51', config, tol, err, median(seconds(1:r)), st, stat)
     end subroutine ex51_run
 
     subroutine oracle_dopri(tol)
         real(wp), intent(in) :: tol
         type(slider_crank_reduced) :: sys
         type(solver_stats) :: st
-        real(wp) :: states(2, 1001), seconds(reps)
+        real(wp) :: states(2, 1001), seconds(max_reps)
         integer(int64) :: c0, c1, rate
         integer :: r, steps, evals
-        do r = 1, reps
+        do r = 1, max_reps
             call system_clock(c0, rate)
             call dopri5_integrate(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, steps, evals)
             call system_clock(c1)
             seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+            if (enough(r, seconds)) exit
         end do
         st%steps = steps
         st%res_evals = evals
-        call row('crank_oracle', 'dopri5 reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), median(seconds), &
+        call row('crank_oracle', 'dopri5 reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), median(seconds(1:r)), &
                  st, regdae_success)
     end subroutine oracle_dopri
 
@@ -183,17 +191,18 @@ contains
         real(wp), intent(in) :: tol
         type(slider_crank_reduced) :: sys
         type(solver_stats) :: st
-        real(wp) :: states(2, 1001), seconds(reps)
+        real(wp) :: states(2, 1001), seconds(max_reps)
         integer(int64) :: c0, c1, rate
         integer :: r, stat
-        do r = 1, reps
+        do r = 1, max_reps
             call system_clock(c0, rate)
             call integrate_reference(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, stat)
             call system_clock(c1)
             seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+            if (enough(r, seconds)) exit
         end do
         call row('crank_oracle', 'cvode_adams reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), &
-                 median(seconds), st, merge(regdae_success, regdae_err_integration, stat == 0))
+                 median(seconds(1:r)), st, merge(regdae_success, regdae_err_integration, stat == 0))
     end subroutine oracle_cvode
 
     ! IDA on the unregularized formulations (drivers/common/ida_peers.f90).
@@ -202,14 +211,15 @@ contains
         character(len=*), intent(in) :: config
         real(wp), intent(in) :: tol
         type(solver_stats) :: st
-        real(wp) :: theta(2, 1001), seconds(reps), err, dev
+        real(wp) :: theta(2, 1001), seconds(max_reps), err, dev
         integer(int64) :: c0, c1, rate
         integer :: r, steps, evals, stat, j
-        do r = 1, reps
+        do r = 1, max_reps
             call system_clock(c0, rate)
             call run_peer(kind, tol, crank_times, theta, steps, evals, stat)
             call system_clock(c1)
             seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+            if (enough(r, seconds)) exit
         end do
         err = 0.0_wp
         dev = 0.0_wp
@@ -225,7 +235,7 @@ contains
         else if (dev > 0.1_wp) then
             stat = branch_left
         end if
-        call row('crank_peer', config, tol, err, median(seconds), st, stat)
+        call row('crank_peer', config, tol, err, median(seconds(1:r)), st, stat)
     end subroutine peer
 
     subroutine row(name, config, tol, err, seconds, st, stat)
@@ -249,6 +259,13 @@ contains
             w = 'failed'
         end if
     end function status_word
+
+    ! Enough repetitions: at least `reps` and `min_time` seconds in all, or max_reps.
+    logical function enough(r, seconds)
+        integer, intent(in) :: r
+        real(wp), intent(in) :: seconds(:)
+        enough = (r >= reps .and. sum(seconds(1:r)) >= min_time) .or. r >= max_reps
+    end function enough
 
     pure real(wp) function median(v)
         real(wp), intent(in) :: v(:)

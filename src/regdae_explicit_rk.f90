@@ -3,14 +3,14 @@
 !! regularized system is not stiff: moderate Baumgarte weights (e.g. gamma1 = 20,
 !! gamma0 = gamma1^2/2 for index 3) and no stiff forces. Step-size control on the
 !! embedded 4th-order solution, first-same-as-last stages, cubic Hermite output.
-!! F comes from the same regularized residual IDA uses (`residual_eliminated` with
-!! z' = 0 gives -F), so every method, order and problem type works unchanged.
+!! F comes from the same regularized model IDA uses (`slope_eliminated`; IDA's
+!! residual is z' - F), so every method, order and problem type works unchanged.
 module regdae_explicit_rk
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_integration
     use regdae_format, only: format_real
     use regdae_regularization, only: regularized_dae
+    use regdae_monitor, only: solution_monitor
     use regdae_dopri_tableau
     implicit none
     private
@@ -19,7 +19,7 @@ module regdae_explicit_rk
     type, public :: rk_integrator
         real(wp) :: t = 0.0_wp, t_old = 0.0_wp, h = 0.0_wp, h_last = 0.0_wp
         real(wp), allocatable :: z(:), k1(:), z_old(:), k_old(:)
-        real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:), z_new(:), work(:), y_work(:)
+        real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:), z_new(:), z_stage(:), work(:), y_work(:)
         integer :: steps = 0, evals = 0, rejects = 0
         character(len=:), allocatable :: message
     contains
@@ -39,11 +39,17 @@ contains
         real(wp), intent(out) :: f(:)
         integer, intent(out) :: stat
         logical :: recoverable
-        self%work = 0.0_wp
-        call model%residual_eliminated(t, z, self%work, f, self%y_work, stat, recoverable)
-        f = -f
+        real(wp) :: probe
+        integer :: i
+        call model%slope_eliminated(t, z, f, self%y_work, stat, recoverable)
         self%evals = self%evals + 1
-        if (stat == regdae_success .and. .not. all(ieee_is_finite(f))) stat = regdae_err_integration
+        if (stat == regdae_success) then
+            probe = 0.0_wp
+            do i = 1, size(f)
+                probe = probe + 0.0_wp*f(i)   ! NaN if some f(i) is NaN or Inf
+            end do
+            if (probe /= 0.0_wp) stat = regdae_err_integration
+        end if
     end subroutine slope
 
     subroutine rk_start(self, model, t0, z0, h0, stat)
@@ -55,7 +61,8 @@ contains
         integer :: n
         n = size(z0)
         allocate (self%z(n), self%k1(n), self%z_old(n), self%k_old(n), self%k2(n), self%k3(n), self%k4(n), &
-                  self%k5(n), self%k6(n), self%k7(n), self%z_new(n), self%work(n), self%y_work(model%m))
+                  self%k5(n), self%k6(n), self%k7(n), self%z_new(n), self%z_stage(n), self%work(n), &
+                  self%y_work(model%m))
         self%t = t0
         self%t_old = t0
         self%z = z0
@@ -69,8 +76,10 @@ contains
 
     !> Advance to tout (> the current output time): steps until t >= tout (or, with
     !! `land_on_tout`, exactly to tout) and interpolates. stat: regdae_success or
-    !! regdae_err_integration with `message`.
-    subroutine rk_advance(self, model, tout, rtol, atol, h_max, max_steps, land_on_tout, zout, stat)
+    !! regdae_err_integration with `message`. `monitor`, if given, samples every
+    !! accepted step's end, where `model` holds the evaluation of the
+    !! first-same-as-last stage (no extra evaluation).
+    subroutine rk_advance(self, model, tout, rtol, atol, h_max, max_steps, land_on_tout, zout, stat, monitor)
         class(rk_integrator), intent(inout) :: self
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: tout, rtol, atol, h_max
@@ -78,6 +87,7 @@ contains
         logical, intent(in) :: land_on_tout
         real(wp), intent(out) :: zout(:)
         integer, intent(out) :: stat
+        type(solution_monitor), intent(inout), optional :: monitor
         real(wp) :: h, e, theta, fac
         integer :: taken, n
 
@@ -118,6 +128,7 @@ contains
             taken = taken + 1
             fac = 0.9_wp*max(e, 1.0e-10_wp)**(-0.2_wp)
             self%h = h*min(5.0_wp, max(0.2_wp, fac))
+            if (present(monitor)) call monitor%sample(self%t, model)
         end do
         ! Cubic Hermite interpolation on [t_old, t] (exact at the ends).
         if (tout >= self%t) then
@@ -136,22 +147,26 @@ contains
             real(wp) :: t
             t = self%t
             err_norm = huge(1.0_wp)
-            call slope(self, model, t + c2*h, self%z + h*a21*self%k1, self%k2, stat)
+            ! Stage values in z_stage (whole-array expressions without temporaries).
+            self%z_stage(:) = self%z + h*a21*self%k1
+            call slope(self, model, t + c2*h, self%z_stage, self%k2, stat)
             if (stat /= 0) return
-            call slope(self, model, t + c3*h, self%z + h*(a31*self%k1 + a32*self%k2), self%k3, stat)
+            self%z_stage(:) = self%z + h*(a31*self%k1 + a32*self%k2)
+            call slope(self, model, t + c3*h, self%z_stage, self%k3, stat)
             if (stat /= 0) return
-            call slope(self, model, t + c4*h, self%z + h*(a41*self%k1 + a42*self%k2 + a43*self%k3), self%k4, stat)
+            self%z_stage(:) = self%z + h*(a41*self%k1 + a42*self%k2 + a43*self%k3)
+            call slope(self, model, t + c4*h, self%z_stage, self%k4, stat)
             if (stat /= 0) return
-            call slope(self, model, t + c5*h, self%z + h*(a51*self%k1 + a52*self%k2 + a53*self%k3 + a54*self%k4), &
-                       self%k5, stat)
+            self%z_stage(:) = self%z + h*(a51*self%k1 + a52*self%k2 + a53*self%k3 + a54*self%k4)
+            call slope(self, model, t + c5*h, self%z_stage, self%k5, stat)
             if (stat /= 0) return
-            call slope(self, model, t + h, self%z + h*(a61*self%k1 + a62*self%k2 + a63*self%k3 + a64*self%k4 + &
-                                                         a65*self%k5), self%k6, stat)
+            self%z_stage(:) = self%z + h*(a61*self%k1 + a62*self%k2 + a63*self%k3 + a64*self%k4 + a65*self%k5)
+            call slope(self, model, t + h, self%z_stage, self%k6, stat)
             if (stat /= 0) return
-            self%z_new = self%z + h*(b1*self%k1 + b3*self%k3 + b4*self%k4 + b5*self%k5 + b6*self%k6)
+            self%z_new(:) = self%z + h*(b1*self%k1 + b3*self%k3 + b4*self%k4 + b5*self%k5 + b6*self%k6)
             call slope(self, model, t + h, self%z_new, self%k7, stat)
             if (stat /= 0) return
-            self%work = h*(e1*self%k1 + e3*self%k3 + e4*self%k4 + e5*self%k5 + e6*self%k6 + e7*self%k7)
+            self%work(:) = h*(e1*self%k1 + e3*self%k3 + e4*self%k4 + e5*self%k5 + e6*self%k6 + e7*self%k7)
             err_norm = sqrt(sum((self%work/(atol + rtol*max(abs(self%z), abs(self%z_new))))**2)/n)
         end subroutine self_step
 

@@ -37,6 +37,7 @@ module regdae_ida_solver
     use regdae_options
     use regdae_regularization, only: regularized_dae
     use regdae_explicit_rk, only: rk_integrator
+    use regdae_monitor, only: solution_monitor
     use regdae_format, only: format_real, format_int
     implicit none
     private
@@ -53,8 +54,9 @@ module regdae_ida_solver
         integer(int64) :: conv_fails = 0       !! nonlinear convergence failures
         real(wp) :: t = 0.0_wp                 !! time reached
         real(wp) :: h_last = 0.0_wp            !! last step size used
-        integer :: singular_passes = 0         !! output intervals with sigma_min(GB) < singular_threshold
-        real(wp) :: sigma_min = huge(1.0_wp)   !! smallest sigma_min(GB) seen at the output times
+        integer :: singular_passes = 0         !! runs of consecutive samples with sigma_min(GB) < singular_threshold
+                                               !! (samples: the output times with IDA, the accepted steps with dopri5)
+        real(wp) :: sigma_min = huge(1.0_wp)   !! smallest sigma_min(GB) over the samples
     end type solver_stats
 
     ! Everything IDA's callbacks reach through user_data; allocated once per init
@@ -80,11 +82,8 @@ module regdae_ida_solver
         integer :: pending_stat = regdae_success   ! last failure seen in a callback
         logical :: pending_recoverable = .true.
         character(len=:), allocatable :: pending_message, ida_message
-        ! singularity diagnostics at the output times
-        real(wp) :: sigma_last = huge(1.0_wp), sigma_min = huge(1.0_wp)
-        logical :: in_singular = .false.
-        real(wp), allocatable :: singular(:, :)   ! (2, k): start and end of each singular interval
-        integer :: n_singular = 0
+        ! diagnostics, sampled at the output times (IDA) or the accepted steps (dopri5)
+        type(solution_monitor) :: monitor
     end type solver_core
 
     !> A regularized DAE solver on IDA (see the module documentation).
@@ -115,9 +114,9 @@ module regdae_ida_solver
         procedure :: message => solver_message
         !> The resolved least-squares solver (`lsq_normal` or `lsq_stacked`).
         procedure :: lsq_method => solver_lsq_method
-        !> sigma_min(GB) at the last output time.
+        !> sigma_min(GB) at the last sample (output time with IDA, accepted step with dopri5).
         procedure :: sigma_min => solver_sigma_min
-        !> The singular intervals so far: (2, k) array of start and end output times.
+        !> The singular intervals so far: (2, k) array of first and last sample times.
         procedure :: singular_intervals => solver_singular_intervals
         !> Free all IDA and SUNDIALS objects (also done by `init` and finalization).
         procedure :: destroy => solver_destroy
@@ -247,13 +246,14 @@ contains
         type(solver_options), intent(in) :: opts
         integer, intent(out) :: stat
         character(len=:), allocatable :: msg
+        integer :: code
 
         call self%destroy()
         self%t = t0
         ok = .false.
-        call validate_options(opts, stat, msg)
-        if (stat /= regdae_success) then
-            call self%record(stat, msg, stat)
+        call validate_options(opts, code, msg)
+        if (code /= regdae_success) then
+            call self%record(code, msg, stat)
         else if (n < 1 .or. m < 0 .or. m > n) then
             call self%record(regdae_err_bad_input, 'problem sizes must satisfy 1 <= n and 0 <= m <= n (n = '// &
                              format_int(n)//', m = '//format_int(m)//')', stat)
@@ -317,7 +317,8 @@ contains
             call fail(stat, 'at the initial point: '//core%model%message)
             return
         end if
-        call record_singularity(core, t0)
+        call core%monitor%reset(opts%singular_threshold)
+        call core%monitor%sample(t0, core%model)
         zp0 = [z0(nx + 1:), core%model%f - matmul(core%model%b, y0)]   ! (x', ..., x^(m-1), x^(m))
 
         core%neq = n
@@ -353,31 +354,6 @@ contains
         end subroutine fail
     end subroutine solver_start
 
-    ! Note sigma_min(GB) of the last evaluation at output time t and update the
-    ! singular intervals.
-    subroutine record_singularity(core, t)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t
-        real(wp), allocatable :: grown(:, :)
-        core%sigma_last = core%model%sigma_min_gb()
-        core%sigma_min = min(core%sigma_min, core%sigma_last)
-        if (core%sigma_last < core%opts%singular_threshold) then
-            if (.not. core%in_singular) then
-                if (.not. allocated(core%singular)) allocate (core%singular(2, 8))
-                if (core%n_singular == size(core%singular, 2)) then
-                    allocate (grown(2, 2*size(core%singular, 2)))
-                    grown(:, 1:core%n_singular) = core%singular
-                    call move_alloc(grown, core%singular)
-                end if
-                core%n_singular = core%n_singular + 1
-                core%singular(1, core%n_singular) = t
-            end if
-            core%singular(2, core%n_singular) = t
-            core%in_singular = .true.
-        else
-            core%in_singular = .false.
-        end if
-    end subroutine record_singularity
 
     ! Create the SUNDIALS context, vectors, IDA memory and the dense linear solver.
     subroutine create_ida(core, t0, u0, up0, stat, msg)
@@ -470,8 +446,10 @@ contains
         class(regdae_solver), intent(inout) :: self
         real(wp), intent(in) :: tout      !! output time (beyond the current time, or equal to it)
         real(wp), intent(out) :: x(:)     !! x(tout), length n
-        real(wp), intent(out) :: y(:)     !! y(tout) (lambda for a mechanical problem), length m,
-                                          !! recomputed from the state at tout
+        real(wp), intent(out), optional :: y(:)   !! y(tout) (lambda for a mechanical problem), length m,
+                                          !! recomputed from the state at tout; leave it out when
+                                          !! only x is needed (saves one evaluation per output
+                                          !! with integrator=dopri5)
         integer, intent(out) :: stat      !! regdae status code
         real(wp), intent(out), optional :: v(:)   !! second-order problems: v(tout), length n
         type(solver_core), pointer :: core
@@ -487,10 +465,15 @@ contains
             return
         end if
         nx = core%nx
-        if (size(x) /= nx .or. size(y) /= core%m) then
-            call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(nx)// &
-                      ' and y length '//format_int(core%m))
+        if (size(x) /= nx) then
+            call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(nx))
             return
+        end if
+        if (present(y)) then
+            if (size(y) /= core%m) then
+                call fail(regdae_err_bad_input, 'advance: y must have length '//format_int(core%m))
+                return
+            end if
         end if
         if (present(v)) then
             if (.not. core%second_order .or. size(v) /= nx) then
@@ -513,11 +496,11 @@ contains
             u => core%z_rk
             if (tout > core%t) then
                 call core%rk%advance(core%model, tout, core%opts%rtol, core%opts%atol, core%opts%h_max, &
-                                     core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat)
+                                     core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat, core%monitor)
                 if (stat /= regdae_success) then
                     core%t = core%rk%t
                     call copy_state()
-                    y = ieee_value(1.0_wp, ieee_quiet_nan)
+                    if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
                     call fail(stat, core%rk%message)
                     return
                 end if
@@ -533,7 +516,7 @@ contains
                 if (ierr < 0) then
                     core%t = tret(1)
                     call copy_state()
-                    y = ieee_value(1.0_wp, ieee_quiet_nan)
+                    if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
                     if (core%pending_stat /= regdae_success .and. .not. core%pending_recoverable) then
                         stat = core%pending_stat
                     else
@@ -553,20 +536,26 @@ contains
         end if
         self%t = core%t
         call copy_state()
+        ! With dopri5 the diagnostics come from the accepted steps (rk%advance
+        ! samples them); the multiplier is then computed only when asked for.
+        if (core%opts%integrator == integrator_dopri5 .and. .not. present(y)) then
+            call self%record(regdae_success, '', stat)
+            return
+        end if
         ! The multiplier at an output time comes from the regularized equation, not
         ! from IDA's interpolant.
         call core%model%evaluate(tout, u(1:core%n), stat, recoverable)
-        if (stat == regdae_success) call core%model%solve_multiplier(tout, y, stat)
+        if (stat == regdae_success) call core%model%solve_multiplier(tout, core%y_work, stat)
         if (stat /= regdae_success) then
             ! The state at tout is valid; only the multiplier equation is singular here
             ! (Baumgarte where GB is singular, or eps = 0 with the normal equations).
-            y = ieee_value(1.0_wp, ieee_quiet_nan)
+            if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
             call self%record(regdae_warn_multiplier_undefined, 'the multiplier at t = '//format_real(tout)// &
                              ' is undefined: '//core%model%message, stat)
             return
         end if
-        y = core%multiplier_sign*y
-        call record_singularity(core, tout)
+        if (present(y)) y = core%multiplier_sign*core%y_work
+        if (core%opts%integrator /= integrator_dopri5) call core%monitor%sample(tout, core%model)
         call self%record(regdae_success, '', stat)
     contains
         subroutine copy_state()
@@ -596,8 +585,8 @@ contains
             st%res_evals = self%core%rk%evals
             st%err_test_fails = self%core%rk%rejects
             st%h_last = self%core%rk%h_last
-            st%singular_passes = self%core%n_singular
-            st%sigma_min = self%core%sigma_min
+            st%singular_passes = self%core%monitor%n_singular
+            st%sigma_min = self%core%monitor%sigma_min
             return
         end if
         associate (mem => self%core%ida_mem)
@@ -611,8 +600,8 @@ contains
             ierr = FIDAGetLastStep(mem, h); st%h_last = h(1)
         end associate
         st%jac_res_evals = self%core%jac_res_evals
-        st%singular_passes = self%core%n_singular
-        st%sigma_min = self%core%sigma_min
+        st%singular_passes = self%core%monitor%n_singular
+        st%sigma_min = self%core%monitor%sigma_min
     end function solver_statistics
 
     function solver_message(self) result(msg)
@@ -634,15 +623,17 @@ contains
     real(wp) function solver_sigma_min(self)
         class(regdae_solver), intent(in) :: self
         solver_sigma_min = ieee_value(1.0_wp, ieee_quiet_nan)
-        if (associated(self%core)) solver_sigma_min = self%core%sigma_last
+        if (associated(self%core)) solver_sigma_min = self%core%monitor%sigma_last
     end function solver_sigma_min
 
     function solver_singular_intervals(self) result(intervals)
         class(regdae_solver), intent(in) :: self
         real(wp), allocatable :: intervals(:, :)
-        allocate (intervals(2, 0))
-        if (.not. associated(self%core)) return
-        if (self%core%n_singular > 0) intervals = self%core%singular(:, 1:self%core%n_singular)
+        if (associated(self%core)) then
+            intervals = self%core%monitor%intervals()
+        else
+            allocate (intervals(2, 0))
+        end if
     end function solver_singular_intervals
 
     ! Set the status of a call and its message.

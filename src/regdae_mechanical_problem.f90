@@ -45,6 +45,8 @@ module regdae_mechanical_problem
         procedure :: rhs => mechanical_rhs
         !> B of the order-2 form: M^{-1} G^T.
         procedure :: matrix_b => mechanical_b
+        !> B = M^{-1} G^T from a known G.
+        procedure :: matrix_b_from_jacobian => mechanical_b_from_jacobian
     end type mechanical_problem
 
     abstract interface
@@ -76,10 +78,11 @@ contains
         integer, intent(inout) :: stat
         real(wp), parameter :: symmetry_tol = 1.0e-12_wp
         integer :: info, n, i
+        logical :: ok
 
         n = size(q)
-        if (self%have_factor) then
-            if (self%factor_t == t .and. all(self%factor_q == q)) return
+        if (self%have_factor .and. self%factor_t == t) then
+            if (same_point(n, self%factor_q, q)) return
         end if
         if (.not. allocated(self%factor)) allocate (self%factor(n, n), self%factor_q(n), self%mass(n, n), &
                                                     self%gx_work(self%m, n), self%bt_work(n, self%m))
@@ -92,14 +95,14 @@ contains
                 self%factor(i, i) = self%factor(i, i) + self%mass_damping
             end do
         else
-            if (.not. symmetric(self%mass, symmetry_tol)) then
+            call copy_if_symmetric(n, self%mass, self%factor, symmetry_tol, ok)
+            if (.not. ok) then
                 stat = regdae_err_mass_matrix
                 return
             end if
-            self%factor = self%mass
         end if
         if (n <= small_n) then
-            call small_cholesky(self%factor, info)
+            call small_cholesky(n, self%factor, info)
         else
             call dpotrf('L', n, self%factor, n, info)
         end if
@@ -108,9 +111,21 @@ contains
             return
         end if
         self%factor_t = t
-        self%factor_q = q
+        self%factor_q(:) = q
         self%have_factor = .true.
     end subroutine factor_mass
+
+    ! a == b entry by entry (a loop that stops at the first difference).
+    pure logical function same_point(n, a, b)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: a(n), b(n)
+        integer :: i
+        same_point = .false.
+        do i = 1, n
+            if (a(i) /= b(i)) return
+        end do
+        same_point = .true.
+    end function same_point
 
     subroutine mechanical_rhs(self, t, x, v, val, stat)
         class(mechanical_problem), intent(inout) :: self
@@ -124,7 +139,7 @@ contains
         if (stat /= 0) return
         if (self%mass_damping > 0.0_wp) val = matmul(val, self%mass)   ! M^T f
         if (self%n <= small_n) then
-            call small_cholesky_solve(self%factor, val)
+            call small_cholesky_solve(self%n, self%factor, val)
         else
             call dpotrs('L', self%n, 1, self%factor, self%n, val, self%n, info)
         end if
@@ -135,69 +150,116 @@ contains
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: a(:, :)
         integer, intent(inout) :: stat
+        call factor_mass(self, t, x, stat)   ! allocates gx_work on first use
+        if (stat /= 0) return
+        call self%constraint_jacobian(t, x, self%gx_work, stat)
+        if (stat /= 0) return
+        call mechanical_b_from_jacobian(self, t, x, v, self%gx_work, a, stat)
+    end subroutine mechanical_b
+
+    subroutine mechanical_b_from_jacobian(self, t, x, v, gx, a, stat)
+        class(mechanical_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(in) :: gx(:, :)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
         integer :: info, j
         call factor_mass(self, t, x, stat)
         if (stat /= 0) return
-        associate (gx => self%gx_work, bt => self%bt_work)
-            call self%constraint_jacobian(t, x, gx, stat)
-            if (stat /= 0) return
-            bt = transpose(gx)
+        if (self%n <= small_n .and. .not. self%mass_damping > 0.0_wp) then
+            ! B = M^-1 G^T column by column, directly in a.
+            do j = 1, self%m
+                a(:, j) = gx(j, :)
+                call small_cholesky_solve(self%n, self%factor, a(:, j))
+            end do
+            return
+        end if
+        associate (bt => self%bt_work)
+            do j = 1, self%m
+                bt(:, j) = gx(j, :)
+            end do
             if (self%mass_damping > 0.0_wp) bt = matmul(transpose(self%mass), bt)   ! M^T G^T
             if (self%n <= small_n) then
                 do j = 1, self%m
-                    call small_cholesky_solve(self%factor, bt(:, j))
+                    call small_cholesky_solve(self%n, self%factor, bt(:, j))
                 end do
             else
                 call dpotrs('L', self%n, self%m, self%factor, self%n, bt, self%n, info)
             end if
-            a = bt
+            a(:, :) = bt
         end associate
-    end subroutine mechanical_b
+    end subroutine mechanical_b_from_jacobian
 
-    ! max |A - A^T| <= tol max |A|, without a temporary.
-    pure logical function symmetric(a, tol)
-        real(wp), intent(in) :: a(:, :), tol
+    ! Copy the lower triangle of A into l (all that the Cholesky factorizations
+    ! read) and check symmetry: ok = max |A - A^T| <= tol max |A| (false for NaN).
+    pure subroutine copy_if_symmetric(n, a, l, tol, ok)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: a(n, n), tol
+        real(wp), intent(inout) :: l(n, n)
+        logical, intent(out) :: ok
         integer :: i, j
-        real(wp) :: bound
-        bound = tol*maxval(abs(a))
-        symmetric = .true.
-        do j = 1, size(a, 2)
-            do i = j + 1, size(a, 1)
-                if (abs(a(i, j) - a(j, i)) > bound) symmetric = .false.
+        real(wp) :: amax, asym
+        amax = 0.0_wp
+        asym = 0.0_wp
+        do j = 1, n
+            do i = j, n
+                l(i, j) = a(i, j)
+                amax = max(amax, abs(a(i, j)), abs(a(j, i)))
+                asym = max(asym, abs(a(i, j) - a(j, i)))
             end do
         end do
-    end function symmetric
+        ok = (asym <= tol*amax)
+    end subroutine copy_if_symmetric
 
     ! In-place Cholesky factor L (lower triangle) of a small SPD matrix; info > 0
     ! if it is not positive definite.
-    pure subroutine small_cholesky(a, info)
-        real(wp), intent(inout) :: a(:, :)
+    pure subroutine small_cholesky(n, a, info)
+        integer, intent(in) :: n
+        real(wp), intent(inout) :: a(n, n)
         integer, intent(out) :: info
-        integer :: j, n
-        n = size(a, 1)
+        integer :: i, j, k
+        real(wp) :: s
         info = 0
         do j = 1, n
-            a(j, j) = a(j, j) - sum(a(j, 1:j - 1)**2)
-            if (.not. (a(j, j) > 0.0_wp)) then
+            s = a(j, j)
+            do k = 1, j - 1
+                s = s - a(j, k)**2
+            end do
+            if (.not. (s > 0.0_wp)) then
                 info = j
                 return
             end if
-            a(j, j) = sqrt(a(j, j))
-            a(j + 1:n, j) = (a(j + 1:n, j) - matmul(a(j + 1:n, 1:j - 1), a(j, 1:j - 1)))/a(j, j)
+            a(j, j) = sqrt(s)
+            do i = j + 1, n
+                s = a(i, j)
+                do k = 1, j - 1
+                    s = s - a(i, k)*a(j, k)
+                end do
+                a(i, j) = s/a(j, j)
+            end do
         end do
     end subroutine small_cholesky
 
     ! Solve L L^T x = b in place with the factor of `small_cholesky`.
-    pure subroutine small_cholesky_solve(l, b)
-        real(wp), intent(in) :: l(:, :)
-        real(wp), intent(inout) :: b(:)
-        integer :: j, n
-        n = size(b)
+    pure subroutine small_cholesky_solve(n, l, b)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: l(n, n)
+        real(wp), intent(inout) :: b(n)
+        integer :: j, k
+        real(wp) :: s
         do j = 1, n
-            b(j) = (b(j) - dot_product(l(j, 1:j - 1), b(1:j - 1)))/l(j, j)
+            s = b(j)
+            do k = 1, j - 1
+                s = s - l(j, k)*b(k)
+            end do
+            b(j) = s/l(j, j)
         end do
         do j = n, 1, -1
-            b(j) = (b(j) - dot_product(l(j + 1:n, j), b(j + 1:n)))/l(j, j)
+            s = b(j)
+            do k = j + 1, n
+                s = s - l(k, j)*b(k)
+            end do
+            b(j) = s/l(j, j)
         end do
     end subroutine small_cholesky_solve
 

@@ -20,7 +20,6 @@
 !! the multiplier form with (z, y) as unknowns, whose algebraic rows are the
 !! regularized equations themselves (Baumgarte: r - G f with G v' in place of G f).
 module regdae_regularization
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
     use regdae_format, only: format_real, format_int
     use regdae_status, only: regdae_success, regdae_err_user_callback, regdae_err_nonfinite, &
@@ -73,9 +72,11 @@ module regdae_regularization
         procedure :: sigma_min_gb
         !> Residual of the eliminated formulation, unknowns z.
         procedure :: residual_eliminated
+        !> The eliminated formulation's right-hand side F (z' = F(z, t)).
+        procedure :: slope_eliminated
         !> Residual of the multiplier formulation, unknowns (z, y).
         procedure :: residual_multiplier
-        procedure, private :: allocate_pieces, constraint_terms, dynamics_residual, release
+        procedure, private :: allocate_pieces, constraint_terms, dynamics_slope, release
     end type regularized_dae
 
 contains
@@ -151,7 +152,8 @@ contains
         real(wp), intent(in) :: z(:)    !! state: x (order 1) or (x, v) (order 2)
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable   !! may a smaller step help?
-        integer :: ustat, n
+        integer :: ustat, n, i, j
+        real(wp) :: probe
 
         stat = regdae_success
         recoverable = .true.
@@ -159,57 +161,119 @@ contains
         n = self%n
         if (self%order == 1) then
             call self%first%rhs(t, z, self%f, ustat)
-            if (failed('rhs')) return
+            if (ustat /= 0) then
+                call report_failure('rhs')
+                return
+            end if
             call self%first%matrix_b(t, z, self%b, ustat)
-            if (failed('matrix_b')) return
+            if (ustat /= 0) then
+                call report_failure('matrix_b')
+                return
+            end if
             call self%first%constraint(t, z, self%g, ustat)
-            if (failed('constraint')) return
+            if (ustat /= 0) then
+                call report_failure('constraint')
+                return
+            end if
             call self%first%constraint_jacobian(t, z, self%gx, ustat)
-            if (failed('constraint_jacobian')) return
+            if (ustat /= 0) then
+                call report_failure('constraint_jacobian')
+                return
+            end if
             call self%first%constraint_dt(t, z, self%gt, ustat)
-            if (failed('constraint_dt')) return
+            if (ustat /= 0) then
+                call report_failure('constraint_dt')
+                return
+            end if
         else if (self%order >= 3) then
             call self%higher%rhs(t, reshape(z(1:self%order*n), [n, self%order]), self%f, ustat)
-            if (failed('rhs')) return
+            if (ustat /= 0) then
+                call report_failure('rhs')
+                return
+            end if
             call self%higher%matrix_b(t, reshape(z(1:self%order*n), [n, self%order]), self%b, ustat)
-            if (failed('matrix_b')) return
+            if (ustat /= 0) then
+                call report_failure('matrix_b')
+                return
+            end if
             call self%higher%constraint(t, z(1:n), self%g, ustat)
-            if (failed('constraint')) return
+            if (ustat /= 0) then
+                call report_failure('constraint')
+                return
+            end if
             call self%higher%constraint_jacobian(t, z(1:n), self%gx, ustat)
-            if (failed('constraint_jacobian')) return
+            if (ustat /= 0) then
+                call report_failure('constraint_jacobian')
+                return
+            end if
             call self%higher%constraint_dt(t, z(1:n), self%gt, ustat)
-            if (failed('constraint_dt')) return
+            if (ustat /= 0) then
+                call report_failure('constraint_dt')
+                return
+            end if
         else
             call self%second%rhs(t, z(1:n), z(n + 1:2*n), self%f, ustat)
-            if (failed('rhs')) return
-            call self%second%matrix_b(t, z(1:n), z(n + 1:2*n), self%b, ustat)
-            if (failed('matrix_b')) return
-            call self%second%constraint(t, z(1:n), self%g, ustat)
-            if (failed('constraint')) return
+            if (ustat /= 0) then
+                call report_failure('rhs')
+                return
+            end if
             call self%second%constraint_jacobian(t, z(1:n), self%gx, ustat)
-            if (failed('constraint_jacobian')) return
+            if (ustat /= 0) then
+                call report_failure('constraint_jacobian')
+                return
+            end if
+            call self%second%matrix_b_from_jacobian(t, z(1:n), z(n + 1:2*n), self%gx, self%b, ustat)
+            if (ustat /= 0) then
+                call report_failure('matrix_b')
+                return
+            end if
+            call self%second%constraint(t, z(1:n), self%g, ustat)
+            if (ustat /= 0) then
+                call report_failure('constraint')
+                return
+            end if
             call self%second%constraint_dt(t, z(1:n), self%gt, ustat)
-            if (failed('constraint_dt')) return
+            if (ustat /= 0) then
+                call report_failure('constraint_dt')
+                return
+            end if
             if (self%curvature) then
                 call self%second%constraint_curvature(t, z(1:n), z(n + 1:2*n), self%curv, ustat)
-                if (failed('constraint_curvature')) return
+                if (ustat /= 0) then
+                    call report_failure('constraint_curvature')
+                    return
+                end if
             end if
         end if
-        if (.not. (all(ieee_is_finite(self%f)) .and. all(ieee_is_finite(self%b)) .and. &
-                   all(ieee_is_finite(self%g)) .and. all(ieee_is_finite(self%gx)) .and. &
-                   all(ieee_is_finite(self%gt)) .and. all(ieee_is_finite(self%curv)))) then
+        do j = 1, self%m
+            self%gb(:, j) = 0.0_wp
+            call add_matvec(self%m, self%n, self%gx, self%b(:, j), 1.0_wp, self%gb(:, j))
+        end do
+        call self%constraint_terms(z, self%q)
+        self%r(:) = self%q
+        call add_matvec(self%m, self%n, self%gx, self%f, 1.0_wp, self%r)
+        ! A NaN or Inf in B, g, G, g_t or c reaches GB or r (0 * NaN and 0 * Inf
+        ! are NaN), so checking f, GB and r suffices; the probe is 0 exactly when
+        ! all of them are finite.
+        probe = 0.0_wp
+        do i = 1, n
+            probe = probe + 0.0_wp*self%f(i)
+        end do
+        do j = 1, self%m
+            probe = probe + 0.0_wp*self%r(j)
+            do i = 1, self%m
+                probe = probe + 0.0_wp*self%gb(i, j)
+            end do
+        end do
+        if (probe /= 0.0_wp) then
             stat = regdae_err_nonfinite
             self%message = 'NaN or Inf in f, B, g, G, g_t or c at t = '//format_real(t)
             return
         end if
-        self%gb = matmul(self%gx, self%b)
-        call self%constraint_terms(z, self%q)
-        self%r = matmul(self%gx, self%f) + self%q
     contains
-        logical function failed(name)
+        ! A user routine returned ustat /= 0: set stat, recoverable and the message.
+        subroutine report_failure(name)
             character(len=*), intent(in) :: name
-            failed = (ustat /= 0)
-            if (.not. failed) return
             recoverable = (ustat > 0)
             if (ustat == regdae_err_mass_matrix) then
                 stat = regdae_err_mass_matrix
@@ -219,7 +283,7 @@ contains
                 self%message = 'user routine '//name//' reported failure (stat = '// &
                                format_int(ustat)//') at t = '//format_real(t)
             end if
-        end function failed
+        end subroutine report_failure
     end subroutine evaluate
 
     ! q = r - G f = w0 g + w1 g_t + sum_{k=1}^{m-1} w_k G x^(k) [+ c] (order 1: g_t with weight 1).
@@ -230,11 +294,11 @@ contains
         integer :: k, n
         n = self%n
         if (self%order == 1) then
-            q = self%w(1)*self%g + self%gt
+            q(:) = self%w(1)*self%g + self%gt
         else
-            q = self%w(1)*self%g + self%w(2)*self%gt
+            q(:) = self%w(1)*self%g + self%w(2)*self%gt
             do k = 1, self%order - 1
-                q = q + self%w(k + 1)*matmul(self%gx, z(k*n + 1:(k + 1)*n))
+                call add_matvec(self%m, n, self%gx, z(k*n + 1:(k + 1)*n), self%w(k + 1), q)
             end do
             if (self%curvature) q = q + self%curv
         end if
@@ -259,7 +323,7 @@ contains
             call square_solve(self%lsq_ws, self%gb, self%r, y, stat)
         end select
         if (stat == regdae_success) then
-            if (.not. all(ieee_is_finite(y))) stat = regdae_err_nonfinite
+            if (.not. all_finite(y)) stat = regdae_err_nonfinite
         end if
         select case (stat)
         case (regdae_success)
@@ -293,6 +357,21 @@ contains
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable
 
+        call self%slope_eliminated(t, z, res, y, stat, recoverable)
+        if (stat /= regdae_success) return
+        res = zp - res
+    end subroutine residual_eliminated
+
+    !> The eliminated formulation as an ODE z' = F(z, t): F = (v, f - B y(z))
+    !! (order 2; order m: (x', ..., x^(m-1), f - B y)) or f - B y (order 1).
+    subroutine slope_eliminated(self, t, z, dz, y, stat, recoverable)
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)
+        real(wp), intent(out) :: dz(:)    !! F(z, t), length of z
+        real(wp), intent(out) :: y(:)     !! multiplier used, length m
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+
         call self%evaluate(t, z, stat, recoverable)
         if (stat /= regdae_success) return
         call self%solve_multiplier(t, y, stat)
@@ -302,22 +381,52 @@ contains
             recoverable = (stat == regdae_err_singular .or. stat == regdae_err_nonfinite)
             return
         end if
-        call self%dynamics_residual(z, zp, y, res)
-    end subroutine residual_eliminated
+        call self%dynamics_slope(z, y, dz)
+    end subroutine slope_eliminated
 
-    ! The differential rows: x^(k)' - x^(k+1) for k < m-1, and x^(m-1)' - f + B y.
-    subroutine dynamics_residual(self, z, zp, y, res)
+    ! The right-hand side of the differential rows for a given y:
+    ! x^(k+1) for k < m-1, and f - B y for the last block.
+    subroutine dynamics_slope(self, z, y, dz)
         class(regularized_dae), intent(in) :: self
-        real(wp), intent(in) :: z(:), zp(:), y(:)
-        real(wp), intent(out) :: res(:)
-        integer :: k, n, last
+        real(wp), intent(in) :: z(:), y(:)
+        real(wp), intent(out) :: dz(:)
+        integer :: n, last
         n = self%n
-        do k = 0, self%order - 2
-            res(k*n + 1:(k + 1)*n) = zp(k*n + 1:(k + 1)*n) - z((k + 1)*n + 1:(k + 2)*n)
-        end do
         last = (self%order - 1)*n
-        res(last + 1:last + n) = zp(last + 1:last + n) - self%f + matmul(self%b, y)
-    end subroutine dynamics_residual
+        dz(1:last) = z(n + 1:last + n)
+        dz(last + 1:last + n) = self%f
+        call add_matvec(n, self%m, self%b, y, -1.0_wp, dz(last + 1:last + n))
+    end subroutine dynamics_slope
+
+    ! y = y + alpha A x by loops: no temporary, no library call (the hot path's
+    ! matrices have a few rows and columns).
+    pure subroutine add_matvec(m, n, a, x, alpha, y)
+        integer, intent(in) :: m, n
+        real(wp), intent(in) :: a(m, n), x(n), alpha
+        real(wp), intent(inout) :: y(m)
+        integer :: i, j
+        real(wp) :: s
+        do j = 1, n
+            s = alpha*x(j)
+            do i = 1, m
+                y(i) = y(i) + a(i, j)*s
+            end do
+        end do
+    end subroutine add_matvec
+
+    ! True if no entry is NaN or Inf (a loop that stops at the first one).
+    pure logical function all_finite(a) result(finite)
+        real(wp), intent(in) :: a(:)
+        integer :: i
+        finite = .true.
+        do i = 1, size(a)
+            if (.not. (abs(a(i)) <= huge(a))) then
+                finite = .false.
+                return
+            end if
+        end do
+    end function all_finite
+
 
     !> Multiplier formulation: the differential rows with the given y, and
     !! res_y the regularized equation (trust region: (GB)^T (GB y - r) + eps y;
@@ -334,7 +443,8 @@ contains
 
         call self%evaluate(t, z, stat, recoverable)
         if (stat /= regdae_success) return
-        call self%dynamics_residual(z, zp, y, res_z)
+        call self%dynamics_slope(z, y, res_z)
+        res_z = zp - res_z
         n = self%n
         select case (self%method)
         case (method_trust_region)

@@ -28,6 +28,10 @@ module regdae_second_order_problem
         procedure(position_field), deferred :: constraint
         !> G = dg/dx (x, t), m x n.
         procedure(position_matrix), deferred :: constraint_jacobian
+        !> B(x, v, t) when G(x, t) is already known (regdae evaluates G first);
+        !! default: `matrix_b`, ignoring gx. A `mechanical_problem` forms M^{-1} G^T
+        !! from it instead of evaluating G again.
+        procedure :: matrix_b_from_jacobian => default_matrix_b_from_jacobian
         !> dg/dt (x, t), length m; default: central difference quotient in t.
         procedure :: constraint_dt => default_constraint_dt
         !> c = g_xx(v, v) + 2 g_xt v + g_tt, length m; default: difference quotient.
@@ -75,6 +79,15 @@ module regdae_second_order_problem
     public :: velocity_constraint, curvature_difference
 
 contains
+
+    subroutine default_matrix_b_from_jacobian(self, t, x, v, gx, a, stat)
+        class(second_order_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(in) :: gx(:, :)      !! G(x, t), m x n
+        real(wp), intent(out) :: a(:, :)      !! B, n x m
+        integer, intent(inout) :: stat
+        call self%matrix_b(t, x, v, a, stat)
+    end subroutine default_matrix_b_from_jacobian
 
     !> g_t by the central difference in t (as for `dae_problem`).
     subroutine default_constraint_dt(self, t, x, val, stat)

@@ -94,6 +94,11 @@ contains
         call chk%equal(stat, 0, 'status')
         call chk%close(b(1, 1), s3*(4.0_wp/7)*0.5_wp, 1.0e-14_wp, 'B(1)')
         call chk%close(b(2, 1), s3*(4.0_wp/7)*1.5_wp, 1.0e-14_wp, 'B(2)')
+        ! The same B from a given G (what regdae calls: G is evaluated once).
+        b = 0.0_wp
+        call crank%matrix_b_from_jacobian(0.0_wp, q, w, reshape([s3, s3], [1, 2]), b, stat)
+        call chk%close(b(1, 1), s3*(4.0_wp/7)*0.5_wp, 1.0e-14_wp, 'B(1) from G')
+        call chk%close(b(2, 1), s3*(4.0_wp/7)*1.5_wp, 1.0e-14_wp, 'B(2) from G')
         call crank%rhs(0.0_wp, q, w, acc, stat)
         f = [s3*4.0_wp - 19.6_wp*s3, -s3 - 9.8_wp*s3]
         minv = reshape([1.0_wp, -0.5_wp, -0.5_wp, 2.0_wp], [2, 2])/1.75_wp

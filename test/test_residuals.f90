@@ -126,6 +126,10 @@ contains
         call chk%equal(stat, regdae_success, 'status')
         call chk%close(y_used(1), expected_y, 8*tol, 'y(x)')
         call chk%close(res(1), xp(1) - 2.0_wp + 0.5_wp*expected_y, 8*tol, 'residual')
+        ! The explicit integrator's slope F is the same model: residual = x' - F.
+        call model%slope_eliminated(t, x, res, y_used, stat, recoverable)
+        call chk%equal(stat, regdae_success, 'slope status')
+        call chk%close(res(1), 2.0_wp - 0.5_wp*expected_y, 8*tol, 'slope F = f - B y')
     end subroutine check_eliminated
 
     ! Central difference with d = u^(1/3): error ~ u^(2/3) ~ 4e-11 on g_t = -0.3

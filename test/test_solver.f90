@@ -36,7 +36,8 @@ contains
                  new_test('options_from_text', options_from_text), &
                  new_test('two_solvers_sequential', two_solvers_sequential), &
                  new_test('two_solvers_side_by_side', two_solvers_side_by_side), &
-                 new_test('explicit_integrator', explicit_integrator)]
+                 new_test('explicit_integrator', explicit_integrator), &
+                 new_test('advance_without_multiplier', advance_without_multiplier)]
     end function solver_tests
 
     subroutine failing_rhs(self, t, x, v, stat)
@@ -361,5 +362,42 @@ contains
         call chk%equal(stat, regdae_err_bad_input, 'dopri5 with the multiplier formulation refused')
         call chk%true(index(solver%message(), 'eliminated') > 0, 'message says why')
     end subroutine explicit_integrator
+
+    ! advance without y: the same x (bitwise: the output-time evaluation does not
+    ! touch the integrator's state), with IDA and with dopri5; a y of the wrong
+    ! length is refused by name. With dopri5 the diagnostics come from the steps.
+    subroutine advance_without_multiplier(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: with_y, without_y
+        type(solver_stats) :: st
+        real(wp) :: xa(1), xb(1), y(1), y_bad(2), diff
+        integer :: k, sa, sb, pass
+        do pass = 1, 2
+            opts = options(method_trust_region, formulation_eliminated, lsq_auto, 1.0e-6_wp)
+            opts%stop_at_output = .false.
+            if (pass == 2) opts%integrator = integrator_dopri5
+            call with_y%init(new_ex51(orientation_psd), t0, [0.0_wp], opts, sa)
+            call without_y%init(new_ex51(orientation_psd), t0, [0.0_wp], opts, sb)
+            diff = 0.0_wp
+            do k = 1, nout
+                call with_y%advance(output_time(k), xa, y, sa)
+                call without_y%advance(output_time(k), xb, stat=sb)
+                if (sa < 0 .or. sb < 0) exit
+                diff = max(diff, abs(xa(1) - xb(1)))
+            end do
+            call chk%true(sa >= 0 .and. sb >= 0, 'both runs succeed (pass '//merge('IDA   ', 'dopri5', pass == 1)//')')
+            call chk%true(diff == 0.0_wp, 'x without y is bitwise the same (pass '// &
+                          merge('IDA   ', 'dopri5', pass == 1)//')')
+            st = without_y%statistics()
+            call chk%true(st%sigma_min < 0.05_wp .and. st%singular_passes >= 1, &
+                          'singular pass at t = 0 seen without y (pass '//merge('IDA   ', 'dopri5', pass == 1)//')')
+            call without_y%advance(tf + 1.0_wp, xb, y_bad, sb)
+            call chk%equal(sb, regdae_err_bad_input, 'y of length 2 refused')
+            call chk%true(index(without_y%message(), 'y must have length 1') > 0, 'message names y')
+            call with_y%destroy()
+            call without_y%destroy()
+        end do
+    end subroutine advance_without_multiplier
 
 end module test_solver

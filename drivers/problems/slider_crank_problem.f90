@@ -23,6 +23,9 @@ module slider_crank_problem
     type, extends(mechanical_problem), public :: slider_crank
         real(wp) :: gravity = 9.8_wp   !! gravitational acceleration
         logical :: analytic_curvature = .false.   !! c = g_xx(v, v) analytic instead of regdae's difference quotient
+        ! sin and cos of th1, th2 and th2 - th1 at q_trig: the callbacks at one
+        ! evaluation point share them (regdae calls them all at the same q)
+        real(wp), private :: q_trig(2) = huge(1.0_wp), s1 = 0, c1 = 0, s2 = 0, c2 = 0, sd = 0, cd = 0
     contains
         procedure :: mass_matrix => crank_mass
         procedure :: forces => crank_forces
@@ -97,16 +100,29 @@ contains
         val = 0.0_wp
     end subroutine redundant_gt
 
+    ! The trigonometric values at q (recomputed only when q changes).
+    subroutine update_trig(self, q)
+        class(slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: q(:)
+        if (q(1) == self%q_trig(1) .and. q(2) == self%q_trig(2)) return
+        self%q_trig = q(1:2)
+        self%s1 = sin(q(1))
+        self%c1 = cos(q(1))
+        self%s2 = sin(q(2))
+        self%c2 = cos(q(2))
+        self%sd = self%s2*self%c1 - self%c2*self%s1   ! sin(th2 - th1)
+        self%cd = self%c2*self%c1 + self%s2*self%s1   ! cos(th2 - th1)
+    end subroutine update_trig
+
     subroutine crank_mass(self, t, q, mass, stat)
         class(slider_crank), intent(inout) :: self
         real(wp), intent(in) :: t, q(:)
         real(wp), intent(out) :: mass(:, :)
         integer, intent(inout) :: stat
-        real(wp) :: c
-        c = cos(q(2) - q(1))
+        call update_trig(self, q)
         mass(1, 1) = 2.0_wp
-        mass(2, 1) = c
-        mass(1, 2) = c
+        mass(2, 1) = self%cd
+        mass(1, 2) = self%cd
         mass(2, 2) = 1.0_wp
     end subroutine crank_mass
 
@@ -115,10 +131,9 @@ contains
         real(wp), intent(in) :: t, q(:), qd(:)
         real(wp), intent(out) :: f(:)
         integer, intent(inout) :: stat
-        real(wp) :: s
-        s = sin(q(2) - q(1))
-        f(1) = s*qd(2)**2 - 2.0_wp*self%gravity*sin(q(1))
-        f(2) = -s*qd(1)**2 - self%gravity*sin(q(2))
+        call update_trig(self, q)
+        f(1) = self%sd*qd(2)**2 - 2.0_wp*self%gravity*self%s1
+        f(2) = -self%sd*qd(1)**2 - self%gravity*self%s2
     end subroutine crank_forces
 
     subroutine crank_g(self, t, x, val, stat)
@@ -126,7 +141,8 @@ contains
         real(wp), intent(in) :: t, x(:)
         real(wp), intent(out) :: val(:)
         integer, intent(inout) :: stat
-        val(1) = -cos(x(1)) - cos(x(2))
+        call update_trig(self, x)
+        val(1) = -self%c1 - self%c2
     end subroutine crank_g
 
     subroutine crank_gx(self, t, x, a, stat)
@@ -134,7 +150,9 @@ contains
         real(wp), intent(in) :: t, x(:)
         real(wp), intent(out) :: a(:, :)
         integer, intent(inout) :: stat
-        a(1, :) = [sin(x(1)), sin(x(2))]
+        call update_trig(self, x)
+        a(1, 1) = self%s1
+        a(1, 2) = self%s2
     end subroutine crank_gx
 
     subroutine crank_gt(self, t, x, val, stat)
@@ -151,7 +169,8 @@ contains
         real(wp), intent(out) :: val(:)
         integer, intent(inout) :: stat
         if (self%analytic_curvature) then
-            val = cos(x(1))*v(1)**2 + cos(x(2))*v(2)**2
+            call update_trig(self, x)
+            val(1) = self%c1*v(1)**2 + self%c2*v(2)**2
         else
             call curvature_difference(self, t, x, v, val, stat)
         end if
