@@ -128,7 +128,7 @@ contains
             taken = taken + 1
             fac = 0.9_wp*max(e, 1.0e-10_wp)**(-0.2_wp)
             self%h = h*min(5.0_wp, max(0.2_wp, fac))
-            if (present(monitor)) call monitor%sample(self%t, model)
+            if (present(monitor)) call monitor%sample(self%t, model, self%z, self%k1)
         end do
         ! Cubic Hermite interpolation on [t_old, t] (exact at the ends).
         if (tout >= self%t) then

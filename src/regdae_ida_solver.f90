@@ -37,7 +37,7 @@ module regdae_ida_solver
     use regdae_options
     use regdae_regularization, only: regularized_dae
     use regdae_explicit_rk, only: rk_integrator
-    use regdae_monitor, only: solution_monitor
+    use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant
     use regdae_format, only: format_real, format_int
     implicit none
     private
@@ -57,6 +57,9 @@ module regdae_ida_solver
         integer :: singular_passes = 0         !! runs of consecutive samples with sigma_min(GB) < singular_threshold
                                                !! (samples: the output times with IDA, the accepted steps with dopri5)
         real(wp) :: sigma_min = huge(1.0_wp)   !! smallest sigma_min(GB) over the samples
+        real(wp) :: velocity_jump = 0.0_wp     !! largest relative velocity jump across a singular interval
+        real(wp) :: max_drift = 0.0_wp         !! largest max |g(x, t)| over the samples (order >= 2)
+        real(wp) :: invariant_change = 0.0_wp  !! largest |I - I(t0)| of the problem's invariant (invariant_tol > 0)
     end type solver_stats
 
     ! Everything IDA's callbacks reach through user_data; allocated once per init
@@ -68,6 +71,7 @@ module regdae_ida_solver
         type(solver_options) :: opts
         integer :: n = 0, m = 0, neq = 0   ! n: size of the state z; neq: IDA unknowns
         integer :: nx = 0                  ! size of x reported to the user
+        integer :: np = 0                  ! positions with a velocity in the state (order >= 2), else 0
         logical :: second_order = .false.  ! the user's problem is of order 2: z = (x, v)
         real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
         real(wp) :: t = 0.0_wp
@@ -317,9 +321,16 @@ contains
             call fail(stat, 'at the initial point: '//core%model%message)
             return
         end if
-        call core%monitor%reset(opts%singular_threshold)
-        call core%monitor%sample(t0, core%model)
-        zp0 = [z0(nx + 1:), core%model%f - matmul(core%model%b, y0)]   ! (x', ..., x^(m-1), x^(m))
+        call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
+        core%np = 0
+        if (core%second_order) core%np = core%nx
+        call core%monitor%reset(opts%singular_threshold, opts%eps, core%np, opts%jump_tol, opts%drift_tol, opts%invariant_tol)
+        call core%monitor%sample(t0, core%model, z0, zp0)
+        if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
+            call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
+                      '(override `invariant` of the second-order problem; first-order problems have none)')
+            return
+        end if
 
         core%neq = n
         if (opts%formulation == formulation_multiplier) core%neq = n + m
@@ -453,7 +464,7 @@ contains
         integer, intent(out) :: stat      !! regdae status code
         real(wp), intent(out), optional :: v(:)   !! second-order problems: v(tout), length n
         type(solver_core), pointer :: core
-        real(c_double), pointer :: u(:)
+        real(c_double), pointer :: u(:), up(:)
         real(c_double) :: tret(1)
         integer(c_int) :: ierr
         logical :: recoverable
@@ -538,9 +549,12 @@ contains
         call copy_state()
         ! With dopri5 the diagnostics come from the accepted steps (rk%advance
         ! samples them); the multiplier is then computed only when asked for.
-        if (core%opts%integrator == integrator_dopri5 .and. .not. present(y)) then
-            call self%record(regdae_success, '', stat)
-            return
+        if (core%opts%integrator == integrator_dopri5) then
+            if (branch_alarm()) return
+            if (.not. present(y)) then
+                call self%record(regdae_success, '', stat)
+                return
+            end if
         end if
         ! The multiplier at an output time comes from the regularized equation, not
         ! from IDA's interpolant.
@@ -555,7 +569,11 @@ contains
             return
         end if
         if (present(y)) y = core%multiplier_sign*core%y_work
-        if (core%opts%integrator /= integrator_dopri5) call core%monitor%sample(tout, core%model)
+        if (core%opts%integrator /= integrator_dopri5) then
+            up => FN_VGetArrayPointer(core%up)   ! IDA's z'(tout): the slope it integrated
+            call core%monitor%sample(tout, core%model, u(1:core%n), up(1:core%n))
+            if (branch_alarm()) return
+        end if
         call self%record(regdae_success, '', stat)
     contains
         subroutine copy_state()
@@ -569,6 +587,27 @@ contains
             call self%record(code, text, stat)
             if (associated(core)) self%t = core%t
         end subroutine fail
+
+        ! The monitor saw the velocity jump across a singular interval, or the
+        ! position constraint drift: stop.
+        logical function branch_alarm()
+            branch_alarm = core%monitor%alarm
+            if (.not. branch_alarm) return
+            if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
+            if (core%monitor%alarm_kind == alarm_jump) then
+                call fail(regdae_err_branch, core%monitor%alarm_message// &
+                          ': the solution probably changed branch there; x(tout) is returned but not trustworthy '// &
+                          '(a smaller rtol or eps, or index=3, may help)')
+            else if (core%monitor%alarm_kind == alarm_invariant) then
+                call fail(regdae_err_invariant, core%monitor%alarm_message// &
+                          ': x(tout) is returned but not trustworthy (a smaller rtol, or smaller Baumgarte weights, '// &
+                          'may help)')
+            else
+                call fail(regdae_err_drift, core%monitor%alarm_message// &
+                          ': x(tout) is returned but not trustworthy (index=3, a larger gamma or a smaller rtol '// &
+                          'may help)')
+            end if
+        end function branch_alarm
     end subroutine solver_advance
 
     function solver_statistics(self) result(st)
@@ -587,6 +626,9 @@ contains
             st%h_last = self%core%rk%h_last
             st%singular_passes = self%core%monitor%n_singular
             st%sigma_min = self%core%monitor%sigma_min
+            st%velocity_jump = self%core%monitor%jump_max
+            st%max_drift = self%core%monitor%drift_max
+            st%invariant_change = self%core%monitor%invariant_change
             return
         end if
         associate (mem => self%core%ida_mem)
@@ -602,6 +644,9 @@ contains
         st%jac_res_evals = self%core%jac_res_evals
         st%singular_passes = self%core%monitor%n_singular
         st%sigma_min = self%core%monitor%sigma_min
+        st%velocity_jump = self%core%monitor%jump_max
+        st%max_drift = self%core%monitor%drift_max
+        st%invariant_change = self%core%monitor%invariant_change
     end function solver_statistics
 
     function solver_message(self) result(msg)

@@ -1,13 +1,40 @@
 !> Diagnostics sampled along the computed solution: sigma_min(GB) and the
 !! singular intervals (runs of consecutive samples with sigma_min(GB) below a
-!! threshold). A sample reads the regularized model's last evaluation, so it
-!! costs nothing when that evaluation was made at a point of the solution anyway
-!! (IDA: the output times; dopri5: the end of each accepted step).
+!! threshold), and the velocity jump across each singular interval. A sample
+!! reads the regularized model's last evaluation, so it costs nothing when that
+!! evaluation was made at a point of the solution anyway (IDA: the output times;
+!! dopri5: the end of each accepted step).
+!!
+!! Velocity jump: on the physical branch the velocity v = x' of a problem of
+!! order >= 2 is continuous through a singular configuration, v' = a with
+!! bounded, smooth accelerations (the regularization damps the multiplier there);
+!! changing branch turns v by an impulse inside the interval. Between the last
+!! regular sample before an interval (t_a, v_a, a_a) and the first one after it (t_b, ...),
+!! regular meaning sigma_min(GB) >= max(threshold, 3 sqrt(eps)), outside the
+!! regularization layer too (where the damped multiplier lets the motion run free),
+!! $$ J = \frac{|v_b - v_a - \tfrac{t_b - t_a}{2}(a_a + a_b)|}
+!!           {\max(|v_a|, |v_b|, (t_b - t_a)\max(|a_a|, |a_b|))}, $$
+!! the relative defect of the trapezoidal rule for v' = a across the interval;
+!! J > jump_tol raises the alarm (`alarm_kind = alarm_jump`). The slopes a are the integrator's own (IDA's
+!! interpolated z', dopri5's last stage), not recomputed from the regularized
+!! equation at interpolated states, so they are as accurate as the states.
+!!
+!! Position drift: for a problem of order >= 2 the monitor also records
+!! max |g(x, t)| over the samples; above drift_tol it raises the alarm
+!! (`alarm_kind = alarm_drift`). With index=2 nothing enforces g = 0 and the
+!! drift is what lets the solution slip to another branch at the next pass.
+!!
+!! Invariant: if the problem supplies an invariant I(x, v, t) (e.g. the energy
+!! of a conservative mechanism) and invariant_tol > 0, |I - I(t0)| above
+!! invariant_tol raises the alarm (`alarm_kind = alarm_invariant`).
 module regdae_monitor
     use regdae_kinds, only: wp
+    use regdae_format, only: format_real
     use regdae_regularization, only: regularized_dae
     implicit none
     private
+
+    integer, parameter, public :: alarm_none = 0, alarm_jump = 1, alarm_drift = 2, alarm_invariant = 3
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
@@ -17,6 +44,21 @@ module regdae_monitor
         integer :: n_singular = 0                !! singular intervals so far
         logical :: in_singular = .false.         !! the last sample was singular
         real(wp), allocatable :: singular(:, :)  !! (2, n_singular): first and last sample time of each
+        integer :: np = 0                        !! positions whose velocity is checked (0: no check)
+        real(wp) :: jump_tol = 0.1_wp            !! alarm when the relative jump J exceeds this
+        real(wp) :: jump_max = 0.0_wp            !! largest J so far
+        real(wp) :: drift_tol = 0.0_wp           !! alarm when max |g| exceeds this (0: no check)
+        real(wp) :: drift_max = 0.0_wp           !! largest max |g(x, t)| so far
+        real(wp) :: invariant_tol = 0.0_wp       !! alarm when |I - I(t0)| exceeds this (0: no check)
+        real(wp) :: invariant0 = 0.0_wp          !! I(t0)
+        real(wp) :: invariant_change = 0.0_wp    !! largest |I - I(t0)| so far
+        logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
+        integer :: alarm_kind = alarm_none       !! alarm_jump or alarm_drift
+        character(len=:), allocatable :: alarm_message   !! what, where and how much
+        logical, private :: have_regular = .false., have_invariant = .false., in_layer = .false.
+        real(wp), private :: layer_threshold = 0.05_wp   ! max(threshold, 3 sqrt(eps)): J's end samples lie above
+        real(wp), private :: t_regular = 0.0_wp
+        real(wp), allocatable, private :: v_regular(:), a_regular(:)
     contains
         !> Forget all samples; set the threshold.
         procedure :: reset => monitor_reset
@@ -28,10 +70,31 @@ module regdae_monitor
 
 contains
 
-    subroutine monitor_reset(self, threshold)
+    subroutine monitor_reset(self, threshold, eps, np, jump_tol, drift_tol, invariant_tol)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: threshold
+        real(wp), intent(in) :: eps         !! the regularization parameter (its layer: sigma_min(GB)^2 < eps)
+        integer, intent(in) :: np           !! positions: z(np+1:2np) is their velocity, F(np+1:2np) its slope
+        real(wp), intent(in) :: jump_tol    !! <= 0: no velocity-jump check
+        real(wp), intent(in) :: drift_tol   !! <= 0: no drift check
+        real(wp), intent(in) :: invariant_tol   !! <= 0: no invariant check
         self%threshold = threshold
+        self%layer_threshold = max(threshold, 3*sqrt(eps))
+        self%in_layer = .false.
+        self%invariant_tol = invariant_tol
+        self%invariant_change = 0.0_wp
+        self%have_invariant = .false.
+        self%np = np
+        self%jump_tol = jump_tol
+        self%drift_tol = drift_tol
+        self%jump_max = 0.0_wp
+        self%drift_max = 0.0_wp
+        self%alarm = .false.
+        self%alarm_kind = alarm_none
+        self%alarm_message = ''
+        self%have_regular = .false.
+        if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)
+        allocate (self%v_regular(self%np), self%a_regular(self%np))
         self%sigma_last = huge(1.0_wp)
         self%sigma_min = huge(1.0_wp)
         self%n_singular = 0
@@ -39,11 +102,27 @@ contains
         if (allocated(self%singular)) deallocate (self%singular)
     end subroutine monitor_reset
 
-    subroutine monitor_sample(self, t, model)
+    subroutine monitor_sample(self, t, model, z, dz)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: t
         type(regularized_dae), intent(inout) :: model
+        real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
+        real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
         real(wp), allocatable :: grown(:, :)
+        real(wp) :: drift
+        integer :: stat
+        logical :: was_in_layer
+        if (self%invariant_tol > 0.0_wp) call invariant_sample(self, t, model, z)
+        if (self%np > 0) then
+            drift = model%position_drift(t, z, stat)
+            self%drift_max = max(self%drift_max, drift)
+            if (self%drift_tol > 0.0_wp .and. drift > self%drift_tol .and. .not. self%alarm) then
+                self%alarm = .true.
+                self%alarm_kind = alarm_drift
+                self%alarm_message = 'the position constraint drifted to max |g| = '//format_real(drift)// &
+                                     ' > drift_tol = '//format_real(self%drift_tol)//' at t = '//format_real(t)
+            end if
+        end if
         self%sigma_last = model%sigma_min_gb()
         self%sigma_min = min(self%sigma_min, self%sigma_last)
         if (self%sigma_last < self%threshold) then
@@ -62,7 +141,62 @@ contains
         else
             self%in_singular = .false.
         end if
+        was_in_layer = self%in_layer
+        self%in_layer = (self%sigma_last < self%layer_threshold)
+        if (self%np > 0 .and. self%jump_tol > 0.0_wp .and. .not. self%in_layer) &
+            call regular_sample(self, t, z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np), was_in_layer)
     end subroutine monitor_sample
+
+    ! The invariant at t: the first sample sets I(t0).
+    subroutine invariant_sample(self, t, model, z)
+        type(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)
+        type(regularized_dae), intent(inout) :: model
+        real(wp) :: val, change
+        integer :: stat
+        val = model%invariant_value(t, z, stat)
+        if (.not. self%have_invariant) then
+            self%invariant0 = val
+            self%have_invariant = .true.
+            return
+        end if
+        change = abs(val - self%invariant0)
+        if (change == change) self%invariant_change = max(self%invariant_change, change)
+        if (stat == 0 .and. change <= self%invariant_tol) return
+        if (.not. self%alarm) then   ! too large, NaN, or the user routine failed
+            self%alarm = .true.
+            self%alarm_kind = alarm_invariant
+            self%alarm_message = 'the invariant changed by '//format_real(change)//' > invariant_tol = '// &
+                                 format_real(self%invariant_tol)//' at t = '//format_real(t)
+        end if
+    end subroutine invariant_sample
+
+    ! A regular sample (v, a) at t: J against the last regular sample if a
+    ! singular interval lies between them; then keep this one.
+    subroutine regular_sample(self, t, v, a, after_interval)
+        type(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, v(:), a(:)
+        logical, intent(in) :: after_interval
+        real(wp) :: dt, jump, scale
+        if (after_interval .and. self%have_regular) then
+            dt = t - self%t_regular
+            scale = max(norm2(self%v_regular), norm2(v), dt*max(norm2(self%a_regular), norm2(a)))
+            jump = 0.0_wp
+            if (scale > 0.0_wp) jump = norm2(v - self%v_regular - 0.5_wp*dt*(self%a_regular + a))/scale
+            self%jump_max = max(self%jump_max, jump)
+            if (jump > self%jump_tol .and. .not. self%alarm) then
+                self%alarm = .true.
+                self%alarm_kind = alarm_jump
+                self%alarm_message = 'the velocity jumped across the singular configuration between t = '// &
+                                     format_real(self%t_regular)//' and '//format_real(t)//' (relative jump '// &
+                                     format_real(jump)//' > jump_tol = '//format_real(self%jump_tol)//')'
+            end if
+        end if
+        self%have_regular = .true.
+        self%t_regular = t
+        self%v_regular = v
+        self%a_regular = a
+    end subroutine regular_sample
 
     function monitor_intervals(self) result(intervals)
         class(solution_monitor), intent(in) :: self

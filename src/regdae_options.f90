@@ -19,6 +19,9 @@
 !! | curvature      | yes, no (index 3: add g_xx(v,v) ...)  | yes            |
 !! | excluded       | y, vy (index 3: left out of the error test) | y        |
 !! | singular_threshold | >= 0 (sigma_min(GB) below: singular) | 0.05        |
+!! | jump_tol       | >= 0 (order >= 2: velocity-jump alarm across a singular interval, 0: off) | 0.1 |
+!! | drift_tol      | >= 0 (order >= 2: alarm when max abs(g(x, t)) exceeds it, 0: off) | 1e-2 |
+!! | invariant_tol  | >= 0 (order >= 2: alarm when the problem's invariant changes by more, 0: off) | 0 |
 !! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
 !! | integrator     | ida, dopri5 (explicit, eliminated formulation only) | ida |
@@ -71,6 +74,11 @@ module regdae_options
         logical :: curvature = .true.                  !! index 3: add g_xx(v,v) + 2 g_xt v + g_tt to r
         integer :: excluded = excluded_y               !! index 3: which variables leave the error test
         real(wp) :: singular_threshold = 0.05_wp       !! sigma_min(GB) below this at an output: singular
+        real(wp) :: jump_tol = 0.1_wp                  !! relative velocity jump across a singular interval
+                                                       !! that stops the run (regdae_err_branch); 0: no check
+        real(wp) :: drift_tol = 1.0e-2_wp              !! max |g(x, t)| that stops the run (regdae_err_drift); 0: no check
+        real(wp) :: invariant_tol = 0.0_wp             !! change of the problem's invariant that stops the run
+                                                       !! (regdae_err_invariant); 0: no check
         real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
         integer :: integrator = integrator_ida         !! ida, or dopri5 (explicit; eliminated formulation)
@@ -144,6 +152,12 @@ contains
             if (code > 0) opts%excluded = code
         case ('singular_threshold')
             call read_real(value, opts%singular_threshold, code)
+        case ('jump_tol')
+            call read_real(value, opts%jump_tol, code)
+        case ('drift_tol')
+            call read_real(value, opts%drift_tol, code)
+        case ('invariant_tol')
+            call read_real(value, opts%invariant_tol, code)
         case ('taylor_h')
             call read_real(value, opts%taylor_h, code)
         case ('mass_damping')
@@ -191,6 +205,12 @@ contains
             msg = 'gamma1 must be finite and > 0'
         else if (.not. (ieee_is_finite(opts%singular_threshold) .and. opts%singular_threshold >= 0.0_wp)) then
             msg = 'singular_threshold must be finite and >= 0'
+        else if (.not. (ieee_is_finite(opts%jump_tol) .and. opts%jump_tol >= 0.0_wp)) then
+            msg = 'jump_tol must be finite and >= 0'
+        else if (.not. (ieee_is_finite(opts%drift_tol) .and. opts%drift_tol >= 0.0_wp)) then
+            msg = 'drift_tol must be finite and >= 0'
+        else if (.not. (ieee_is_finite(opts%invariant_tol) .and. opts%invariant_tol >= 0.0_wp)) then
+            msg = 'invariant_tol must be finite and >= 0'
         else if (.not. (ieee_is_finite(opts%taylor_h) .and. opts%taylor_h > 0.0_wp)) then
             msg = 'taylor_h must be finite and > 0'
         else if (.not. (ieee_is_finite(opts%mass_damping) .and. opts%mass_damping >= 0.0_wp)) then

@@ -25,6 +25,7 @@ module regdae_regularization
     use regdae_status, only: regdae_success, regdae_err_user_callback, regdae_err_nonfinite, &
                              regdae_err_not_psd, regdae_err_singular, regdae_err_mass_matrix, status_message
     use regdae_problem, only: dae_problem
+    use regdae_velocity_index2, only: velocity_index2_problem
     use regdae_second_order_problem, only: second_order_problem
     use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
     use regdae_options, only: solver_options, method_baumgarte, method_trust_region, method_direct
@@ -70,13 +71,23 @@ module regdae_regularization
         procedure :: solve_multiplier
         !> Smallest singular value of GB from the last `evaluate`.
         procedure :: sigma_min_gb
+        !> max |g(x, t)| of the position constraint at the last evaluated point,
+        !! for models of a second-order problem (index 3: the model's g; index 2:
+        !! the wrapped problem's g, which that formulation does not enforce); -1
+        !! for a first-order problem.
+        procedure :: position_drift
+        !> The second-order problem's invariant I(x, v, t) at z = (x, v, ...), NaN if
+        !! it has none or the problem is of order 1.
+        procedure :: invariant_value
         !> Residual of the eliminated formulation, unknowns z.
         procedure :: residual_eliminated
         !> The eliminated formulation's right-hand side F (z' = F(z, t)).
         procedure :: slope_eliminated
         !> Residual of the multiplier formulation, unknowns (z, y).
         procedure :: residual_multiplier
-        procedure, private :: allocate_pieces, constraint_terms, dynamics_slope, release
+        procedure, private :: allocate_pieces, constraint_terms, release
+        !> F(z) at the last evaluated point for a given y: (x', ..., f - B y).
+        procedure :: dynamics_slope
     end type regularized_dae
 
 contains
@@ -339,6 +350,49 @@ contains
             self%message = status_message(stat)//' in the multiplier solve at t = '//format_real(t)
         end select
     end subroutine solve_multiplier
+
+    function position_drift(self, t, z, stat) result(drift)
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)   !! the last evaluated point
+        integer, intent(out) :: stat      !! the user routine's status (index 2)
+        real(wp) :: drift
+        real(wp) :: g(self%m)
+        stat = 0
+        drift = -1.0_wp
+        if (self%order >= 2) then
+            drift = maxval(abs(self%g), 1)
+        else if (allocated(self%first)) then
+            select type (p => self%first)
+            type is (velocity_index2_problem)
+                call p%second%constraint(t, z(1:p%second%n), g, stat)
+                if (stat == 0) drift = maxval(abs(g), 1)
+            end select
+        end if
+        if (self%m == 0) drift = max(drift, 0.0_wp)
+    end function position_drift
+
+    function invariant_value(self, t, z, stat) result(val)
+        use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)
+        integer, intent(out) :: stat
+        real(wp) :: val
+        integer :: n
+        stat = 0
+        val = ieee_value(1.0_wp, ieee_quiet_nan)
+        if (allocated(self%second)) then
+            n = self%n
+            call self%second%invariant(t, z(1:n), z(n + 1:2*n), val, stat)
+        else if (allocated(self%higher)) then
+            return
+        else if (allocated(self%first)) then
+            select type (p => self%first)
+            type is (velocity_index2_problem)
+                n = p%second%n
+                call p%second%invariant(t, z(1:n), z(n + 1:2*n), val, stat)
+            end select
+        end if
+    end function invariant_value
 
     !> sigma_min(GB) at the last evaluated point.
     function sigma_min_gb(self) result(sigma)

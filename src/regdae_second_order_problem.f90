@@ -36,6 +36,9 @@ module regdae_second_order_problem
         procedure :: constraint_dt => default_constraint_dt
         !> c = g_xx(v, v) + 2 g_xt v + g_tt, length m; default: difference quotient.
         procedure :: constraint_curvature => default_constraint_curvature
+        !> An invariant I(x, v, t) of the motion (e.g. the energy of a conservative
+        !! mechanism), checked when the option invariant_tol > 0; default: none (NaN).
+        procedure :: invariant => default_invariant
     end type second_order_problem
 
     abstract interface
@@ -122,6 +125,15 @@ contains
         if (stat /= 0) return
         val = val + matmul(gx, v)
     end subroutine velocity_constraint
+
+    subroutine default_invariant(self, t, x, v, val, stat)
+        use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+        class(second_order_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val      !! I(x, v, t)
+        integer, intent(inout) :: stat
+        val = ieee_value(1.0_wp, ieee_quiet_nan)
+    end subroutine default_invariant
 
     subroutine default_constraint_curvature(self, t, x, v, val, stat)
         class(second_order_problem), intent(inout) :: self

@@ -21,6 +21,9 @@ module regdae_status
     integer, parameter, public :: regdae_err_not_initialized = -109  !! solver used before a successful init
     integer, parameter, public :: regdae_err_nonfinite = -110        !! NaN or Inf in a computed quantity
     integer, parameter, public :: regdae_err_mass_matrix = -111      !! M(q) not symmetric positive definite
+    integer, parameter, public :: regdae_err_branch = -112           !! the velocity jumped across a singular interval
+    integer, parameter, public :: regdae_err_drift = -113            !! the position constraint drifted beyond drift_tol
+    integer, parameter, public :: regdae_err_invariant = -114        !! the problem's invariant changed beyond invariant_tol
 
     public :: status_message
 
@@ -58,6 +61,12 @@ contains
             msg = 'NaN or Inf encountered'
         case (regdae_err_mass_matrix)
             msg = 'the mass matrix M(q) is not symmetric positive definite'
+        case (regdae_err_branch)
+            msg = 'the velocity jumped across a singular configuration: the solution probably changed branch'
+        case (regdae_err_drift)
+            msg = 'the position constraint g(x, t) = 0 drifted beyond drift_tol'
+        case (regdae_err_invariant)
+            msg = 'the invariant of the problem changed beyond invariant_tol'
         case default
             msg = 'unknown status code'
         end select

@@ -37,7 +37,9 @@ contains
                  new_test('curvature_difference_quotient', curvature_difference_quotient), &
                  new_test('velocity_index2_jacobian', velocity_index2_jacobian), &
                  new_test('mechanical_bad_input', mechanical_bad_input), &
-                 new_test('pendulum_index3_accuracy', pendulum_index3_accuracy)]
+                 new_test('pendulum_index3_accuracy', pendulum_index3_accuracy), &
+                 new_test('branch_checks', branch_checks), &
+                 new_test('drift_and_invariant_checks', drift_and_invariant_checks)]
     end function mechanics_tests
 
     ! On the branch th2 = pi - th1, w2 = -w1, the full equations (5.2)-(5.3),
@@ -220,6 +222,107 @@ contains
         write (*, '(a,es10.2)') '    pendulum max position error: ', err
         call solver%destroy()
     end subroutine pendulum_index3_accuracy
+
+    ! The slider crank from th1 = th2 = pi/2 at rest over [0, 10], 501 outputs:
+    ! the last status and the largest deviation from the physical branch
+    ! |th1 + th2 - pi| (mod 2 pi) while the status was >= 0.
+    subroutine run_crank(opts, stat, dev, solver)
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        real(wp), intent(out) :: dev
+        type(regdae_solver), intent(inout) :: solver
+        real(wp) :: th(2)
+        integer :: k
+        dev = 0.0_wp
+        call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+        do k = 1, 500
+            if (stat < 0) exit
+            call solver%advance(0.02_wp*k, th, stat=stat)
+            if (stat >= 0) dev = max(dev, abs(modulo(th(1) + th(2), 2*pi) - pi))
+        end do
+    end subroutine run_crank
+
+    ! eps = 0 (no regularization) at index 2: at GB = 0 the branch is picked by
+    ! rounding. With regdae's checks no run may end "ok" off the physical branch
+    ! (the stability grid's silent class); without them some do, and with them
+    ! some stop with regdae_err_branch, naming the jump.
+    subroutine branch_checks(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        real(wp), parameter :: gammas(4) = [1.0e1_wp, 1.0e3_wp, 1.0e5_wp, 1.0e7_wp]
+        real(wp) :: dev
+        integer :: i, stat, silent_with, silent_without, stopped
+        logical :: named
+        silent_with = 0
+        silent_without = 0
+        stopped = 0
+        named = .true.
+        do i = 1, size(gammas)
+            opts%index = 2
+            opts%eps = 0.0_wp
+            opts%gamma = gammas(i)
+            opts%rtol = 1.0e-7_wp
+            opts%atol = 1.0e-7_wp
+            call run_crank(opts, stat, dev, solver)
+            if (stat >= 0 .and. dev > 0.1_wp) silent_with = silent_with + 1
+            if (stat == regdae_err_branch) then
+                stopped = stopped + 1
+                named = named .and. index(solver%message(), 'velocity jumped') > 0
+            end if
+            call solver%destroy()
+            opts%jump_tol = 0.0_wp
+            opts%drift_tol = 0.0_wp
+            call run_crank(opts, stat, dev, solver)
+            if (stat >= 0 .and. dev > 0.1_wp) silent_without = silent_without + 1
+            call solver%destroy()
+            opts = solver_options()
+        end do
+        write (*, '(a,3i3)') '    silent with checks, silent without, stopped: ', silent_with, silent_without, stopped
+        call chk%equal(silent_with, 0, 'no run ends ok off the branch with the checks')
+        call chk%true(silent_without > 0, 'without them some do (what the checks catch)')
+        call chk%true(stopped > 0 .and. named, 'stopped with regdae_err_branch, the message names the jump')
+    end subroutine branch_checks
+
+    ! Index 2 with gamma = 10 and eps = 1e-2 lets g drift to ~0.1 (the formulation
+    ! does not enforce g = 0): stopped by drift_tol = 1e-2. The energy as the
+    ! crank's invariant: changes of ~1e-4 at rtol = 1e-5 pass invariant_tol = 1,
+    ! fail invariant_tol = 1e-9; a problem without an invariant is refused.
+    subroutine drift_and_invariant_checks(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        real(wp) :: dev
+        integer :: stat
+        character(len=:), allocatable :: msg
+        opts%index = 2
+        opts%gamma = 10.0_wp
+        opts%eps = 1.0e-2_wp
+        call run_crank(opts, stat, dev, solver)
+        call chk%equal(stat, regdae_err_drift, 'index 2 drift stopped')
+        call chk%true(index(solver%message(), 'drift_tol') > 0, 'message names drift_tol')
+        call solver%destroy()
+        opts = solver_options()
+        opts%invariant_tol = 1.0_wp
+        call run_crank(opts, stat, dev, solver)
+        st = solver%statistics()
+        call chk%equal(stat, regdae_success, 'energy within 1')
+        call chk%true(st%invariant_change > 0.0_wp .and. st%invariant_change < 1.0_wp, 'invariant_change reported')
+        call chk%true(st%max_drift < 1.0e-6_wp .and. st%velocity_jump < 0.1_wp, 'drift and jump statistics small')
+        write (*, '(a,3es10.2)') '    invariant_change, max_drift, velocity_jump: ', st%invariant_change, &
+            st%max_drift, st%velocity_jump
+        call solver%destroy()
+        opts%invariant_tol = 1.0e-9_wp
+        call run_crank(opts, stat, dev, solver)
+        call chk%equal(stat, regdae_err_invariant, 'energy beyond 1e-9 stopped')
+        call solver%destroy()
+        call solver%init(new_pendulum(9.81_wp), 0.0_wp, [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_bad_input, 'invariant_tol without an invariant refused')
+        call chk%true(index(solver%message(), 'invariant') > 0, 'message says why')
+        call set_option(opts, 'jump_tol', '-1', stat, msg)
+        call chk%equal(stat, regdae_err_bad_input, 'jump_tol < 0 refused')
+    end subroutine drift_and_invariant_checks
 
     subroutine bad_mass_matrix(self, t, q, mass, stat)
         class(bad_mass), intent(inout) :: self

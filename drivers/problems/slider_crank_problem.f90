@@ -37,6 +37,8 @@ module slider_crank_problem
         procedure :: constraint_curvature => crank_curvature
         !> Total energy T + V of a state (th, w).
         procedure :: energy => crank_energy
+        !> The energy as regdae's invariant (checked with invariant_tol > 0).
+        procedure :: invariant => crank_invariant
     end type slider_crank
 
     !> The slider crank with its constraint given twice (m = 2): GB has rank 1 for
@@ -175,6 +177,14 @@ contains
             call curvature_difference(self, t, x, v, val, stat)
         end if
     end subroutine crank_curvature
+
+    subroutine crank_invariant(self, t, x, v, val, stat)
+        class(slider_crank), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val
+        integer, intent(inout) :: stat
+        val = self%energy(x(1:2), v(1:2))
+    end subroutine crank_invariant
 
     pure real(wp) function crank_energy(self, th, w) result(e)
         class(slider_crank), intent(in) :: self

@@ -31,15 +31,18 @@ TXT
 
 - **Figs. 5.6 and 5.9 (Baumgarte, index 2)**: the paper's run at gamma = 1e3 "works for this
   error tolerance and parameters" and the one at gamma = 1e6 fails; the paper adds that Baumgarte
-  "is not robust and often fails at the singularities". Ours pass some singular configurations and
-  switch branch at a later one (the table gives the time), and *which* pass it is changes with
-  rounding: during development a change that only altered rounding in the multiplier solve (a
-  closed form instead of LAPACK for one constraint) moved the gamma = 1e6 run from passing all six
-  configurations to switching at t ~ 6.1. At GB = 0 Baumgarte's multiplier equation carries no
-  information about the branch, so the branch is picked by rounding and step-size history. That is
-  the paper's verdict on Baumgarte, stronger: its outcome is not reproducible. The trust region
-  (Figs. 5.8, 5.11) passes every time. regdae flags a branch switch instead of returning it as a
-  solution. The paper does not state its interval or initial values either.
+  "is not robust and often fails at the singularities". Ours pass some singular configurations; at
+  another one they either switch branch or are stopped by regdae's velocity-jump check
+  (`regdae_err_branch`: the velocity changed across the pass by more than the accelerations
+  explain, `jump_tol`), and *which* pass and which outcome both change with rounding: during
+  development, changes that only altered rounding (a closed form instead of LAPACK for one
+  constraint; the order of a matrix-vector sum) moved the gamma = 1e6 run between passing all six
+  configurations and switching at t ~ 6.1, and the gamma = 1e3 run between switching at t ~ 6.1
+  and being stopped at t ~ 2.6. At GB = 0 Baumgarte's multiplier equation carries no information
+  about the branch, so the branch is picked by rounding and step-size history. That is the paper's
+  verdict on Baumgarte, stronger: its outcome is not reproducible. The trust region (Figs. 5.8,
+  5.11) passes every time. regdae reports a branch switch (or the impulse that causes it) instead
+  of returning it as a solution. The paper does not state its interval or initial values either.
 - **Figs. 5.12 and 5.13 (Baumgarte and direct, index 3)**: the paper's runs "converge to
   incorrect solutions", which it attributes to the loose error control of index-3 codes. With the
   paper's choice (v and y out of the error test, no curvature term, rtol = 1e-5) ours stay on the
