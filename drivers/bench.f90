@@ -9,7 +9,10 @@
 !! in all (at most 201; the machine's timing noise shrinks with the count), setup included; outputs are interpolated (no
 !! stop at output times) and nothing is printed while timing.
 !!
-!! Usage: bench [reps=5] [min_time=0.05] [tol_from=3] [tol_to=10] [problem=all|crank|ex51]
+!! Usage: bench [reps=5] [min_time=0.05] [tol_from=3] [tol_to=10] [problem=all|crank|ex51|others]
+!! (others: order3, redundant, singular_mass and the linear family, every method and
+!! formulation; with tol_to >= 10 the explicit integrator, IDA and the oracles also run
+!! at 1e-11 and 1e-12.)
 !! Output: '#' lines and rows 'problem config rtol max_err seconds steps res_evals jac_evals status',
 !! status ok, failed, or off_branch (a slider-crank run with max |th1 + th2 - pi| > 0.1).
 program bench_driver
@@ -20,6 +23,11 @@ program bench_driver
     use reference_ode, only: integrate_reference
     use dopri5, only: dopri5_integrate
     use ida_peers, only: run_peer, peer_kkt, peer_index2
+    use slider_crank_problem, only: new_redundant_slider_crank
+    use order3_problem, only: new_order3, order3_exact
+    use massless_problem, only: new_massless_carrier
+    use pendulum_problem, only: pendulum_angle
+    use theory_problems, only: theory_cases, new_theory_problem, theory_problem
     use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number
     implicit none
     character(len=*), parameter :: prog = 'bench'
@@ -27,6 +35,11 @@ program bench_driver
     integer, parameter :: branch_left = 1000   ! status of a run off the physical branch
     integer, parameter :: max_reps = 201
     real(wp) :: crank_times(1001), ex51_times(201), ref(2, 1001), reps_r, from_r, to_r, tol, min_time
+    real(wp) :: mass_times(501), mass_ref(2, 501)
+    character(len=12), parameter :: method_names(3) = [character(len=12) :: 'trust_region', 'direct', 'baumgarte']
+    character(len=12), parameter :: formulation_names(2) = [character(len=12) :: 'eliminated', 'multiplier']
+    type(pendulum_angle) :: angle
+    integer :: im, jf, ic
     integer :: i, k, reps, stat
     character(len=:), allocatable :: key, value, which
     logical :: ok
@@ -46,7 +59,8 @@ program bench_driver
         case ('tol_from'); call read_number(prog, key, value, from_r)
         case ('tol_to'); call read_number(prog, key, value, to_r)
         case ('problem'); which = value
-            if (which /= 'all' .and. which /= 'crank' .and. which /= 'ex51') call die_usage(prog, 'bad problem '//value)
+            if (which /= 'all' .and. which /= 'crank' .and. which /= 'ex51' .and. which /= 'others') &
+                call die_usage(prog, 'bad problem '//value)
         case default; call die_usage(prog, 'unknown option "'//key//'"')
         end select
     end do
@@ -54,18 +68,20 @@ program bench_driver
     crank_times = [(0.01_wp*k, k=0, 1000)]
     ex51_times = [(-1.0_wp + 0.01_wp*k, k=0, 200)]
     call integrate_reference(reduced, 0.0_wp, [pi/2, 0.0_wp], crank_times, ref, 1.0e-13_wp, 1.0e-13_wp, stat)
+    mass_times = [(0.01_wp*k, k=0, 500)]
+    call integrate_reference(angle, 0.0_wp, [pi/2, 0.0_wp], mass_times, mass_ref, 1.0e-13_wp, 1.0e-13_wp, stat)
     write (*, '(a)') '# regdae bench: median of at least '//format_int(reps)//' runs (and '//num(min_time)// &
         ' s) in one process, setup included'
     write (*, '(a)') '# problem config rtol max_err seconds steps res_evals jac_evals status'
     do k = nint(from_r), nint(to_r)
         tol = 10.0_wp**(-k)
         if (which == 'all' .or. which == 'crank') then
-            call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol)
+            call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
             call crank('crank3', 'trust_region eps=1e-6', 3, 'trust_region', 1.0e-6_wp, tol)
             call crank('crank3', 'trust_region eps=1e-12 excluded=vy', 3, 'trust_region', 1.0e-12_wp, tol, excl='vy')
             call crank('crank3', 'baumgarte', 3, 'baumgarte', 1.0e-12_wp, tol)
-            call crank('crank3', 'trust_region eps=1e-12 dopri5 gamma1=20', 3, 'trust_region', 1.0e-12_wp, tol, &
-                       rk=.true.)
+            call crank('crank3', 'trust_region eps=1e-14 dopri5 gamma1=20', 3, 'trust_region', 1.0e-14_wp, tol, &
+                       rk=.true., pair=.true.)
             call crank('crank2', 'trust_region gamma=1e6 eps=1e-12', 2, 'trust_region', 1.0e-12_wp, tol)
             call oracle_dopri(tol)
             call oracle_cvode(tol)
@@ -76,24 +92,58 @@ program bench_driver
             call ex51_run('trust_region eps=1e-12', 'trust_region', 1.0e-12_wp, tol)
             call ex51_run('direct eps=1e-12', 'direct', 1.0e-12_wp, tol)
         end if
+        if (which == 'all' .or. which == 'others') then
+            ! The other problems, every method and formulation (failures are rows too).
+            do im = 1, size(method_names)
+                do jf = 1, size(formulation_names)
+                    call timed('order3', tol, method_names(im), formulation_names(jf), 1.0e-9_wp)
+                    call timed('redundant', tol, method_names(im), formulation_names(jf), 1.0e-12_wp)
+                    call timed('singular_mass', tol, method_names(im), formulation_names(jf), 1.0e-12_wp)
+                    do ic = 1, size(theory_cases)
+                        call timed('linear_'//trim(theory_cases(ic)), tol, method_names(im), formulation_names(jf), &
+                                   1.0e-10_wp)
+                    end do
+                end do
+            end do
+        end if
     end do
+    ! Beyond 1e-10 for the explicit integrator and the oracles: where 1e-8 is reached.
+    if (to_r >= 10 .and. (which == 'all' .or. which == 'crank')) then
+        do k = 11, 12
+            tol = 10.0_wp**(-k)
+            call crank('crank3', 'trust_region eps=1e-14 dopri5 gamma1=20', 3, 'trust_region', 1.0e-14_wp, tol, &
+                       rk=.true., pair=.true.)
+            call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
+            call oracle_dopri(tol)
+            call oracle_cvode(tol)
+        end do
+    end if
 
 contains
 
-    subroutine crank(name, config, index, method, eps, tol, excl, rk)
+    ! With `pair`, every repetition also times the Dormand-Prince oracle right after
+    ! regdae's run, and a row 'crank_oracle "dopri5 reduced ODE, paired: CONFIG"'
+    ! follows: the ratio of the two is then immune to the machine's slow drifts.
+    subroutine crank(name, config, index, method, eps, tol, excl, rk, pair)
         character(len=*), intent(in) :: name, config, method
         integer, intent(in) :: index
         real(wp), intent(in) :: eps, tol
         character(len=*), intent(in), optional :: excl
         logical, intent(in), optional :: rk   ! explicit integrator with gamma1 = 20, gamma0 = 200
+        logical, intent(in), optional :: pair
         type(solver_options) :: opts
         type(regdae_solver) :: solver
         type(solver_stats) :: st
         character(len=:), allocatable :: msg
         type(slider_crank) :: crank_problem
-        real(wp) :: th(2), w(2), err, dev, seconds(max_reps)
+        real(wp) :: th(2), w(2), err, dev, seconds(max_reps), oracle_seconds(max_reps), states(2, 1001)
         integer(int64) :: c0, c1, rate
-        integer :: r, j, stat
+        integer :: r, j, stat, o_steps, o_evals
+        logical :: paired
+        type(slider_crank_reduced) :: sys
+        type(solver_stats) :: o_st
+        paired = .false.
+        if (present(pair)) paired = pair
         dev = 0.0_wp
         opts%index = index
         opts%rtol = tol
@@ -126,12 +176,118 @@ contains
             seconds(r) = real(c1 - c0, wp)/real(rate, wp)
             st = solver%statistics()
             call solver%destroy()
+            if (paired) then
+                call system_clock(c0, rate)
+                call dopri5_integrate(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, o_steps, o_evals)
+                call system_clock(c1)
+                oracle_seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+            end if
             if (enough(r, seconds)) exit
         end do
         ! A run that left the physical branch (|th1 + th2 - pi| > 0.1) is not a good run.
         if (stat == regdae_success .and. dev > 0.1_wp) stat = branch_left
         call row(name, config, tol, err, median(seconds(1:r)), st, stat)
+        if (paired) then
+            o_st%steps = o_steps
+            o_st%res_evals = o_evals
+            call row('crank_oracle', 'dopri5 reduced ODE, paired: '//config, tol, &
+                     maxval(abs(states(1, :) - ref(1, :))), median(oracle_seconds(1:r)), o_st, regdae_success)
+        end if
     end subroutine crank
+
+    ! Median time of one problem/method/formulation at rtol = atol = tol, error
+    ! against its exact or reference solution (`one_run`).
+    subroutine timed(problem, tol, method, formulation, eps)
+        character(len=*), intent(in) :: problem, method, formulation
+        real(wp), intent(in) :: tol, eps
+        type(solver_options) :: opts
+        type(solver_stats) :: st
+        character(len=:), allocatable :: msg
+        real(wp) :: err, seconds(max_reps)
+        integer(int64) :: c0, c1, rate
+        integer :: r, stat
+        opts%rtol = tol
+        opts%atol = tol
+        opts%eps = eps
+        call set_option(opts, 'method', method, stat, msg)
+        call set_option(opts, 'formulation', formulation, stat, msg)
+        do r = 1, max_reps
+            call system_clock(c0, rate)
+            call one_run(problem, opts, err, st, stat)
+            call system_clock(c1)
+            seconds(r) = real(c1 - c0, wp)/real(rate, wp)
+            if (enough(r, seconds)) exit
+        end do
+        call row(problem, trim(method)//' '//trim(formulation)//' eps='//num(eps), tol, err, median(seconds(1:r)), &
+                 st, stat)
+    end subroutine timed
+
+    ! One run: order3 (exact x = 1 + sin t on [-1, 1], 201 outputs, steps end at each),
+    ! redundant (the slider crank with its constraint twice, index 3, against the
+    ! reduced ODE, 1001 outputs), singular_mass (the massless carrier, mu = 1e-8,
+    ! against the hand-eliminated pendulum, 501 outputs on [0, 5]), linear_<case>
+    ! (the manufactured linear DAEs of doc/theory.md, exact x, 201 outputs).
+    subroutine one_run(problem, opts_in, err, st, stat)
+        character(len=*), intent(in) :: problem
+        type(solver_options), intent(in) :: opts_in
+        real(wp), intent(out) :: err
+        type(solver_stats), intent(out) :: st
+        integer, intent(out) :: stat
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        real(wp) :: x1(1), xs(1, 3), ye, th(2), q(3), t
+        real(wp), allocatable :: x(:)
+        integer :: j
+        opts = opts_in
+        err = 0.0_wp
+        select case (problem)
+        case ('order3')
+            opts%stop_at_output = .true.
+            call order3_exact(-1.0_wp, xs, ye)
+            call solver%init(new_order3(), -1.0_wp, xs, opts, stat)
+            do j = 0, 200
+                if (stat < 0) exit
+                t = -1.0_wp + 0.01_wp*j
+                call solver%advance(t, x1, stat=stat)
+                call order3_exact(t, xs, ye)
+                if (stat >= 0) err = max(err, abs(x1(1) - xs(1, 1)))
+            end do
+        case ('redundant')
+            call solver%init(new_redundant_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+            do j = 1, size(crank_times)
+                if (stat < 0) exit
+                call solver%advance(crank_times(j), th, stat=stat)
+                if (stat >= 0) err = max(err, abs(th(1) - ref(1, j)), abs(th(2) - (pi - ref(1, j))))
+            end do
+        case ('singular_mass')
+            opts%mass_damping = 1.0e-8_wp
+            call solver%init(new_massless_carrier(9.81_wp, .false.), 0.0_wp, [1.0_wp, 0.0_wp, 0.0_wp], &
+                             [0.0_wp, 0.0_wp, 0.0_wp], opts, stat)
+            do j = 1, size(mass_times)
+                if (stat < 0) exit
+                call solver%advance(mass_times(j), q, stat=stat)
+                if (stat >= 0) err = max(err, abs(q(1) - sin(mass_ref(1, j))), abs(q(2) + cos(mass_ref(1, j))))
+            end do
+        case default   ! linear_<case>
+            opts%stop_at_output = .true.
+            block
+                type(theory_problem) :: lin
+                lin = new_theory_problem(problem(8:))
+                allocate (x(lin%n))
+                call solver%init(lin, -1.0_wp, lin%x_exact(-1.0_wp), opts, stat)
+                do j = 0, 200
+                    if (stat < 0) exit
+                    t = -1.0_wp + 0.01_wp*j
+                    call solver%advance(t, x, stat=stat)
+                    if (stat >= 0) err = max(err, maxval(abs(x - lin%x_exact(t))))
+                end do
+            end block
+        end select
+        if (stat > 0) stat = regdae_success
+        if (stat /= regdae_success) stat = regdae_err_integration
+        st = solver%statistics()
+        call solver%destroy()
+    end subroutine one_run
 
     subroutine ex51_run(config, method, eps, tol)
         character(len=*), intent(in) :: config, method

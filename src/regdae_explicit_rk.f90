@@ -88,8 +88,8 @@ contains
         real(wp), intent(out) :: zout(:)
         integer, intent(out) :: stat
         type(solution_monitor), intent(inout), optional :: monitor
-        real(wp) :: h, e, theta, fac
-        integer :: taken, n
+        real(wp) :: h, e, theta, fac, c_dz, c_k0, c_k1
+        integer :: taken, n, i
 
         n = size(self%z)
         stat = regdae_success
@@ -136,8 +136,13 @@ contains
         else
             h = self%t - self%t_old
             theta = (tout - self%t_old)/h
-            zout = (1 - theta)*self%z_old + theta*self%z + theta*(theta - 1)* &
-                   ((1 - 2*theta)*(self%z - self%z_old) + (theta - 1)*h*self%k_old + theta*h*self%k1)
+            c_dz = theta*(theta - 1)*(1 - 2*theta)
+            c_k0 = theta*(theta - 1)**2*h
+            c_k1 = theta**2*(theta - 1)*h
+            do i = 1, n
+                zout(i) = (1 - theta)*self%z_old(i) + theta*self%z(i) + c_dz*(self%z(i) - self%z_old(i)) + &
+                          c_k0*self%k_old(i) + c_k1*self%k1(i)
+            end do
         end if
     contains
         subroutine self_step(h, err_norm, stat)

@@ -502,7 +502,7 @@ contains
             return
         end if
         core%pending_stat = regdae_success
-        core%pending_message = ''
+        if (len(core%pending_message) > 0) core%pending_message = ''
         if (core%opts%integrator == integrator_dopri5) then
             u => core%z_rk
             if (tout > core%t) then
@@ -689,7 +689,11 @@ contains
         integer, intent(out) :: stat
         stat = code
         self%last_stat = code
-        self%last_message = text
+        if (.not. allocated(self%last_message)) then
+            self%last_message = text
+        else if (len(text) > 0 .or. len(self%last_message) > 0) then   ! no reallocation per output
+            self%last_message = text
+        end if
     end subroutine solver_record
 
     subroutine solver_destroy(self)
