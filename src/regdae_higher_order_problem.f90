@@ -9,6 +9,7 @@
 !! x^(k). Same `stat` convention as `dae_problem`.
 module regdae_higher_order_problem
     use regdae_kinds, only: wp
+    use regdae_differences, only: central_difference_step
     implicit none
     private
 
@@ -88,7 +89,7 @@ contains
         real(wp), intent(out) :: val(:)
         integer, intent(inout) :: stat
         real(wp) :: d, gm(size(val))
-        d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(abs(t), 1.0_wp)
+        d = central_difference_step(t)
         call self%constraint(t + d, x, val, stat)
         if (stat /= 0) return
         call self%constraint(t - d, x, gm, stat)

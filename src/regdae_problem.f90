@@ -14,6 +14,7 @@
 !! B = -C^T here.
 module regdae_problem
     use regdae_kinds, only: wp
+    use regdae_differences, only: central_difference_step
     implicit none
     private
 
@@ -81,7 +82,7 @@ contains
         real(wp) :: d, tp, tm
         real(wp) :: gm(size(v))
 
-        d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(abs(t), 1.0_wp)
+        d = central_difference_step(t)
         tp = t + d
         tm = t - d
         call problem%constraint(tp, x, v, stat)

@@ -12,6 +12,7 @@
 !! supplies only G.
 module regdae_second_order_problem
     use regdae_kinds, only: wp
+    use regdae_differences, only: central_difference_step
     implicit none
     private
 
@@ -101,7 +102,7 @@ contains
         real(wp) :: d, tp, tm
         real(wp) :: gm(size(val))
 
-        d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(abs(t), 1.0_wp)
+        d = central_difference_step(t)
         tp = t + d
         tm = t - d
         call self%constraint(tp, x, val, stat)
@@ -153,7 +154,7 @@ contains
         integer, intent(inout) :: stat
         real(wp) :: d, minus(size(val))
 
-        d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(1.0_wp, maxval(abs(x)), abs(t))/max(1.0_wp, maxval(abs(v)))
+        d = central_difference_step(max(maxval(abs(x)), abs(t)))/max(1.0_wp, maxval(abs(v)))
         call velocity_constraint(self, t + d, x + d*v, v, val, stat)
         if (stat /= 0) return
         call velocity_constraint(self, t - d, x - d*v, v, minus, stat)

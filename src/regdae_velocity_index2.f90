@@ -7,6 +7,7 @@
 !! The position constraint g = 0 is not enforced (it drifts like in the paper).
 module regdae_velocity_index2
     use regdae_kinds, only: wp
+    use regdae_differences, only: central_difference_step
     use regdae_problem, only: dae_problem
     use regdae_second_order_problem, only: second_order_problem, velocity_constraint
     implicit none
@@ -80,7 +81,7 @@ contains
         call self%second%constraint_jacobian(t, x(1:n), a(:, n + 1:), stat)
         if (stat /= 0) return
         do j = 1, n
-            d = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(1.0_wp, abs(x(j)))
+            d = central_difference_step(x(j))
             xp = x(1:n)
             xp(j) = x(j) + d
             call velocity_constraint(self%second, t, xp, x(n + 1:), plus, stat)
