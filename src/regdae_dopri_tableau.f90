@@ -1,5 +1,9 @@
 !> The Dormand-Prince 5(4) tableau (Dormand & Prince 1980): nodes c, stage
-!! weights a, 5th-order weights b, and e = b - b_hat for the embedded error estimate.
+!! weights a, 5th-order weights b, e = b - b_hat for the embedded error estimate,
+!! and the weights d of the 4th-order continuous extension (Shampine 1986, as in
+!! Hairer, Norsett & Wanner, Solving ODEs I, section II.6): with theta in [0, 1],
+!! dy = y1 - y0, p = h k1 - dy, q = dy - h k7 - p, r = h sum_i d_i k_i,
+!! $$ y(t_0 + \theta h) = y_0 + \theta (dy + (1-\theta)(p + \theta (q + (1-\theta) r))). $$
 !! Shared by `integrator=dopri5` and the benchmark's oracle.
 module regdae_dopri_tableau
     use regdae_kinds, only: wp
@@ -19,5 +23,8 @@ module regdae_dopri_tableau
                            b6 = 11.0_wp/84
     real(wp), parameter :: e1 = 71.0_wp/57600, e3 = -71.0_wp/16695, e4 = 71.0_wp/1920, e5 = -17253.0_wp/339200, &
                            e6 = 22.0_wp/525, e7 = -1.0_wp/40
+    real(wp), parameter :: d1 = -12715105075.0_wp/11282082432.0_wp, d3 = 87487479700.0_wp/32700410799.0_wp, &
+                           d4 = -10690763975.0_wp/1880347072.0_wp, d5 = 701980252875.0_wp/199316789632.0_wp, &
+                           d6 = -1453857185.0_wp/822651844.0_wp, d7 = 69997945.0_wp/29380423.0_wp
 
 end module regdae_dopri_tableau

@@ -2,7 +2,8 @@
 !! system z' = F(z, t) (option `integrator=dopri5`), an alternative to IDA when the
 !! regularized system is not stiff: moderate Baumgarte weights (e.g. gamma1 = 20,
 !! gamma0 = gamma1^2/2 for index 3) and no stiff forces. Step-size control on the
-!! embedded 4th-order solution, first-same-as-last stages, cubic Hermite output.
+!! embedded 4th-order solution, first-same-as-last stages, 4th-order continuous
+!! extension for the output.
 !! F comes from the same regularized model IDA uses (`slope_eliminated`; IDA's
 !! residual is z' - F), so every method, order and problem type works unchanged.
 module regdae_explicit_rk
@@ -21,6 +22,7 @@ module regdae_explicit_rk
         real(wp), allocatable :: z(:), k1(:), z_old(:), k_old(:)
         real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:), z_new(:), z_stage(:), work(:), y_work(:)
         integer :: steps = 0, evals = 0, rejects = 0
+        integer :: stiff_count = 0, quiet_count = 0   ! the stiffness test's counters
         character(len=:), allocatable :: message
     contains
         !> Start at (t0, z0) with the slope at z0.
@@ -88,7 +90,7 @@ contains
         real(wp), intent(out) :: zout(:)
         integer, intent(out) :: stat
         type(solution_monitor), intent(inout), optional :: monitor
-        real(wp) :: h, e, theta, fac, c_dz, c_k0, c_k1
+        real(wp) :: h, e, theta, fac, dz, p, q, r
         integer :: taken, n, i
 
         n = size(self%z)
@@ -107,6 +109,24 @@ contains
                 return
             end if
             call self_step(h, e, stat)
+            if (stat == regdae_success .and. e <= 1.0_wp) then
+                ! Stiffness test (as in Hairer's DOPRI5): h rho, rho ~ |k7 - k6| / |z_new - z6|
+                ! from the two stages at t + h, beyond the stability boundary (3.25) for
+                ! 15 accepted steps without 6 quiet ones in between: the step size is
+                ! limited by stability, and the error estimate no longer protects the result.
+                if (stiff_step(h)) then
+                    self%stiff_count = self%stiff_count + 1
+                    self%quiet_count = 0
+                    if (self%stiff_count >= 15) then
+                        call fail('the regularized system is stiff here (h |lambda| at the stability limit '// &
+                                  'of the explicit method for 15 steps): use integrator=ida, or smaller gamma1, gamma0')
+                        return
+                    end if
+                else
+                    self%quiet_count = self%quiet_count + 1
+                    if (self%quiet_count >= 6) self%stiff_count = 0
+                end if
+            end if
             if (stat /= regdae_success .or. .not. (e <= 1.0_wp)) then
                 ! A rejected step, or a failed evaluation: retry smaller.
                 self%rejects = self%rejects + 1
@@ -130,18 +150,21 @@ contains
             self%h = h*min(5.0_wp, max(0.2_wp, fac))
             if (present(monitor)) call monitor%sample(self%t, model, self%z, self%k1)
         end do
-        ! Cubic Hermite interpolation on [t_old, t] (exact at the ends).
         if (tout >= self%t) then
             zout = self%z
         else
+            ! The 4th-order continuous extension (regdae_dopri_tableau) on the last
+            ! accepted step [t_old, t]: its stages k_old (first), k3 ... k6 and k1 (last)
+            ! are intact, since a step is taken only when tout lies beyond t.
             h = self%t - self%t_old
             theta = (tout - self%t_old)/h
-            c_dz = theta*(theta - 1)*(1 - 2*theta)
-            c_k0 = theta*(theta - 1)**2*h
-            c_k1 = theta**2*(theta - 1)*h
             do i = 1, n
-                zout(i) = (1 - theta)*self%z_old(i) + theta*self%z(i) + c_dz*(self%z(i) - self%z_old(i)) + &
-                          c_k0*self%k_old(i) + c_k1*self%k1(i)
+                dz = self%z(i) - self%z_old(i)
+                p = h*self%k_old(i) - dz
+                q = dz - h*self%k1(i) - p
+                r = h*(d1*self%k_old(i) + d3*self%k3(i) + d4*self%k4(i) + d5*self%k5(i) + d6*self%k6(i) + &
+                       d7*self%k1(i))
+                zout(i) = self%z_old(i) + theta*(dz + (1 - theta)*(p + theta*(q + (1 - theta)*r)))
             end do
         end if
     contains
@@ -174,6 +197,15 @@ contains
             self%work(:) = h*(e1*self%k1 + e3*self%k3 + e4*self%k4 + e5*self%k5 + e6*self%k6 + e7*self%k7)
             err_norm = sqrt(sum((self%work/(atol + rtol*max(abs(self%z), abs(self%z_new))))**2)/n)
         end subroutine self_step
+
+        logical function stiff_step(h)
+            real(wp), intent(in) :: h
+            real(wp) :: num, den
+            num = norm2(self%k7 - self%k6)
+            den = norm2(self%z_new - self%z_stage)   ! z_stage: the sixth stage's argument
+            stiff_step = .false.
+            if (den > 0.0_wp) stiff_step = (h*num > 3.25_wp*den)
+        end function stiff_step
 
         subroutine fail(text)
             character(len=*), intent(in) :: text

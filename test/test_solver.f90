@@ -342,6 +342,7 @@ contains
         real(wp) :: x_ida(0:nout), x_rk(0:nout)
         integer :: s1, s2, stat
         opts = options(method_trust_region, formulation_eliminated, lsq_auto, 1.0e-6_wp)
+        opts%gamma = 10.0_wp   ! non-stiff: the explicit method's steps are not limited by -gamma
         call run_ex51(opts, orientation_psd, x_ida, s1)
         opts%integrator = integrator_dopri5
         call run_ex51(opts, orientation_psd, x_rk, s2)
@@ -361,6 +362,16 @@ contains
         call solver%init(new_ex51(orientation_psd), t0, [0.0_wp], opts, stat)
         call chk%equal(stat, regdae_err_bad_input, 'dopri5 with the multiplier formulation refused')
         call chk%true(index(solver%message(), 'eliminated') > 0, 'message says why')
+        ! gamma = 1e3 makes the regularized system stiff (eigenvalue -1e3): the stiffness
+        ! test stops the explicit method instead of crawling at its stability limit.
+        opts%formulation = formulation_eliminated
+        opts%gamma = 1.0e3_wp
+        call run_ex51(opts, orientation_psd, x_rk, s2)
+        call solver%init(new_ex51(orientation_psd), t0, [0.0_wp], opts, stat)
+        call solver%advance(0.5_wp, x_rk(0:0), x_ida(0:0), stat)
+        call chk%equal(stat, regdae_err_integration, 'stiff system stopped')
+        call chk%true(index(solver%message(), 'stiff') > 0, 'message says stiff')
+        call solver%destroy()
     end subroutine explicit_integrator
 
     ! advance without y: the same x (bitwise: the output-time evaluation does not
@@ -376,7 +387,10 @@ contains
         do pass = 1, 2
             opts = options(method_trust_region, formulation_eliminated, lsq_auto, 1.0e-6_wp)
             opts%stop_at_output = .false.
-            if (pass == 2) opts%integrator = integrator_dopri5
+            if (pass == 2) then
+                opts%integrator = integrator_dopri5
+                opts%gamma = 10.0_wp   ! non-stiff for the explicit method
+            end if
             call with_y%init(new_ex51(orientation_psd), t0, [0.0_wp], opts, sa)
             call without_y%init(new_ex51(orientation_psd), t0, [0.0_wp], opts, sb)
             diff = 0.0_wp

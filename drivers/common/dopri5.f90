@@ -1,5 +1,5 @@
 !> A small explicit Dormand-Prince 5(4) integrator with step-size control and
-!! cubic Hermite output: the benchmark's oracle for the slider crank's reduced
+!! its 4th-order continuous extension for the output: the benchmark's oracle for the slider crank's reduced
 !! ODE (the speed any DAE method here is measured against), with the tableau
 !! of `regdae_dopri_tableau`.
 module dopri5
@@ -13,14 +13,14 @@ module dopri5
 contains
 
     !> Integrate y' = F(t, y) from (t0, y0) to the ascending `times`; states(:, k)
-    !! at times(k) by cubic Hermite interpolation between steps. `steps` counts
+    !! at times(k) by the continuous extension of the step. `steps` counts
     !! accepted steps, `evals` right-hand-side evaluations.
     subroutine dopri5_integrate(system, t0, y0, times, states, rtol, atol, steps, evals)
         class(ode_system), intent(inout) :: system
         real(wp), intent(in) :: t0, y0(:), times(:), rtol, atol
         real(wp), intent(out) :: states(:, :)
         integer, intent(out) :: steps, evals
-        real(wp), dimension(size(y0)) :: y, ynew, k1, k2, k3, k4, k5, k6, k7, err
+        real(wp), dimension(size(y0)) :: y, ynew, k1, k2, k3, k4, k5, k6, k7, err, dy, p, q, r
         real(wp) :: t, h, tend, e, theta, fac
         integer :: iout, n
 
@@ -51,12 +51,17 @@ contains
             err = h*(e1*k1 + e3*k3 + e4*k4 + e5*k5 + e6*k6 + e7*k7)
             e = sqrt(sum((err/(atol + rtol*max(abs(y), abs(ynew))))**2)/n)
             if (e <= 1.0_wp) then
-                ! Outputs in (t, t + h]: cubic Hermite with y, y' at both ends.
+                ! Outputs in (t, t + h]: the continuous extension (regdae_dopri_tableau).
+                if (times(iout) <= t + h) then
+                    dy = ynew - y
+                    p = h*k1 - dy
+                    q = dy - h*k7 - p
+                    r = h*(d1*k1 + d3*k3 + d4*k4 + d5*k5 + d6*k6 + d7*k7)
+                end if
                 do while (iout <= size(times))
                     if (times(iout) > t + h) exit
                     theta = (times(iout) - t)/h
-                    states(:, iout) = (1 - theta)*y + theta*ynew + theta*(theta - 1)* &
-                                      ((1 - 2*theta)*(ynew - y) + (theta - 1)*h*k1 + theta*h*k7)
+                    states(:, iout) = y + theta*(dy + (1 - theta)*(p + theta*(q + (1 - theta)*r)))
                     iout = iout + 1
                 end do
                 t = t + h
