@@ -23,6 +23,9 @@ module regdae_explicit_rk
         real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:), z_new(:), z_stage(:), work(:), y_work(:)
         integer :: steps = 0, evals = 0, rejects = 0
         integer :: stiff_count = 0, quiet_count = 0   ! the stiffness test's counters
+        ! the continuous extension's vectors of the step ending at dense_t
+        real(wp), allocatable :: dense_dz(:), dense_p(:), dense_q(:), dense_r(:)
+        real(wp) :: dense_t = -huge(1.0_wp)
         character(len=:), allocatable :: message
     contains
         !> Start at (t0, z0) with the slope at z0.
@@ -41,17 +44,11 @@ contains
         real(wp), intent(out) :: f(:)
         integer, intent(out) :: stat
         logical :: recoverable
-        real(wp) :: probe
-        integer :: i
         call model%slope_eliminated(t, z, f, self%y_work, stat, recoverable)
         self%evals = self%evals + 1
-        if (stat == regdae_success) then
-            probe = 0.0_wp
-            do i = 1, size(f)
-                probe = probe + 0.0_wp*f(i)   ! NaN if some f(i) is NaN or Inf
-            end do
-            if (probe /= 0.0_wp) stat = regdae_err_integration
-        end if
+        ! No NaN/Inf check here: the model has checked f, GB, r and y (B through GB),
+        ! and a NaN that reaches the step through z makes the error estimate NaN,
+        ! which rejects the step (and, repeated, fails with 'step size too small').
     end subroutine slope
 
     subroutine rk_start(self, model, t0, z0, h0, stat)
@@ -62,6 +59,8 @@ contains
         integer, intent(out) :: stat
         integer :: n
         n = size(z0)
+        allocate (self%dense_dz(n), self%dense_p(n), self%dense_q(n), self%dense_r(n))
+        self%dense_t = -huge(1.0_wp)
         allocate (self%z(n), self%k1(n), self%z_old(n), self%k_old(n), self%k2(n), self%k3(n), self%k4(n), &
                   self%k5(n), self%k6(n), self%k7(n), self%z_new(n), self%z_stage(n), self%work(n), &
                   self%y_work(model%m))
@@ -90,7 +89,7 @@ contains
         real(wp), intent(out) :: zout(:)
         integer, intent(out) :: stat
         type(solution_monitor), intent(inout), optional :: monitor
-        real(wp) :: h, e, theta, fac, dz, p, q, r
+        real(wp) :: h, e, theta, fac
         integer :: taken, n, i
 
         n = size(self%z)
@@ -158,13 +157,19 @@ contains
             ! are intact, since a step is taken only when tout lies beyond t.
             h = self%t - self%t_old
             theta = (tout - self%t_old)/h
+            if (self%dense_t /= self%t) then   ! once per step, for all its outputs
+                do i = 1, n
+                    self%dense_dz(i) = self%z(i) - self%z_old(i)
+                    self%dense_p(i) = h*self%k_old(i) - self%dense_dz(i)
+                    self%dense_q(i) = self%dense_dz(i) - h*self%k1(i) - self%dense_p(i)
+                    self%dense_r(i) = h*(d1*self%k_old(i) + d3*self%k3(i) + d4*self%k4(i) + d5*self%k5(i) + &
+                                         d6*self%k6(i) + d7*self%k1(i))
+                end do
+                self%dense_t = self%t
+            end if
             do i = 1, n
-                dz = self%z(i) - self%z_old(i)
-                p = h*self%k_old(i) - dz
-                q = dz - h*self%k1(i) - p
-                r = h*(d1*self%k_old(i) + d3*self%k3(i) + d4*self%k4(i) + d5*self%k5(i) + d6*self%k6(i) + &
-                       d7*self%k1(i))
-                zout(i) = self%z_old(i) + theta*(dz + (1 - theta)*(p + theta*(q + (1 - theta)*r)))
+                zout(i) = self%z_old(i) + theta*(self%dense_dz(i) + (1 - theta)*(self%dense_p(i) + &
+                          theta*(self%dense_q(i) + (1 - theta)*self%dense_r(i))))
             end do
         end if
     contains

@@ -173,85 +173,85 @@ contains
         if (self%order == 1) then
             call self%first%rhs(t, z, self%f, ustat)
             if (ustat /= 0) then
-                call report_failure('rhs')
+                call report_failure(self, 'rhs', t, ustat, stat, recoverable)
                 return
             end if
             call self%first%matrix_b(t, z, self%b, ustat)
             if (ustat /= 0) then
-                call report_failure('matrix_b')
+                call report_failure(self, 'matrix_b', t, ustat, stat, recoverable)
                 return
             end if
             call self%first%constraint(t, z, self%g, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint')
+                call report_failure(self, 'constraint', t, ustat, stat, recoverable)
                 return
             end if
             call self%first%constraint_jacobian(t, z, self%gx, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint_jacobian')
+                call report_failure(self, 'constraint_jacobian', t, ustat, stat, recoverable)
                 return
             end if
             call self%first%constraint_dt(t, z, self%gt, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint_dt')
+                call report_failure(self, 'constraint_dt', t, ustat, stat, recoverable)
                 return
             end if
         else if (self%order >= 3) then
             call self%higher%rhs(t, reshape(z(1:self%order*n), [n, self%order]), self%f, ustat)
             if (ustat /= 0) then
-                call report_failure('rhs')
+                call report_failure(self, 'rhs', t, ustat, stat, recoverable)
                 return
             end if
             call self%higher%matrix_b(t, reshape(z(1:self%order*n), [n, self%order]), self%b, ustat)
             if (ustat /= 0) then
-                call report_failure('matrix_b')
+                call report_failure(self, 'matrix_b', t, ustat, stat, recoverable)
                 return
             end if
             call self%higher%constraint(t, z(1:n), self%g, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint')
+                call report_failure(self, 'constraint', t, ustat, stat, recoverable)
                 return
             end if
             call self%higher%constraint_jacobian(t, z(1:n), self%gx, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint_jacobian')
+                call report_failure(self, 'constraint_jacobian', t, ustat, stat, recoverable)
                 return
             end if
             call self%higher%constraint_dt(t, z(1:n), self%gt, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint_dt')
+                call report_failure(self, 'constraint_dt', t, ustat, stat, recoverable)
                 return
             end if
         else
             call self%second%rhs(t, z(1:n), z(n + 1:2*n), self%f, ustat)
             if (ustat /= 0) then
-                call report_failure('rhs')
+                call report_failure(self, 'rhs', t, ustat, stat, recoverable)
                 return
             end if
             call self%second%constraint_jacobian(t, z(1:n), self%gx, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint_jacobian')
+                call report_failure(self, 'constraint_jacobian', t, ustat, stat, recoverable)
                 return
             end if
             call self%second%matrix_b_from_jacobian(t, z(1:n), z(n + 1:2*n), self%gx, self%b, ustat)
             if (ustat /= 0) then
-                call report_failure('matrix_b')
+                call report_failure(self, 'matrix_b', t, ustat, stat, recoverable)
                 return
             end if
             call self%second%constraint(t, z(1:n), self%g, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint')
+                call report_failure(self, 'constraint', t, ustat, stat, recoverable)
                 return
             end if
             call self%second%constraint_dt(t, z(1:n), self%gt, ustat)
             if (ustat /= 0) then
-                call report_failure('constraint_dt')
+                call report_failure(self, 'constraint_dt', t, ustat, stat, recoverable)
                 return
             end if
             if (self%curvature) then
                 call self%second%constraint_curvature(t, z(1:n), z(n + 1:2*n), self%curv, ustat)
                 if (ustat /= 0) then
-                    call report_failure('constraint_curvature')
+                    call report_failure(self, 'constraint_curvature', t, ustat, stat, recoverable)
                     return
                 end if
             end if
@@ -281,21 +281,26 @@ contains
             self%message = 'NaN or Inf in f, B, g, G, g_t or c at t = '//format_real(t)
             return
         end if
-    contains
-        ! A user routine returned ustat /= 0: set stat, recoverable and the message.
-        subroutine report_failure(name)
-            character(len=*), intent(in) :: name
-            recoverable = (ustat > 0)
-            if (ustat == regdae_err_mass_matrix) then
-                stat = regdae_err_mass_matrix
-                self%message = status_message(stat)//' at t = '//format_real(t)//' (in '//name//')'
-            else
-                stat = regdae_err_user_callback
-                self%message = 'user routine '//name//' reported failure (stat = '// &
-                               format_int(ustat)//') at t = '//format_real(t)
-            end if
-        end subroutine report_failure
     end subroutine evaluate
+
+    ! A user routine of `evaluate` returned ustat /= 0: stat, recoverable and the message.
+    subroutine report_failure(self, name, t, ustat, stat, recoverable)
+        class(regularized_dae), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: t
+        integer, intent(in) :: ustat
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        recoverable = (ustat > 0)
+        if (ustat == regdae_err_mass_matrix) then
+            stat = regdae_err_mass_matrix
+            self%message = status_message(stat)//' at t = '//format_real(t)//' (in '//name//')'
+        else
+            stat = regdae_err_user_callback
+            self%message = 'user routine '//name//' reported failure (stat = '// &
+                           format_int(ustat)//') at t = '//format_real(t)
+        end if
+    end subroutine report_failure
 
     ! q = r - G f = w0 g + w1 g_t + sum_{k=1}^{m-1} w_k G x^(k) [+ c] (order 1: g_t with weight 1).
     subroutine constraint_terms(self, z, q)
