@@ -81,10 +81,16 @@ for p in ex51 crank2 crank3; do heat $p; done
 # Seconds at matched accuracy (log-log interpolation of seconds against error on both
 # curves), regdae's crank3 CONFIG over the oracle ORACLE.
 ratio_rows() {   # ratio_rows CONFIG ORACLE: lines 'k regdae_seconds oracle_seconds' (-1: not reached)
-    awk -F'"' -v cfg="$1" -v orc="$2" '
-        $2 == cfg && $1 ~ /^crank3 / { split($3, a, " "); if (a[7] == "ok") { n1++; e1[n1] = a[2]; s1[n1] = a[3] } }
-        $2 == orc && $1 ~ /^crank_oracle / { split($3, a, " "); n2++; e2[n2] = a[2]; s2[n2] = a[3] }
-        function at(n, e, s, target,   i, lo, hi) {
+    # rows 'rtol err seconds' of each curve, in decreasing rtol (the bench appends finer tolerances later)
+    awk -F'"' -v c="$1" '$2 == c && $1 ~ /^crank3 / { split($3, a, " "); if (a[7] == "ok") print a[1], a[2], a[3] }' \
+        "$tmp/bench.txt" | sort -g -r >"$tmp/ratio_a.txt"
+    awk -F'"' -v c="$2" '$2 == c && $1 ~ /^crank_oracle / { split($3, a, " "); print a[1], a[2], a[3] }' \
+        "$tmp/bench.txt" | sort -g -r >"$tmp/ratio_b.txt"
+    awk '
+        FNR == 1 { f++ }
+        f == 1 { n1++; e1[n1] = $2; s1[n1] = $3 }
+        f == 2 { n2++; e2[n2] = $2; s2[n2] = $3 }
+        function at(n, e, s, target,   i, lo, hi) {   # seconds at error target (log-linear)
             for (i = 1; i < n; i++) {
                 lo = e[i]; hi = e[i + 1]
                 if ((lo - target) * (hi - target) <= 0 && lo != hi)
@@ -92,7 +98,8 @@ ratio_rows() {   # ratio_rows CONFIG ORACLE: lines 'k regdae_seconds oracle_seco
             }
             return -1
         }
-        END { for (k = 2; k <= 8; k++) print k, at(n1, e1, s1, 10 ^ (-k)), at(n2, e2, s2, 10 ^ (-k)) }' "$tmp/bench.txt"
+        END { for (k = 2; k <= 8; k++) print k, at(n1, e1, s1, 10 ^ (-k)), at(n2, e2, s2, 10 ^ (-k)) }' \
+        "$tmp/ratio_a.txt" "$tmp/ratio_b.txt"
 }
 ratio_table() {   # ratio_table CONFIG ORACLE LABEL
     echo "| accuracy | regdae \`$1\` (s) | $3 (s) | ratio |"
