@@ -29,7 +29,7 @@
 !! invariant_tol raises the alarm (`alarm_kind = alarm_invariant`).
 module regdae_monitor
     use regdae_kinds, only: wp
-    use regdae_format, only: format_real
+    use regdae_format, only: format_real, format_int
     use regdae_regularization, only: regularized_dae
     implicit none
     private
@@ -166,8 +166,13 @@ contains
         if (.not. self%alarm) then   ! too large, NaN, or the user routine failed
             self%alarm = .true.
             self%alarm_kind = alarm_invariant
-            self%alarm_message = 'the invariant changed by '//format_real(change)//' > invariant_tol = '// &
-                                 format_real(self%invariant_tol)//' at t = '//format_real(t)
+            if (stat /= 0) then
+                self%alarm_message = 'user routine invariant reported failure (stat = '//format_int(stat)// &
+                                     ') at t = '//format_real(t)
+            else
+                self%alarm_message = 'the invariant changed by '//format_real(change)//' > invariant_tol = '// &
+                                     format_real(self%invariant_tol)//' at t = '//format_real(t)
+            end if
         end if
     end subroutine invariant_sample
 
