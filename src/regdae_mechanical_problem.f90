@@ -220,6 +220,21 @@ contains
         integer :: i, j, k
         real(wp) :: s
         info = 0
+        if (n == 2) then   ! the loops below, unrolled (same operations, same rounding)
+            if (.not. (a(1, 1) > 0.0_wp)) then
+                info = 1
+                return
+            end if
+            a(1, 1) = sqrt(a(1, 1))
+            a(2, 1) = a(2, 1)/a(1, 1)
+            s = a(2, 2) - a(2, 1)**2
+            if (.not. (s > 0.0_wp)) then
+                info = 2
+                return
+            end if
+            a(2, 2) = sqrt(s)
+            return
+        end if
         do j = 1, n
             s = a(j, j)
             do k = 1, j - 1
@@ -247,6 +262,13 @@ contains
         real(wp), intent(inout) :: b(n)
         integer :: j, k
         real(wp) :: s
+        if (n == 2) then   ! the loops below, unrolled (same operations, same rounding)
+            b(1) = b(1)/l(1, 1)
+            b(2) = (b(2) - l(2, 1)*b(1))/l(2, 2)
+            b(2) = b(2)/l(2, 2)
+            b(1) = (b(1) - l(2, 1)*b(2))/l(1, 1)
+            return
+        end if
         do j = 1, n
             s = b(j)
             do k = 1, j - 1
