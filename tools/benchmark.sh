@@ -1,7 +1,7 @@
 #!/bin/sh
 # Issue 5's benchmark and stability grid: build (Release), run drivers/bench and
 # drivers/stability, and regenerate doc/performance.md with its PNGs
-# (doc/figures/perf_*.png). About 6 minutes on a 2-core machine.
+# (doc/figures/perf_*.png). About 5 minutes on a 2-core machine.
 # Usage: tools/benchmark.sh [--reuse]   (--reuse: redraw from the raw outputs of the last run,
 #        kept in build/benchmark/)
 set -eu
@@ -309,7 +309,7 @@ minimum-norm one (stacked solve) where it is not: a run either passes or stops w
 
 ## Machine and commands
 
-`sh tools/benchmark.sh` (about 6 minutes on 2 cores: the bench about 1, the stability grid about
+`sh tools/benchmark.sh` (about 5 minutes on 2 cores: the bench about 1, the stability grid about
 4, most of it index 3 with gamma >= 1e7 at tight tolerances). Single runs: `build/bin/bench
 problem=crank tol_from=4 tol_to=6`, `build/bin/stability problem=crank2 rtol=1e-5 checks=off`,
 `build/bin/ex52 integrator=dopri5 gamma1=20 gamma0=200 eps=1e-14 stop_at_output=no`.
