@@ -22,7 +22,7 @@ program ex52_driver
     use regdae
     use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               clock_start, elapsed_seconds, &
                               die_usage, read_number
     implicit none
@@ -116,11 +116,8 @@ program ex52_driver
     end if
     seconds = elapsed_seconds(start)
     st = solver%statistics()
-    status_text = 'ok'
-    if (stat /= regdae_success) then
-        write (*, '(a)') '# error: '//solver%message()
-        status_text = 'failed'
-    else if (off_branch) then
+    status_text = run_status(solver, stat)
+    if (status_text == 'ok' .and. off_branch) then
         write (*, '(a)') '# warning: left the physical branch th2 = pi - th1 at t = '//num(t_off)// &
             ' (max |th1 + th2 - pi| = '//num(max_dev)//' > branch_tol = '//num(branch_tol)//')'
         status_text = 'failed'

@@ -12,7 +12,7 @@ program order3_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use regdae
     use order3_problem, only: order3, new_order3, order3_exact
-    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               clock_start, elapsed_seconds, die_usage
     implicit none
     character(len=*), parameter :: prog = 'order3'
@@ -55,11 +55,7 @@ program order3_driver
     end if
     seconds = elapsed_seconds(start)
     st = solver%statistics()
-    status_text = 'ok'
-    if (stat /= regdae_success) then
-        write (*, '(a)') '# error: '//solver%message()
-        status_text = 'failed'
-    end if
+    status_text = run_status(solver, stat)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text//' t_end='//num(st%t)// &
         ' max_err='//num(max_err)//stats_fields(st, seconds)
     call solver%destroy()

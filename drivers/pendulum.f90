@@ -15,7 +15,7 @@ program pendulum_driver
     use regdae
     use pendulum_problem, only: pendulum, pendulum_angle, new_pendulum
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               clock_start, elapsed_seconds, &
                               die_usage, read_number
     implicit none
@@ -89,11 +89,7 @@ program pendulum_driver
     end if
     seconds = elapsed_seconds(start)
     st = solver%statistics()
-    status_text = 'ok'
-    if (stat /= regdae_success) then
-        write (*, '(a)') '# error: '//solver%message()
-        status_text = 'failed'
-    end if
+    status_text = run_status(solver, stat)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' index='//format_int(opts%index)// &
         ' curvature='//trim(merge('yes', 'no ', opts%curvature))//' status='//status_text// &
         ' t_end='//num(st%t)//' max_err_pos='//num(max_err)//' max_abs_g='//num(max_g)//stats_fields(st, seconds)

@@ -16,7 +16,7 @@ program redundant_driver
     use regdae
     use slider_crank_problem, only: slider_crank_reduced, new_slider_crank, new_redundant_slider_crank
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               clock_start, elapsed_seconds, die_usage, read_number
     implicit none
     character(len=*), parameter :: prog = 'redundant'
@@ -82,11 +82,8 @@ program redundant_driver
     end if
     seconds = elapsed_seconds(start)
     st = solver%statistics()
-    status_text = 'ok'
-    if (stat /= regdae_success) then
-        write (*, '(a)') '# error: '//solver%message()
-        status_text = 'failed'
-    else if (max_dev > 0.1_wp) then
+    status_text = run_status(solver, stat)
+    if (status_text == 'ok' .and. (max_dev > 0.1_wp)) then
         write (*, '(a)') '# warning: left the physical branch (max |th1 + th2 - pi| = '//num(max_dev)//')'
         status_text = 'failed'
     end if

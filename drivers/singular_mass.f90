@@ -20,7 +20,7 @@ program singular_mass_driver
     use massless_problem, only: massless_carrier, new_massless_carrier
     use pendulum_problem, only: pendulum_angle
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               clock_start, elapsed_seconds, die_usage, read_number
     implicit none
     character(len=*), parameter :: prog = 'singular_mass'
@@ -91,11 +91,8 @@ program singular_mass_driver
     end if
     seconds = elapsed_seconds(start)
     st = solver%statistics()
-    status_text = 'ok'
-    if (stat /= regdae_success) then
-        write (*, '(a)') '# error: '//solver%message()
-        status_text = 'failed'
-    else if (follower) then
+    status_text = run_status(solver, stat)
+    if (status_text == 'ok' .and. follower) then
         write (*, '(a)') '# warning: carrier=follower is outside what (4.11) can do: it gives q'''' in the range of M^T, '// &
             'so the massless carrier keeps its velocity (s'''' = 0) and the constraints hold the mass near its start '// &
             'with large multipliers; this is not the motion of the mechanism'

@@ -2,12 +2,13 @@
 !! formatting for the summary line, wall-clock time.
 module driver_support
     use, intrinsic :: iso_fortran_env, only: int64, error_unit
-    use regdae, only: wp, format_real, format_int, solver_options, solver_stats, set_option, regdae_success
+    use regdae, only: wp, format_real, format_int, solver_options, solver_stats, set_option, regdae_success, &
+                      regdae_solver
     implicit none
     private
 
     public :: format_int
-    public :: read_number, common_argument, stats_fields
+    public :: read_number, common_argument, stats_fields, run_status
     public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage
 
 contains
@@ -100,6 +101,19 @@ contains
                ' jac_evals='//format_int(int(st%jac_evals))//' err_test_fails='//format_int(int(st%err_test_fails))// &
                ' conv_fails='//format_int(int(st%conv_fails))//' seconds='//num(seconds)
     end function stats_fields
+
+    !> The summary's status word of a finished run: 'ok', or 'failed' after the
+    !! line '# error: <the solver's message>'.
+    function run_status(solver, stat) result(text)
+        type(regdae_solver), intent(in) :: solver
+        integer, intent(in) :: stat
+        character(len=:), allocatable :: text
+        text = 'ok'
+        if (stat /= regdae_success) then
+            write (*, '(a)') '# error: '//solver%message()
+            text = 'failed'
+        end if
+    end function run_status
 
     !> Print a usage error naming the problem and stop with status 2.
     subroutine die_usage(program_name, text)
