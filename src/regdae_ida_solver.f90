@@ -71,7 +71,6 @@ module regdae_ida_solver
         type(solver_options) :: opts
         integer :: n = 0, m = 0, neq = 0   ! n: size of the state z; neq: IDA unknowns
         integer :: nx = 0                  ! size of x reported to the user
-        integer :: np = 0                  ! positions with a velocity in the state (order >= 2), else 0
         logical :: second_order = .false.  ! the user's problem is of order 2: z = (x, v)
         real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
         real(wp) :: t = 0.0_wp
@@ -322,9 +321,9 @@ contains
             return
         end if
         call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
-        core%np = 0
-        if (core%second_order) core%np = core%nx
-        call core%monitor%reset(opts%singular_threshold, opts%eps, core%np, opts%jump_tol, opts%drift_tol, opts%invariant_tol)
+        ! the velocity check looks at the positions' velocities, z(nx+1:2nx), of order >= 2
+        call core%monitor%reset(opts%singular_threshold, opts%eps, merge(core%nx, 0, core%second_order), &
+                                opts%jump_tol, opts%drift_tol, opts%invariant_tol)
         call core%monitor%sample(t0, core%model, z0, zp0)
         if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
             call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
@@ -364,7 +363,6 @@ contains
             call self%destroy()
         end subroutine fail
     end subroutine solver_start
-
 
     ! Create the SUNDIALS context, vectors, IDA memory and the dense linear solver.
     subroutine create_ida(core, t0, u0, up0, stat, msg)
