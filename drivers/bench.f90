@@ -10,6 +10,8 @@
 !! stop at output times) and nothing is printed while timing.
 !!
 !! Usage: bench [reps=5] [min_time=0.05] [tol_from=3] [tol_to=10] [problem=all|crank|ex51|others]
+!! (reps: an integer in [1, 201]; min_time: seconds in [0, 60]; tol_from <= tol_to: integers k in
+!! [1, 14] of rtol = atol = 10^-k)
 !! (others: order3, redundant, singular_mass and the linear family, every method and
 !! formulation; with tol_to >= 10 the explicit integrator, IDA and the oracles also run
 !! at 1e-11 and 1e-12; the explicit integrator and its paired oracle also at the
@@ -29,43 +31,44 @@ program bench_driver
     use massless_problem, only: new_massless_carrier
     use pendulum_problem, only: pendulum_angle
     use theory_problems, only: theory_cases, new_theory_problem, theory_problem
-    use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number
+    use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number, read_count
     implicit none
     character(len=*), parameter :: prog = 'bench'
     real(wp), parameter :: pi = acos(-1.0_wp)
     integer, parameter :: branch_left = 1000   ! status of a run off the physical branch
     integer, parameter :: max_reps = 201
-    real(wp) :: crank_times(1001), ex51_times(201), ref(2, 1001), reps_r, from_r, to_r, tol, min_time
+    real(wp) :: crank_times(1001), ex51_times(201), ref(2, 1001), tol, min_time
     real(wp) :: mass_times(501), mass_ref(2, 501)
     character(len=12), parameter :: method_names(3) = [character(len=12) :: 'trust_region', 'direct', 'baumgarte']
     character(len=12), parameter :: formulation_names(2) = [character(len=12) :: 'eliminated', 'multiplier']
     type(pendulum_angle) :: angle
     integer :: im, jf, ic
-    integer :: i, k, reps, stat
+    integer :: i, k, reps, stat, tol_from, tol_to
     character(len=:), allocatable :: key, value, which
     logical :: ok
     type(slider_crank_reduced) :: reduced
 
-    reps_r = 5
+    reps = 5
     min_time = 0.05_wp
-    from_r = 3
-    to_r = 10
+    tol_from = 3
+    tol_to = 10
     which = 'all'
     do i = 1, command_argument_count()
         call split_key_value(argument(i), key, value, ok)
         if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
         select case (key)
-        case ('reps'); call read_number(prog, key, value, reps_r)
+        case ('reps'); call read_count(prog, key, value, reps, 1, max_reps)
         case ('min_time'); call read_number(prog, key, value, min_time)
-        case ('tol_from'); call read_number(prog, key, value, from_r)
-        case ('tol_to'); call read_number(prog, key, value, to_r)
+            if (.not. (min_time >= 0 .and. min_time <= 60)) call die_usage(prog, 'min_time must be in [0, 60] seconds')
+        case ('tol_from'); call read_count(prog, key, value, tol_from, 1, 14)
+        case ('tol_to'); call read_count(prog, key, value, tol_to, 1, 14)
         case ('problem'); which = value
             if (which /= 'all' .and. which /= 'crank' .and. which /= 'ex51' .and. which /= 'others') &
                 call die_usage(prog, 'bad problem '//value)
         case default; call die_usage(prog, 'unknown option "'//key//'"')
         end select
     end do
-    reps = max(1, min(max_reps, nint(reps_r)))
+    if (tol_from > tol_to) call die_usage(prog, 'tol_from must be <= tol_to')
     crank_times = [(0.01_wp*k, k=0, 1000)]
     ex51_times = [(-1.0_wp + 0.01_wp*k, k=0, 200)]
     call integrate_reference(reduced, 0.0_wp, [pi/2, 0.0_wp], crank_times, ref, 1.0e-13_wp, 1.0e-13_wp, stat)
@@ -74,7 +77,7 @@ program bench_driver
     write (*, '(a)') '# regdae bench: median of at least '//format_int(reps)//' runs (and '//num(min_time)// &
         ' s) in one process, setup included'
     write (*, '(a)') '# problem config rtol max_err seconds steps res_evals jac_evals status'
-    do k = nint(from_r), nint(to_r)
+    do k = tol_from, tol_to
         tol = 10.0_wp**(-k)
         if (which == 'all' .or. which == 'crank') then
             call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
@@ -118,7 +121,7 @@ program bench_driver
     ! errors move in steps with rtol (a pass gets one step more or less), so the
     ! interpolation at matched accuracy needs the finer grid.
     if (which == 'all' .or. which == 'crank') then
-        do k = nint(2*from_r), nint(2*to_r)
+        do k = 2*tol_from, 2*tol_to
             if (mod(k, 2) == 0) cycle
             tol = 10.0_wp**(-0.5_wp*k)
             call crank('crank3', 'trust_region eps=1e-14 dopri5 gamma1=20', 3, 'trust_region', 1.0e-14_wp, tol, &
@@ -126,7 +129,7 @@ program bench_driver
         end do
     end if
     ! Beyond 1e-10 for the explicit integrator and the oracles: where 1e-8 is reached.
-    if (to_r >= 10 .and. (which == 'all' .or. which == 'crank')) then
+    if (tol_to >= 10 .and. (which == 'all' .or. which == 'crank')) then
         do k = 11, 12
             tol = 10.0_wp**(-k)
             call crank('crank3', 'trust_region eps=1e-14 dopri5 gamma1=20', 3, 'trust_region', 1.0e-14_wp, tol, &
@@ -136,6 +139,9 @@ program bench_driver
             call oracle_cvode(tol)
         end do
     end if
+    ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
+    if (allocated(key)) deallocate (key, value)
+    deallocate (which)
 
 contains
 

@@ -20,7 +20,7 @@ program ex51_driver
     use regdae
     use ex51_problem, only: ex51, new_ex51, orientation_psd, orientation_paper
     use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
-                              clock_start, elapsed_seconds, die_usage
+                              clock_start, elapsed_seconds, die_usage, read_number
     implicit none
 
     character(len=*), parameter :: prog = 'ex51'
@@ -30,7 +30,7 @@ program ex51_driver
     type(solver_stats) :: st
     type(ex51) :: problem
     character(len=:), allocatable :: key, value, status_text
-    integer :: i, k, nout, orientation, stat, ios
+    integer :: i, k, nout, orientation, stat
     logical :: ok
     real(wp) :: x0(1), x(1), y(1), t, max_err_x, seconds
     integer(int64) :: start
@@ -50,9 +50,7 @@ program ex51_driver
             case default; call die_usage(prog, 'bad value "'//value//'" for orientation (psd|paper)')
             end select
         case ('x0')
-            read (value, *, iostat=ios) x0(1)
-            if (ios /= 0 .or. verify(value, '0123456789+-.eEdD') /= 0) &
-                call die_usage(prog, 'bad value "'//value//'" for x0')
+            call read_number(prog, key, value, x0(1))
         case default
             call common_argument(prog, key, value, opts, nout)
         end select
@@ -103,6 +101,9 @@ program ex51_driver
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text// &
         ' t_end='//num(st%t)//' max_err_x='//num(max_err_x)//stats_fields(st, seconds)
     call solver%destroy()
+    ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
+    if (allocated(key)) deallocate (key, value)
+    deallocate (status_text)
     if (stat /= regdae_success) stop 1
 
 end program ex51_driver

@@ -94,5 +94,8 @@ program pendulum_driver
         ' curvature='//trim(merge('yes', 'no ', opts%curvature))//' status='//status_text// &
         ' t_end='//num(st%t)//' max_err_pos='//num(max_err)//' max_abs_g='//num(max_g)//stats_fields(st, seconds)
     call solver%destroy()
+    ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
+    if (allocated(key)) deallocate (key, value)
+    deallocate (times, ref, status_text)
     if (stat /= regdae_success) stop 1
 end program pendulum_driver

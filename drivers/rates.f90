@@ -11,7 +11,8 @@
 !!   problem=all|R1|R2|S1|S2|S3|S4|EX51 (all)   method=both|direct|trust_region (both: direct,
 !!   i.e. (3.2), only where B = C^T; trust_region (3.3) everywhere)   gamma=<one value> (default: the grid)
 !!   refine=1 (output grid density)   delta=0.1   rtol=1e-11 atol=1e-11   lsq (stacked), other solver options
-!! Output: '#' lines; rows 'problem method gamma eps status err_before err_inside err_after err_end';
+!! Output: '#' lines; rows 'problem method gamma eps status err_before err_inside err_after err_end'
+!!   (a failed row follows a line '# error: problem method gamma eps: <the solver's message>');
 !!   'fit problem=... method=... gamma=... region=... p=... eps_from=... eps_to=... points=...' lines (fit
 !!   over the eps whose error exceeds 1e3 rtol, the integration noise); and the last line
 !!   summary status=ok|failed runs=... failed_runs=... seconds=...
@@ -105,10 +106,14 @@ program rates_driver
                     call set_option(run_opts, 'method', trim(methods(im)), stat, msg)
                     run_opts%gamma = gammas(ig)
                     run_opts%eps = epss(ie)
-                    call measure_errors(problem, run_opts, times, delta, errors_run, stat)
+                    call measure_errors(problem, run_opts, times, delta, errors_run, stat, msg)
                     err(ie, :) = errors_run
                     runs = runs + 1
-                    if (stat /= regdae_success) failed_runs = failed_runs + 1
+                    if (stat /= regdae_success) then
+                        failed_runs = failed_runs + 1
+                        write (*, '(a)') '# error: '//trim(theory_cases(ip))//' '//trim(methods(im))//' gamma='// &
+                            num(gammas(ig))//' eps='//num(epss(ie))//': '//msg
+                    end if
                     write (*, '(a,1x,a,1x,a,1x,a,1x,a,4(1x,a))') trim(theory_cases(ip)), trim(methods(im)), &
                         num(gammas(ig)), num(epss(ie)), trim(merge('ok    ', 'failed', stat == regdae_success)), &
                         (num(err(ie, i)), i=1, 4)
@@ -122,6 +127,10 @@ program rates_driver
     seconds = elapsed_seconds(start)
     write (*, '(a)') 'summary status='//trim(merge('ok    ', 'failed', failed_runs == 0))//' runs='//format_int(runs)// &
         ' failed_runs='//format_int(failed_runs)//' seconds='//num(seconds)
+    ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
+    if (allocated(key)) deallocate (key, value)
+    deallocate (which_problem, which_method, times, gammas, epss, err)
+    if (allocated(msg)) deallocate (msg)
     if (failed_runs > 0) stop 1
 
 contains

@@ -14,6 +14,7 @@ module regdae
     use regdae_linear_problem, only: linear_dae_problem
     use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
     use regdae_options
+    use regdae_parse, only: parse_real, parse_integer
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     use regdae_ida_solver, only: regdae_solver, solver_stats
     implicit none
@@ -23,6 +24,7 @@ module regdae
     public :: second_order_problem, velocity_constraint, curvature_difference, mechanical_problem, &
               higher_order_problem, taylor_weights
     public :: linear_dae_problem
+    public :: parse_real, parse_integer
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     ! regdae_status
     public :: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, regdae_err_inconsistent_ic, &

@@ -36,14 +36,16 @@ module regdae_explicit_rk
 
 contains
 
-    ! F(t, z) from the regularized residual; stat /= 0 on failure (message in model).
-    subroutine slope(self, model, t, z, f, stat)
+    ! F(t, z) from the regularized residual; stat /= 0 on failure (message in
+    ! model), with `recoverable` false when a smaller step cannot help (a user
+    ! routine's stat < 0, a mass matrix that is not SPD, GB not PSD).
+    subroutine slope(self, model, t, z, f, stat, recoverable)
         class(rk_integrator), intent(inout) :: self
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: t, z(:)
         real(wp), intent(out) :: f(:)
         integer, intent(out) :: stat
-        logical :: recoverable
+        logical, intent(out) :: recoverable
         call model%slope_eliminated(t, z, f, self%y_work, stat, recoverable)
         self%evals = self%evals + 1
         ! No NaN/Inf check here: the model has checked f, GB, r and y (B through GB),
@@ -58,6 +60,7 @@ contains
         real(wp), intent(in) :: h0        !! first step (0: chosen here)
         integer, intent(out) :: stat
         integer :: n
+        logical :: recoverable
         n = size(z0)
         allocate (self%dense_dz(n), self%dense_p(n), self%dense_q(n), self%dense_r(n))
         self%dense_t = -huge(1.0_wp)
@@ -71,13 +74,15 @@ contains
         self%h = h0
         if (.not. (h0 > 0.0_wp)) self%h = 1.0e-3_wp*max(1.0_wp, abs(t0))
         self%message = ''
-        call slope(self, model, t0, z0, self%k1, stat)
+        call slope(self, model, t0, z0, self%k1, stat, recoverable)
         self%k_old = self%k1
     end subroutine rk_start
 
     !> Advance to tout (> the current output time): steps until t >= tout (or, with
-    !! `land_on_tout`, exactly to tout) and interpolates. stat: regdae_success or
-    !! regdae_err_integration with `message`. `monitor`, if given, samples every
+    !! `land_on_tout`, exactly to tout) and interpolates. stat: regdae_success,
+    !! regdae_err_integration with `message`, or the status of an evaluation that
+    !! failed unrecoverably (a user routine's stat < 0: regdae_err_user_callback;
+    !! regdae_err_mass_matrix, regdae_err_not_psd), which stops the integration at once. `monitor`, if given, samples every
     !! accepted step's end, where `model` holds the evaluation of the
     !! first-same-as-last stage (no extra evaluation).
     subroutine rk_advance(self, model, tout, rtol, atol, h_max, max_steps, land_on_tout, zout, stat, monitor)
@@ -91,6 +96,7 @@ contains
         type(solution_monitor), intent(inout), optional :: monitor
         real(wp) :: h, e, theta, fac
         integer :: taken, n, i
+        logical :: recoverable
 
         n = size(self%z)
         stat = regdae_success
@@ -103,11 +109,24 @@ contains
             h = self%h
             if (h_max > 0.0_wp) h = min(h, h_max)
             if (land_on_tout .and. self%t + h > tout) h = tout - self%t
+            if (land_on_tout .and. h <= 16*epsilon(1.0_wp)*max(1.0_wp, abs(self%t)) .and. h == tout - self%t) then
+                ! tout within a few roundoffs of t: one Euler step with the slope at t
+                ! (its error, h^2 |z''|, is far below the rounding of z).
+                self%z = self%z + h*self%k1
+                self%t = tout
+                exit
+            end if
             if (h <= 16*epsilon(1.0_wp)*max(1.0_wp, abs(self%t))) then
                 call fail('step size too small (h = '//format_real(h)//')')
                 return
             end if
-            call self_step(h, e, stat)
+            call self_step(h, e, stat, recoverable)
+            if (stat /= regdae_success .and. .not. recoverable) then
+                ! A smaller step cannot help: stop with the evaluation's own status.
+                self%message = 'dopri5 at t = '//format_real(self%t)//': '//model%message
+                zout = self%z
+                return
+            end if
             if (stat == regdae_success .and. e <= 1.0_wp) then
                 ! Stiffness test (as in Hairer's DOPRI5): h rho, rho ~ |k7 - k6| / |z_new - z6|
                 ! from the two stages at t + h, beyond the stability boundary (3.25) for
@@ -173,31 +192,32 @@ contains
             end do
         end if
     contains
-        subroutine self_step(h, err_norm, stat)
+        subroutine self_step(h, err_norm, stat, recoverable)
             real(wp), intent(in) :: h
             real(wp), intent(out) :: err_norm
             integer, intent(out) :: stat
+            logical, intent(out) :: recoverable
             real(wp) :: t
             t = self%t
             err_norm = huge(1.0_wp)
             ! Stage values in z_stage (whole-array expressions without temporaries).
             self%z_stage(:) = self%z + h*a21*self%k1
-            call slope(self, model, t + c2*h, self%z_stage, self%k2, stat)
+            call slope(self, model, t + c2*h, self%z_stage, self%k2, stat, recoverable)
             if (stat /= 0) return
             self%z_stage(:) = self%z + h*(a31*self%k1 + a32*self%k2)
-            call slope(self, model, t + c3*h, self%z_stage, self%k3, stat)
+            call slope(self, model, t + c3*h, self%z_stage, self%k3, stat, recoverable)
             if (stat /= 0) return
             self%z_stage(:) = self%z + h*(a41*self%k1 + a42*self%k2 + a43*self%k3)
-            call slope(self, model, t + c4*h, self%z_stage, self%k4, stat)
+            call slope(self, model, t + c4*h, self%z_stage, self%k4, stat, recoverable)
             if (stat /= 0) return
             self%z_stage(:) = self%z + h*(a51*self%k1 + a52*self%k2 + a53*self%k3 + a54*self%k4)
-            call slope(self, model, t + c5*h, self%z_stage, self%k5, stat)
+            call slope(self, model, t + c5*h, self%z_stage, self%k5, stat, recoverable)
             if (stat /= 0) return
             self%z_stage(:) = self%z + h*(a61*self%k1 + a62*self%k2 + a63*self%k3 + a64*self%k4 + a65*self%k5)
-            call slope(self, model, t + h, self%z_stage, self%k6, stat)
+            call slope(self, model, t + h, self%z_stage, self%k6, stat, recoverable)
             if (stat /= 0) return
             self%z_new(:) = self%z + h*(b1*self%k1 + b3*self%k3 + b4*self%k4 + b5*self%k5 + b6*self%k6)
-            call slope(self, model, t + h, self%z_new, self%k7, stat)
+            call slope(self, model, t + h, self%z_new, self%k7, stat, recoverable)
             if (stat /= 0) return
             self%work(:) = h*(e1*self%k1 + e3*self%k3 + e4*self%k4 + e5*self%k5 + e6*self%k6 + e7*self%k7)
             err_norm = sqrt(sum((self%work/(atol + rtol*max(abs(self%z), abs(self%z_new))))**2)/n)

@@ -12,8 +12,9 @@
 !! ```
 !! All state lives in the solver object (IDA memory, vectors, options, the
 !! problem's copy, counters), so any number of solvers can exist in one
-!! program. A solver must not be copied by assignment; `init` may be called
-!! again to start a new problem on the same object.
+!! program. Assignment does not copy a solver: `a = b` leaves `a`
+!! uninitialized (its `advance` says why) and `b` untouched. `init` may be
+!! called again to start a new problem on the same object.
 module regdae_ida_solver
     use, intrinsic :: iso_c_binding
     use, intrinsic :: iso_fortran_env, only: int64
@@ -74,6 +75,7 @@ module regdae_ida_solver
         logical :: second_order = .false.  ! the user's problem is of order 2: z = (x, v)
         real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
         real(wp) :: t = 0.0_wp
+        logical :: started = .false.       ! the integration has gone beyond t0
         type(c_ptr) :: sunctx = c_null_ptr
         type(c_ptr) :: ida_mem = c_null_ptr
         type(N_Vector), pointer :: uu => null(), up => null(), idv => null()
@@ -84,6 +86,10 @@ module regdae_ida_solver
         integer(int64) :: jac_res_evals = 0
         integer :: pending_stat = regdae_success   ! last failure seen in a callback
         logical :: pending_recoverable = .true.
+        ! recoverable residual failures that IDA has not got past: how many, and the
+        ! earliest time at which one happened (see note_recoverable_failure)
+        integer :: stall_count = 0
+        real(wp) :: stall_t = 0.0_wp
         character(len=:), allocatable :: pending_message, ida_message
         ! diagnostics, sampled at the output times (IDA) or the accepted steps (dopri5)
         type(solution_monitor) :: monitor
@@ -96,6 +102,7 @@ module regdae_ida_solver
         real(wp) :: t = 0.0_wp   ! time reached
         integer :: last_stat = regdae_err_not_initialized
         character(len=:), allocatable :: last_message
+        logical :: assigned = .false.   ! the target of an assignment (which does not copy)
     contains
         !> Set up a problem: check the input, compute consistent initial values
         !! and create the IDA objects. `init(problem, t0, x0, opts, stat)` for a
@@ -124,6 +131,12 @@ module regdae_ida_solver
         !> Free all IDA and SUNDIALS objects (also done by `init` and finalization).
         procedure :: destroy => solver_destroy
         procedure, private :: record => solver_record
+        !> `a = b` does not copy a solver (it owns IDA memory and its callbacks
+        !! point at it): `a` is left uninitialized, `b` unchanged; `a%advance`
+        !! then reports `regdae_err_not_initialized` and says why. Call `init`
+        !! on `a` to start a problem there.
+        generic :: assignment(=) => assign_refused
+        procedure, private :: assign_refused => solver_assign
         final :: solver_finalize
     end type regdae_solver
 
@@ -253,6 +266,7 @@ contains
 
         call self%destroy()
         self%t = t0
+        self%assigned = .false.
         ok = .false.
         call validate_options(opts, code, msg)
         if (code /= regdae_success) then
@@ -339,6 +353,13 @@ contains
             if (core%model%order >= 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:n) = .true.
         end if
         allocate (core%u_pert(core%neq), core%up_pert(core%neq), core%r_pert(core%neq), core%y_work(m))
+        if (opts%h_init == 0.0_wp) then
+            call check_first_step(core, t0, z0, zp0, stat, msg)
+            if (stat /= regdae_success) then
+                call fail(stat, msg)
+                return
+            end if
+        end if
         if (opts%integrator == integrator_dopri5) then
             core%z_rk = z0
             call core%rk%start(core%model, t0, z0, opts%h_init, stat)
@@ -363,6 +384,77 @@ contains
             call self%destroy()
         end subroutine fail
     end subroutine solver_start
+
+    ! Can an integrator take a first step from (t0, z0) with slope zp0? The
+    ! step that keeps the local error near the tolerance is about 1/|zp0|_w,
+    ! the weighted RMS norm with the weights w = 1/(rtol |z0| + atol) of the
+    ! components in the error test (IDA's own estimate of the first step is
+    ! 0.5/|zp0|_w). When that norm overflows (IDA squares w zp0) or its step
+    ! is below the time resolution at t0, no step can be taken: IDA would fail
+    ! with a message about tstop or tout, dopri5 with "step size too small".
+    ! Say what causes it instead: the tolerances, or a slope that a large
+    ! Baumgarte weight has made huge.
+    subroutine check_first_step(core, t0, z0, zp0, stat, msg)
+        type(solver_core), intent(in) :: core
+        real(wp), intent(in) :: t0, z0(:), zp0(:)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp) :: w, scaled, biggest, sumsq, norm
+        integer :: i, worst
+        stat = regdae_success
+        msg = ''
+        biggest = 0.0_wp
+        worst = 0
+        do i = 1, size(z0)
+            if (core%excluded(i) .and. core%opts%integrator /= integrator_dopri5) cycle
+            w = 1.0_wp/(core%opts%rtol*abs(z0(i)) + core%opts%atol)
+            scaled = abs(zp0(i))*w
+            if (.not. (scaled <= biggest)) then
+                biggest = scaled
+                worst = i
+            end if
+        end do
+        if (worst == 0) return
+        norm = huge(1.0_wp)
+        if (biggest < 1.0e150_wp) then
+            sumsq = 0.0_wp
+            do i = 1, size(z0)
+                if (core%excluded(i) .and. core%opts%integrator /= integrator_dopri5) cycle
+                w = 1.0_wp/(core%opts%rtol*abs(z0(i)) + core%opts%atol)
+                sumsq = sumsq + (zp0(i)*w/biggest)**2
+            end do
+            norm = biggest*sqrt(sumsq/size(z0))
+            if (0.5_wp/norm >= time_resolution(t0, t0)) return
+        end if
+        stat = regdae_err_bad_input
+        w = 1.0_wp/(core%opts%rtol*abs(z0(worst)) + core%opts%atol)
+        msg = 'no first step possible at t0 = '//format_real(t0)//': the step that keeps the local error at the '// &
+              'tolerance, about 1/|z''(t0)|_w with the error weights w = 1/(rtol |z| + atol), is below the time '// &
+              'resolution (component '//format_int(worst)//': |z''| = '//format_real(abs(zp0(worst)))// &
+              ', w = '//format_real(w)//'): '
+        if (w > abs(zp0(worst))) then
+            msg = msg//'atol = '//format_real(core%opts%atol)//' is too small (the weighted norms square the '// &
+                  'weights, up to 1/atol, which overflow for atol below about 1e-150)'
+        else
+            msg = msg//'the initial slope is huge; '//weights_text(core)//' magnifies the rounding error of '// &
+                  'the constraint at the initial point (max |g| = '//format_real(maxval(abs(core%model%g), 1))// &
+                  ') into the multiplier, or f(x0, t0) itself is that large'
+        end if
+    end subroutine check_first_step
+
+    ! The Baumgarte weights in use, for messages.
+    function weights_text(core) result(text)
+        type(solver_core), intent(in) :: core
+        character(len=:), allocatable :: text
+        if (core%model%order == 2) then
+            text = 'the weight gamma0 = '//format_real(core%opts%gamma0)//' (or gamma1 = '// &
+                   format_real(core%opts%gamma1)//')'
+        else if (core%model%order >= 3) then
+            text = 'a Taylor weight (taylor_h = '//format_real(core%opts%taylor_h)//')'
+        else
+            text = 'the weight gamma = '//format_real(core%opts%gamma)
+        end if
+    end function weights_text
 
     ! Create the SUNDIALS context, vectors, IDA memory and the dense linear solver.
     subroutine create_ida(core, t0, u0, up0, stat, msg)
@@ -470,7 +562,12 @@ contains
 
         core => self%core
         if (.not. associated(core)) then
-            call fail(regdae_err_not_initialized, 'advance called before a successful init')
+            if (self%assigned) then
+                call fail(regdae_err_not_initialized, 'advance called on a solver that was the target of an '// &
+                          'assignment, which does not copy a solver: call init on it first')
+            else
+                call fail(regdae_err_not_initialized, 'advance called before a successful init')
+            end if
             return
         end if
         nx = core%nx
@@ -499,6 +596,16 @@ contains
                       ' is before the current time '//format_real(core%t))
             return
         end if
+        if (.not. core%started .and. tout > core%t .and. tout - core%t < time_resolution(core%t, tout)) then
+            ! No first step fits (IDA: "tout too close to t0"); later, IDA and dopri5
+            ! step across such intervals.
+            call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout, 16)// &
+                      ' is too close to t0 = '//format_real(core%t, 16)//' to start the integration: tout - t0 = '// &
+                      format_real(tout - core%t)//' is below the time resolution '// &
+                      format_real(time_resolution(core%t, tout))// &
+                      ' (4 epsilon max(|t0|, |tout|), at least sqrt(tiny) = 1.5E-154)')
+            return
+        end if
         core%pending_stat = regdae_success
         if (len(core%pending_message) > 0) core%pending_message = ''
         if (core%opts%integrator == integrator_dopri5) then
@@ -514,15 +621,20 @@ contains
                     return
                 end if
                 core%t = tout
+                core%started = .true.
             end if
         else
             u => FN_VGetArrayPointer(core%uu)
             if (tout > core%t) then
                 ! SUNDIALS 6.4.1 keeps a stop time in force after returning at it: set it anew each call.
                 ierr = 0
+                tret(1) = core%t   ! IDA does not write tret when it refuses its input
                 if (core%opts%stop_at_output) ierr = FIDASetStopTime(core%ida_mem, tout)
                 if (ierr == 0) ierr = FIDASolve(core%ida_mem, tout, tret, core%uu, core%up, IDA_NORMAL)
                 if (ierr < 0) then
+                    ! On a failure during the integration IDA returns the last time
+                    ! reached and the solution there; on an input error, nothing.
+                    if (ierr == IDA_ILL_INPUT .or. .not. (tret(1) >= core%t .and. tret(1) <= tout)) tret(1) = core%t
                     core%t = tret(1)
                     call copy_state()
                     if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -541,6 +653,7 @@ contains
                     return
                 end if
                 core%t = tout
+                core%started = .true.
             end if
         end if
         self%t = core%t
@@ -712,10 +825,32 @@ contains
         self%core => null()
     end subroutine solver_destroy
 
+    subroutine solver_assign(lhs, rhs)
+        class(regdae_solver), intent(inout) :: lhs
+        class(regdae_solver), intent(in) :: rhs
+        integer :: stat
+        if (associated(lhs%core) .and. associated(rhs%core)) then
+            if (associated(lhs%core, rhs%core)) return   ! a = a
+        end if
+        call lhs%destroy()
+        lhs%t = rhs%t
+        lhs%assigned = .true.
+        call lhs%record(regdae_err_not_initialized, 'a regdae_solver cannot be copied by assignment (it owns '// &
+                        'IDA memory): this one is uninitialized; call init on it', stat)
+    end subroutine solver_assign
+
     subroutine solver_finalize(self)
         type(regdae_solver), intent(inout) :: self
         call self%destroy()
     end subroutine solver_finalize
+
+    ! The smallest interval an integrator can step across at t and tout:
+    ! 4 epsilon max(|t|, |tout|) (IDA's own test for tout too close to t0), and
+    ! at least sqrt(tiny) so that a first step of a fraction of it is a normal number.
+    pure real(wp) function time_resolution(t, tout)
+        real(wp), intent(in) :: t, tout
+        time_resolution = max(4*epsilon(1.0_wp)*max(abs(t), abs(tout)), sqrt(tiny(1.0_wp)))
+    end function time_resolution
 
     ! ---------------------------------------------------------------------
     ! The bridge to IDA: bind(C) callbacks that reach the solver core through
@@ -748,8 +883,41 @@ contains
         core%pending_stat = stat
         core%pending_recoverable = recoverable
         core%pending_message = core%model%message
-        ierr = merge(1_c_int, -1_c_int, recoverable)
+        if (recoverable) call note_recoverable_failure(core, t)
+        ierr = merge(1_c_int, -1_c_int, core%pending_recoverable)
     end function evaluate_residual
+
+    ! A recoverable failure at the trial time t. IDA retries with a smaller step;
+    ! when the failure sits at a point the solution cannot pass (f NaN for all
+    ! t >= t1, say), every retry that crosses it fails and every step that
+    ! stops short succeeds, so IDA creeps towards it until max_steps. The
+    ! failures are counted from the earliest failing time t_s on, as long as
+    ! IDA's time stays below t_s; at stall_limit of them the failure becomes
+    ! unrecoverable, with a message that says where the integration is stuck.
+    subroutine note_recoverable_failure(core, t)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t
+        integer, parameter :: stall_limit = 25
+        real(c_double) :: tn(1)
+        integer(c_int) :: ierr
+        if (.not. c_associated(core%ida_mem)) return
+        ierr = FIDAGetCurrentTime(core%ida_mem, tn)
+        if (ierr /= 0) return
+        if (core%stall_count > 0 .and. tn(1) > core%stall_t) core%stall_count = 0   ! got past it
+        if (core%stall_count == 0) then
+            core%stall_t = t
+        else
+            core%stall_t = min(core%stall_t, t)
+        end if
+        core%stall_count = core%stall_count + 1
+        if (core%stall_count < stall_limit) return
+        core%pending_recoverable = .false.
+        core%pending_stat = regdae_err_integration
+        core%pending_message = 'IDA cannot get past t = '//format_real(core%stall_t)//': '// &
+                               format_int(stall_limit)//' recoverable failures of the residual at or beyond it '// &
+                               'while the integration stayed at t = '//format_real(tn(1))//' (last: '// &
+                               core%model%message//')'
+    end subroutine note_recoverable_failure
 
     integer(c_int) function ida_residual(t, nv_u, nv_up, nv_res, user_data) result(ierr) bind(C)
         real(c_double), value :: t

@@ -30,6 +30,7 @@ module regdae_options
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_bad_input
     use regdae_damped_lsq, only: lsq_normal, lsq_stacked
+    use regdae_parse, only: parse_real, parse_integer
     implicit none
     private
 
@@ -172,7 +173,7 @@ contains
         end select
         if (code <= 0) then
             stat = regdae_err_bad_input
-            msg = 'bad value "'//value//'" for option "'//key//'"'
+            msg = 'bad value "'//value//'" for option "'//key//'"'//expected_form(key)
             return
         end if
         call validate_options(opts, stat, msg)
@@ -308,6 +309,24 @@ contains
         end select
     end function excluded_name
 
+    ! What a key's value looks like, for the message about a bad one.
+    pure function expected_form(key) result(text)
+        character(len=*), intent(in) :: key
+        character(len=:), allocatable :: text
+        select case (key)
+        case ('method'); text = ' (baumgarte, trust_region or direct)'
+        case ('formulation'); text = ' (multiplier or eliminated)'
+        case ('lsq'); text = ' (auto, normal or stacked)'
+        case ('exclusion'); text = ' (suppress, weights or off)'
+        case ('stop_at_output', 'curvature'); text = ' (yes or no)'
+        case ('index'); text = ' (2 or 3)'
+        case ('excluded'); text = ' (y or vy)'
+        case ('integrator'); text = ' (ida or dopri5)'
+        case ('max_steps'); text = ' (an integer, e.g. 100000)'
+        case default; text = ' (a finite number, e.g. 1e-6, 2.5 or .5)'
+        end select
+    end function expected_form
+
     ! Position of `value` in `names` (1-based), 0 if absent.
     pure subroutine lookup(value, names, code)
         character(len=*), intent(in) :: value
@@ -320,33 +339,24 @@ contains
         end do
     end subroutine lookup
 
-    ! Read a finite real; code = 1 on success, 0 otherwise.
+    ! Read a finite real (regdae_parse's forms); code = 1 on success, 0 otherwise.
     subroutine read_real(text, x, code)
         character(len=*), intent(in) :: text
         real(wp), intent(inout) :: x
         integer, intent(out) :: code
-        real(wp) :: tmp
-        integer :: ios
-        code = 0
-        if (len_trim(text) == 0 .or. verify(trim(text), '0123456789+-.eEdD') /= 0) return
-        read (text, *, iostat=ios) tmp
-        if (ios /= 0 .or. .not. ieee_is_finite(tmp)) return
-        x = tmp
-        code = 1
+        logical :: ok
+        call parse_real(text, x, ok)
+        code = merge(1, 0, ok)
     end subroutine read_real
 
-    ! Read an integer; code = 1 on success, 0 otherwise.
+    ! Read an integer (regdae_parse's forms); code = 1 on success, 0 otherwise.
     subroutine read_integer(text, k, code)
         character(len=*), intent(in) :: text
         integer, intent(inout) :: k
         integer, intent(out) :: code
-        integer :: tmp, ios
-        code = 0
-        if (len_trim(text) == 0 .or. verify(trim(text), '0123456789+-') /= 0) return
-        read (text, *, iostat=ios) tmp
-        if (ios /= 0) return
-        k = tmp
-        code = 1
+        logical :: ok
+        call parse_integer(text, k, ok)
+        code = merge(1, 0, ok)
     end subroutine read_integer
 
 end module regdae_options

@@ -14,10 +14,13 @@ module test_solver
     integer, parameter :: nout = 200
     real(wp), parameter :: t0 = -1.0_wp, tf = 1.0_wp
 
-    !> Example 5.1 whose f fails (with the given sign) or returns NaN for t > t_fail.
-    type, extends(ex51) :: failing_ex51
+    !> Example 5.1 whose f fails (with the given sign) or returns NaN for t > t_fail,
+    !! counting its calls there in `calls_after` if associated (a pointer, so that
+    !! the solver's copy of the problem counts into the test's variable).
+    type, extends(ex51), public :: failing_ex51
         real(wp) :: t_fail = 0.0_wp
         integer :: fail_stat = -1     !! 0: return NaN instead of failing
+        integer, pointer :: calls_after => null()
     contains
         procedure :: rhs => failing_rhs
     end type failing_ex51
@@ -47,6 +50,7 @@ contains
         integer, intent(inout) :: stat
         v(1) = 2.0_wp
         if (t > self%t_fail) then
+            if (associated(self%calls_after)) self%calls_after = self%calls_after + 1
             if (self%fail_stat == 0) then
                 v(1) = ieee_value(1.0_wp, ieee_quiet_nan)
             else

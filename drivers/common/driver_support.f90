@@ -3,12 +3,15 @@
 module driver_support
     use, intrinsic :: iso_fortran_env, only: int64, error_unit
     use regdae, only: wp, format_real, format_int, solver_options, solver_stats, set_option, regdae_success, &
-                      regdae_solver
+                      regdae_solver, parse_real, parse_integer
     implicit none
     private
 
     public :: format_int
-    public :: read_number, common_argument, stats_fields, run_status
+    public :: read_number, read_count, common_argument, stats_fields, run_status
+
+    !> The largest `nout` the drivers accept: their tables hold nout + 1 rows.
+    integer, parameter, public :: max_nout = 1000000
     public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage
 
 contains
@@ -62,20 +65,35 @@ contains
         sec = real(now - start, wp)/real(rate, wp)
     end function elapsed_seconds
 
-    !> Read a finite real option value, or stop with a usage error naming it.
+    !> Read a finite real option value (the forms of `parse_real`: 1e-3, 1E-3,
+    !! 1d-3, .5, 5., +5), or stop with a usage error naming the key.
     subroutine read_number(program_name, key, value, x)
         character(len=*), intent(in) :: program_name, key, value
         real(wp), intent(inout) :: x
-        real(wp) :: tmp
-        integer :: ios
-        ios = 1
-        if (len_trim(value) > 0 .and. verify(value, '0123456789+-.eEdD') == 0) read (value, *, iostat=ios) tmp
-        if (ios /= 0) call die_usage(program_name, 'bad value "'//value//'" for '//key)
-        x = tmp
+        logical :: ok
+        call parse_real(value, x, ok)
+        if (.not. ok) call die_usage(program_name, 'bad value "'//value//'" for '//key// &
+                                     ' (a finite number, e.g. 1e-3, 2.5 or .5)')
     end subroutine read_number
 
-    !> The arguments all drivers share: `nout` (an integer >= 1) and every solver
-    !! option; anything else stops with a usage error naming it.
+    !> Read an integer option value in [lo, hi], or stop with a usage error
+    !! naming the key and the range.
+    subroutine read_count(program_name, key, value, k, lo, hi)
+        character(len=*), intent(in) :: program_name, key, value
+        integer, intent(inout) :: k
+        integer, intent(in) :: lo, hi
+        integer :: tmp
+        logical :: ok
+        tmp = lo
+        call parse_integer(value, tmp, ok)
+        if (.not. ok .or. tmp < lo .or. tmp > hi) &
+            call die_usage(program_name, 'bad value "'//value//'" for '//key//' (an integer in ['// &
+                           format_int(lo)//', '//format_int(hi)//'])')
+        k = tmp
+    end subroutine read_count
+
+    !> The arguments all drivers share: `nout` (an integer in [1, max_nout]) and
+    !! every solver option; anything else stops with a usage error naming it.
     subroutine common_argument(program_name, key, value, opts, nout)
         character(len=*), intent(in) :: program_name, key, value
         type(solver_options), intent(inout) :: opts
@@ -83,9 +101,7 @@ contains
         character(len=:), allocatable :: msg
         integer :: stat
         if (key == 'nout') then
-            read (value, *, iostat=stat) nout
-            if (stat /= 0 .or. len_trim(value) == 0 .or. verify(value, '0123456789') /= 0 .or. nout < 1) &
-                call die_usage(program_name, 'bad value "'//value//'" for nout (an integer >= 1)')
+            call read_count(program_name, key, value, nout, 1, max_nout)
         else
             call set_option(opts, key, value, stat, msg)
             if (stat /= regdae_success) call die_usage(program_name, msg)

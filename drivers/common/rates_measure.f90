@@ -39,21 +39,25 @@ contains
     end function output_grid
 
     !> One run from x*(-1): errors(1:4) = max |x - x*| for t < -delta, |t| <= delta,
-    !! t > delta, and at t = 1. NaN and stat < 0 if the run fails.
-    subroutine measure_errors(problem, opts, times, delta, errors, stat)
+    !! t > delta, and at t = 1. NaN and stat < 0 if the run fails; then `message`,
+    !! if present, is the solver's message (empty after success).
+    subroutine measure_errors(problem, opts, times, delta, errors, stat, message)
         type(theory_problem), intent(in) :: problem
         type(solver_options), intent(in) :: opts   !! method, gamma, eps, tolerances
         real(wp), intent(in) :: times(:)           !! sorted output times in [-1, 1]
         real(wp), intent(in) :: delta              !! half-width of the singular neighbourhood
         real(wp), intent(out) :: errors(4)
         integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out), optional :: message
         type(regdae_solver) :: solver
         real(wp) :: x(problem%n), y(problem%m), e, t
         integer :: k, region
         errors = 0.0_wp
+        if (present(message)) message = ''
         call solver%init(problem, t0, problem%x_exact(t0), opts, stat)
         if (stat /= regdae_success) then
             errors = ieee_value(1.0_wp, ieee_quiet_nan)
+            if (present(message)) message = solver%message()
             return
         end if
         do k = 1, size(times)
@@ -71,7 +75,10 @@ contains
             errors(region) = max(errors(region), e)
             if (k == size(times)) errors(4) = e
         end do
-        if (stat /= regdae_success) errors = ieee_value(1.0_wp, ieee_quiet_nan)
+        if (stat /= regdae_success) then
+            errors = ieee_value(1.0_wp, ieee_quiet_nan)
+            if (present(message)) message = solver%message()
+        end if
         call solver%destroy()
     end subroutine measure_errors
 
