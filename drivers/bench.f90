@@ -17,7 +17,8 @@
 !! at 1e-11 and 1e-12; the explicit integrator and its paired oracle also at the
 !! half-decades 10^(-k-1/2).)
 !! Output: '#' lines and rows 'problem config rtol max_err seconds steps res_evals jac_evals status',
-!! status ok, failed, or off_branch (a slider-crank run with max |th1 + th2 - pi| > 0.1).
+!! status ok, failed, or off_branch (a slider-crank run with max |th1 + th2 - pi| > 0.1), and the last
+!! line 'summary rows=... ok=... failed=... off_branch=...' (failed rows are results, not errors: exit 0).
 program bench_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use regdae
@@ -44,6 +45,7 @@ program bench_driver
     type(pendulum_angle) :: angle
     integer :: im, jf, ic
     integer :: i, k, reps, stat, tol_from, tol_to
+    integer :: row_counts(3) = 0   ! rows ok, failed, off_branch
     character(len=:), allocatable :: key, value, which
     logical :: ok
     type(slider_crank_reduced) :: reduced
@@ -139,6 +141,8 @@ program bench_driver
             call oracle_cvode(tol)
         end do
     end if
+    write (*, '(a)') 'summary rows='//format_int(sum(row_counts))//' ok='//format_int(row_counts(1))//' failed='// &
+        format_int(row_counts(2))//' off_branch='//format_int(row_counts(3))
     ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
     if (allocated(key)) deallocate (key, value)
     deallocate (which)
@@ -403,6 +407,13 @@ contains
         write (*, '(a)') name//' "'//config//'" '//num(tol)//' '//num(err)//' '//num(seconds)//' '// &
             format_int(int(st%steps))//' '//format_int(int(st%res_evals))//' '//format_int(int(st%jac_evals))//' '// &
             trim(status_word(stat))
+        if (stat == regdae_success) then
+            row_counts(1) = row_counts(1) + 1
+        else if (stat == branch_left) then
+            row_counts(3) = row_counts(3) + 1
+        else
+            row_counts(2) = row_counts(2) + 1
+        end if
     end subroutine row
 
     pure function status_word(stat) result(w)

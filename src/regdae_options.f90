@@ -31,6 +31,7 @@ module regdae_options
     use regdae_status, only: regdae_success, regdae_err_bad_input
     use regdae_damped_lsq, only: lsq_normal, lsq_stacked
     use regdae_parse, only: parse_real, parse_integer
+    use regdae_format, only: format_real, format_int
     implicit none
     private
 
@@ -186,36 +187,25 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         stat = regdae_err_bad_input
-        if (.not. (ieee_is_finite(opts%gamma) .and. opts%gamma > 0.0_wp)) then
-            msg = 'gamma must be finite and > 0'
-        else if (.not. (ieee_is_finite(opts%eps) .and. opts%eps >= 0.0_wp)) then
-            msg = 'eps must be finite and >= 0'
-        else if (.not. (opts%rtol > 0.0_wp .and. opts%rtol < 1.0_wp)) then
-            msg = 'rtol must be in (0, 1)'
-        else if (.not. (ieee_is_finite(opts%atol) .and. opts%atol > 0.0_wp)) then
-            msg = 'atol must be finite and > 0'
-        else if (.not. (ieee_is_finite(opts%h_init) .and. opts%h_init >= 0.0_wp)) then
-            msg = 'h_init must be finite and >= 0'
-        else if (.not. (ieee_is_finite(opts%h_max) .and. opts%h_max >= 0.0_wp)) then
-            msg = 'h_max must be finite and >= 0'
-        else if (.not. (ieee_is_finite(opts%ic_tol) .and. opts%ic_tol > 0.0_wp)) then
-            msg = 'ic_tol must be finite and > 0'
-        else if (.not. (ieee_is_finite(opts%gamma0) .and. opts%gamma0 > 0.0_wp)) then
-            msg = 'gamma0 must be finite and > 0'
-        else if (.not. (ieee_is_finite(opts%gamma1) .and. opts%gamma1 > 0.0_wp)) then
-            msg = 'gamma1 must be finite and > 0'
-        else if (.not. (ieee_is_finite(opts%singular_threshold) .and. opts%singular_threshold >= 0.0_wp)) then
-            msg = 'singular_threshold must be finite and >= 0'
-        else if (.not. (ieee_is_finite(opts%jump_tol) .and. opts%jump_tol >= 0.0_wp)) then
-            msg = 'jump_tol must be finite and >= 0'
-        else if (.not. (ieee_is_finite(opts%drift_tol) .and. opts%drift_tol >= 0.0_wp)) then
-            msg = 'drift_tol must be finite and >= 0'
-        else if (.not. (ieee_is_finite(opts%invariant_tol) .and. opts%invariant_tol >= 0.0_wp)) then
-            msg = 'invariant_tol must be finite and >= 0'
-        else if (.not. (ieee_is_finite(opts%taylor_h) .and. opts%taylor_h > 0.0_wp)) then
-            msg = 'taylor_h must be finite and > 0'
-        else if (.not. (ieee_is_finite(opts%mass_damping) .and. opts%mass_damping >= 0.0_wp)) then
-            msg = 'mass_damping must be finite and >= 0'
+        msg = ''
+        call need_positive('gamma', opts%gamma)
+        call need_nonnegative('eps', opts%eps)
+        if (len(msg) == 0 .and. .not. (opts%rtol > 0.0_wp .and. opts%rtol < 1.0_wp)) &
+            msg = 'rtol must be in (0, 1) (got '//format_real(opts%rtol)//')'
+        call need_positive('atol', opts%atol)
+        call need_nonnegative('h_init', opts%h_init)
+        call need_nonnegative('h_max', opts%h_max)
+        call need_positive('ic_tol', opts%ic_tol)
+        call need_positive('gamma0', opts%gamma0)
+        call need_positive('gamma1', opts%gamma1)
+        call need_nonnegative('singular_threshold', opts%singular_threshold)
+        call need_nonnegative('jump_tol', opts%jump_tol)
+        call need_nonnegative('drift_tol', opts%drift_tol)
+        call need_nonnegative('invariant_tol', opts%invariant_tol)
+        call need_positive('taylor_h', opts%taylor_h)
+        call need_nonnegative('mass_damping', opts%mass_damping)
+        if (len(msg) > 0) then
+            return
         else if (opts%integrator /= integrator_ida .and. opts%integrator /= integrator_dopri5) then
             msg = 'integrator must be ida or dopri5'
         else if (opts%integrator == integrator_dopri5 .and. opts%formulation /= formulation_eliminated) then
@@ -225,7 +215,7 @@ contains
         else if (opts%excluded /= excluded_y .and. opts%excluded /= excluded_vy) then
             msg = 'excluded must be y or vy'
         else if (opts%max_steps < 1) then
-            msg = 'max_steps must be >= 1'
+            msg = 'max_steps must be >= 1 (got '//format_int(opts%max_steps)//')'
         else if (opts%method < method_baumgarte .or. opts%method > method_direct) then
             msg = 'unknown method'
         else if (opts%formulation < formulation_multiplier .or. opts%formulation > formulation_eliminated) then
@@ -238,6 +228,21 @@ contains
             stat = regdae_success
             msg = ''
         end if
+    contains
+        subroutine need_positive(name, x)
+            character(len=*), intent(in) :: name
+            real(wp), intent(in) :: x
+            if (len(msg) > 0) return
+            if (.not. (ieee_is_finite(x) .and. x > 0.0_wp)) msg = name//' must be finite and > 0 (got '//format_real(x)//')'
+        end subroutine need_positive
+
+        subroutine need_nonnegative(name, x)
+            character(len=*), intent(in) :: name
+            real(wp), intent(in) :: x
+            if (len(msg) > 0) return
+            if (.not. (ieee_is_finite(x) .and. x >= 0.0_wp)) &
+                msg = name//' must be finite and >= 0 (got '//format_real(x)//')'
+        end subroutine need_nonnegative
     end subroutine validate_options
 
     !> Name of a method code, as accepted by `set_option`.

@@ -9,6 +9,7 @@ program regdae_tester
     use test_mechanics, only: mechanics_tests
     use test_theory, only: theory_tests
     use test_hardening, only: hardening_tests
+    use test_fuzz, only: fuzz_tests
     implicit none
     character(len=64) :: suite
     integer :: nfailed, ntotal
@@ -26,8 +27,10 @@ program regdae_tester
     call maybe_run('mechanics', mechanics_tests())
     call maybe_run('theory', theory_tests())
     call maybe_run('hardening', hardening_tests())
+    call maybe_run('fuzz', fuzz_tests())
     if (.not. known) then
-        write (*, '(a)') 'regdae_tester: unknown suite "'//trim(suite)//'" (lsq, residuals, solver, mechanics, theory, hardening)'
+        write (*, '(a)') 'regdae_tester: unknown suite "'//trim(suite)// &
+            '" (lsq, residuals, solver, mechanics, theory, hardening, fuzz)'
         stop 2
     end if
     write (*, '(i0,a,i0,a)') ntotal - nfailed, ' passed, ', nfailed, ' failed'

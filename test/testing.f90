@@ -29,7 +29,7 @@ module regdae_testing
 
     !> A named test.
     type, public :: test_case
-        character(len=:), allocatable :: name
+        character(len=64) :: name = ''   ! fixed length: arrays of tests need no deep copies
         procedure(test_procedure), pointer, nopass :: run => null()
     end type test_case
 
@@ -56,9 +56,9 @@ contains
             chk%failures = 0
             call tests(i)%run(chk)
             if (chk%failures == 0) then
-                write (*, '(a)') '  PASS '//suite_name//'/'//tests(i)%name
+                write (*, '(a)') '  PASS '//suite_name//'/'//trim(tests(i)%name)
             else
-                write (*, '(a)') '  FAIL '//suite_name//'/'//tests(i)%name
+                write (*, '(a)') '  FAIL '//suite_name//'/'//trim(tests(i)%name)
                 nfailed = nfailed + 1
             end if
         end do

@@ -1,9 +1,16 @@
 #!/bin/sh
 # Install the Debian packages regdae needs, if any is missing.
-# Usage: tools/install-deps.sh [--figures]   (--figures adds gnuplot-nox)
+# Usage: tools/install-deps.sh [--figures] [--tests]
+#   --figures adds gnuplot-nox (the report's figures); --tests adds valgrind (memcheck tests)
 set -eu
 packages="gfortran cmake make liblapack-dev libsundials-dev libsundials-fortran-dev"
-[ "${1:-}" = --figures ] && packages="$packages gnuplot-nox"
+for arg in "$@"; do
+    case $arg in
+    --figures) packages="$packages gnuplot-nox" ;;
+    --tests) packages="$packages valgrind" ;;
+    *) echo "usage: tools/install-deps.sh [--figures] [--tests]" >&2; exit 2 ;;
+    esac
+done
 
 missing=""
 for p in $packages; do
