@@ -1,5 +1,9 @@
-!> The regdae solver: a regularized index-2 or index-3 DAE integrated by
-!! SUNDIALS IDA.
+!> The regdae solver front: a regularized index-2 or index-3 DAE integrated by
+!! one of the backends, SUNDIALS IDA (`regdae_ida_backend`) or the explicit
+!! Dormand-Prince integrator (`regdae_explicit_rk`). The front checks the
+!! input, computes consistent initial values, drives the backend from output
+!! to output, samples the diagnostics (`regdae_monitor`) and keeps the status
+!! and statistics.
 !!
 !! ```fortran
 !! type(regdae_solver) :: solver
@@ -15,18 +19,9 @@
 !! program. Assignment does not copy a solver: `a = b` leaves `a`
 !! uninitialized (its `advance` says why) and `b` untouched. `init` may be
 !! called again to start a new problem on the same object.
-module regdae_ida_solver
-    use, intrinsic :: iso_c_binding
-    use, intrinsic :: iso_fortran_env, only: int64
+module regdae_solver_front
+    use, intrinsic :: iso_c_binding, only: c_double
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
-    use fida_mod
-    use fsundials_context_mod
-    use fsundials_nvector_mod
-    use fnvector_serial_mod
-    use fsundials_matrix_mod
-    use fsunmatrix_dense_mod
-    use fsundials_linearsolver_mod
-    use fsunlinsol_dense_mod
     use regdae_kinds, only: wp
     use regdae_status
     use regdae_problem, only: dae_problem
@@ -38,36 +33,23 @@ module regdae_ida_solver
     use regdae_options
     use regdae_regularization, only: regularized_dae
     use regdae_explicit_rk, only: rk_integrator
+    use regdae_ida_backend, only: ida_backend
+    use regdae_regularized_system, only: new_regularized_system
+    use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant
     use regdae_format, only: format_real, format_int
     implicit none
     private
 
-    !> Integration statistics, in IDA's terms, and the singularity diagnostics.
-    type, public :: solver_stats
-        integer(int64) :: steps = 0            !! steps taken
-        integer(int64) :: res_evals = 0        !! all residual evaluations (IDA's + Jacobian's)
-        integer(int64) :: jac_res_evals = 0    !! residual evaluations in difference-quotient Jacobians
-        integer(int64) :: jac_evals = 0        !! Jacobian evaluations
-        integer(int64) :: lin_setups = 0       !! linear solver setups (factorizations)
-        integer(int64) :: nonlin_iters = 0     !! Newton iterations
-        integer(int64) :: err_test_fails = 0   !! local error test failures
-        integer(int64) :: conv_fails = 0       !! nonlinear convergence failures
-        real(wp) :: t = 0.0_wp                 !! time reached
-        real(wp) :: h_last = 0.0_wp            !! last step size used
-        integer :: singular_passes = 0         !! runs of consecutive samples with sigma_min(GB) < singular_threshold
-                                               !! (samples: the output times with IDA, the accepted steps with dopri5)
-        real(wp) :: sigma_min = huge(1.0_wp)   !! smallest sigma_min(GB) over the samples
-        real(wp) :: velocity_jump = 0.0_wp     !! largest relative velocity jump across a singular interval
-        real(wp) :: max_drift = 0.0_wp         !! largest max |g(x, t)| over the samples (order >= 2)
-        real(wp) :: invariant_change = 0.0_wp  !! largest |I - I(t0)| of the problem's invariant (invariant_tol > 0)
-    end type solver_stats
+    public :: solver_stats
 
-    ! Everything IDA's callbacks reach through user_data; allocated once per init
-    ! so that its address stays fixed.
+    ! The state of one problem: the model, the backend, the options and the
+    ! diagnostics; allocated once per init, so that the backend (IDA's user_data)
+    ! and the model it evaluates stay at fixed addresses.
     type :: solver_core
-        type(regularized_dae) :: model
-        type(rk_integrator) :: rk          ! used with integrator=dopri5 instead of IDA
+        type(regularized_dae), pointer :: model => null()
+        type(ida_backend) :: ida           ! integrator=ida
+        type(rk_integrator) :: rk          ! integrator=dopri5
         real(wp), allocatable :: z_rk(:)   ! dopri5: the state at the last output time
         type(solver_options) :: opts
         integer :: n = 0, m = 0, neq = 0   ! n: size of the state z; neq: IDA unknowns
@@ -76,21 +58,8 @@ module regdae_ida_solver
         real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
         real(wp) :: t = 0.0_wp
         logical :: started = .false.       ! the integration has gone beyond t0
-        type(c_ptr) :: sunctx = c_null_ptr
-        type(c_ptr) :: ida_mem = c_null_ptr
-        type(N_Vector), pointer :: uu => null(), up => null(), idv => null()
-        type(SUNMatrix), pointer :: jmat => null()
-        type(SUNLinearSolver), pointer :: ls => null()
         logical, allocatable :: excluded(:)   ! unknowns left out of the error test
-        real(wp), allocatable :: u_pert(:), up_pert(:), r_pert(:), y_work(:)
-        integer(int64) :: jac_res_evals = 0
-        integer :: pending_stat = regdae_success   ! last failure seen in a callback
-        logical :: pending_recoverable = .true.
-        ! recoverable residual failures that IDA has not got past: how many, and the
-        ! earliest time at which one happened (see note_recoverable_failure)
-        integer :: stall_count = 0
-        real(wp) :: stall_t = 0.0_wp
-        character(len=:), allocatable :: pending_message, ida_message
+        real(wp), allocatable :: y_work(:)    ! the multiplier at an output time
         ! diagnostics, sampled at the output times (IDA) or the accepted steps (dopri5)
         type(solution_monitor) :: monitor
     end type solver_core
@@ -151,7 +120,7 @@ contains
         integer, intent(out) :: stat                !! regdae status code
 
         if (.not. self%check_input(t0, x0, x0, problem%n, problem%m, opts, stat)) return
-        allocate (self%core)
+        call new_core(self%core)
         self%core%nx = problem%n
         select type (problem)
         class is (linear_dae_problem)
@@ -192,7 +161,7 @@ contains
                              '|G v0 + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
             return
         end if
-        allocate (self%core)
+        call new_core(self%core)
         self%core%nx = problem%n
         self%core%second_order = .true.
         select type (copy)
@@ -247,7 +216,7 @@ contains
                              '|G x0'' + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
             return
         end if
-        allocate (self%core)
+        call new_core(self%core)
         self%core%nx = problem%n
         self%core%second_order = .true.
         call self%core%model%init_higher_order(copy, opts, lsq_normal)
@@ -304,8 +273,6 @@ contains
         core%n = size(z0)
         core%m = core%model%m
         core%t = t0
-        core%pending_message = ''
-        core%ida_message = ''
         n = core%n
         m = core%m
         nx = core%model%n
@@ -352,7 +319,7 @@ contains
             core%excluded(n + 1:) = .true.
             if (core%model%order >= 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:n) = .true.
         end if
-        allocate (core%u_pert(core%neq), core%up_pert(core%neq), core%r_pert(core%neq), core%y_work(m))
+        allocate (core%y_work(m))
         if (opts%h_init == 0.0_wp) then
             call check_first_step(core, t0, z0, zp0, stat, msg)
             if (stat /= regdae_success) then
@@ -370,7 +337,8 @@ contains
             call self%record(regdae_success, '', stat)
             return
         end if
-        call create_ida(core, t0, [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg)
+        call core%ida%create(new_regularized_system(core%model, n, core%neq), opts, core%excluded, t0, &
+                             [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg)
         if (stat /= regdae_success) then
             call fail(stat, msg)
             return
@@ -456,93 +424,6 @@ contains
         end if
     end function weights_text
 
-    ! Create the SUNDIALS context, vectors, IDA memory and the dense linear solver.
-    subroutine create_ida(core, t0, u0, up0, stat, msg)
-        type(solver_core), pointer, intent(in) :: core
-        real(wp), intent(in) :: t0, u0(:), up0(:)
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        integer(c_long) :: neq
-        integer(c_int) :: ierr
-        real(c_double), pointer :: p(:)
-
-        stat = regdae_err_sundials
-        neq = int(core%neq, c_long)
-        ierr = FSUNContext_Create(c_null_ptr, core%sunctx)
-        if (ierr /= 0) then
-            msg = 'FSUNContext_Create failed'
-            return
-        end if
-        core%uu => FN_VNew_Serial(neq, core%sunctx)
-        core%up => FN_VNew_Serial(neq, core%sunctx)
-        if (.not. (associated(core%uu) .and. associated(core%up))) then
-            msg = 'FN_VNew_Serial failed'
-            return
-        end if
-        p => FN_VGetArrayPointer(core%uu)
-        p = u0(1:core%neq)
-        p => FN_VGetArrayPointer(core%up)
-        p = up0(1:core%neq)
-
-        core%ida_mem = FIDACreate(core%sunctx)
-        if (.not. c_associated(core%ida_mem)) then
-            msg = 'FIDACreate failed'
-            return
-        end if
-        ierr = FIDASetErrHandlerFn(core%ida_mem, c_funloc(ida_error_handler), c_loc(core))
-        if (ierr == 0) ierr = FIDAInit(core%ida_mem, c_funloc(ida_residual), t0, core%uu, core%up)
-        if (ierr == 0) ierr = FIDASetUserData(core%ida_mem, c_loc(core))
-        if (ierr /= 0) then
-            msg = 'FIDAInit failed: '//core%ida_message
-            return
-        end if
-
-        ! Tolerances and the exclusion of y (and v) from the local error test.
-        if (any(core%excluded) .and. core%opts%exclusion == exclusion_weights) then
-            ierr = FIDAWFtolerances(core%ida_mem, c_funloc(ida_error_weights))
-        else
-            ierr = FIDASStolerances(core%ida_mem, core%opts%rtol, core%opts%atol)
-        end if
-        if (ierr == 0 .and. any(core%excluded) .and. core%opts%exclusion == exclusion_suppress) then
-            core%idv => FN_VNew_Serial(neq, core%sunctx)
-            if (.not. associated(core%idv)) then
-                msg = 'FN_VNew_Serial failed'
-                return
-            end if
-            p => FN_VGetArrayPointer(core%idv)
-            p = merge(0.0_wp, 1.0_wp, core%excluded)   ! 0: left out of the error test
-            ierr = FIDASetId(core%ida_mem, core%idv)
-            if (ierr == 0) ierr = FIDASetSuppressAlg(core%ida_mem, 1_c_int)
-        end if
-        if (ierr /= 0) then
-            msg = 'setting the tolerances failed: '//core%ida_message
-            return
-        end if
-
-        ! Dense linear algebra with our own, weight-independent Jacobian.
-        core%jmat => FSUNDenseMatrix(neq, neq, core%sunctx)
-        if (.not. associated(core%jmat)) then
-            msg = 'FSUNDenseMatrix failed'
-            return
-        end if
-        core%ls => FSUNLinSol_Dense(core%uu, core%jmat, core%sunctx)
-        if (.not. associated(core%ls)) then
-            msg = 'FSUNLinSol_Dense failed'
-            return
-        end if
-        ierr = FIDASetLinearSolver(core%ida_mem, core%ls, core%jmat)
-        if (ierr == 0) ierr = FIDASetJacFn(core%ida_mem, c_funloc(ida_jacobian))
-        if (ierr == 0) ierr = FIDASetMaxNumSteps(core%ida_mem, int(core%opts%max_steps, c_long))
-        if (ierr == 0 .and. core%opts%h_init > 0.0_wp) ierr = FIDASetInitStep(core%ida_mem, core%opts%h_init)
-        if (ierr == 0 .and. core%opts%h_max > 0.0_wp) ierr = FIDASetMaxStep(core%ida_mem, core%opts%h_max)
-        if (ierr /= 0) then
-            msg = 'IDA setup failed: '//core%ida_message
-            return
-        end if
-        stat = regdae_success
-        msg = ''
-    end subroutine create_ida
-
     subroutine solver_advance(self, tout, x, y, stat, v)
         class(regdae_solver), intent(inout) :: self
         real(wp), intent(in) :: tout      !! output time (beyond the current time, or equal to it)
@@ -555,8 +436,8 @@ contains
         real(wp), intent(out), optional :: v(:)   !! second-order problems: v(tout), length n
         type(solver_core), pointer :: core
         real(c_double), pointer :: u(:), up(:)
-        real(c_double) :: tret(1)
-        integer(c_int) :: ierr
+        real(wp) :: tret
+        integer :: ierr
         logical :: recoverable
         integer :: nx
 
@@ -606,8 +487,6 @@ contains
                       ' (4 epsilon max(|t0|, |tout|), at least sqrt(tiny) = 1.5E-154)')
             return
         end if
-        core%pending_stat = regdae_success
-        if (len(core%pending_message) > 0) core%pending_message = ''
         if (core%opts%integrator == integrator_dopri5) then
             u => core%z_rk
             if (tout > core%t) then
@@ -624,31 +503,21 @@ contains
                 core%started = .true.
             end if
         else
-            u => FN_VGetArrayPointer(core%uu)
+            u => core%ida%state()
             if (tout > core%t) then
-                ! SUNDIALS 6.4.1 keeps a stop time in force after returning at it: set it anew each call.
-                ierr = 0
-                tret(1) = core%t   ! IDA does not write tret when it refuses its input
-                if (core%opts%stop_at_output) ierr = FIDASetStopTime(core%ida_mem, tout)
-                if (ierr == 0) ierr = FIDASolve(core%ida_mem, tout, tret, core%uu, core%up, IDA_NORMAL)
+                tret = core%t
+                call core%ida%solve(tout, core%opts%stop_at_output, tret, ierr)
                 if (ierr < 0) then
-                    ! On a failure during the integration IDA returns the last time
-                    ! reached and the solution there; on an input error, nothing.
-                    if (ierr == IDA_ILL_INPUT .or. .not. (tret(1) >= core%t .and. tret(1) <= tout)) tret(1) = core%t
-                    core%t = tret(1)
+                    core%t = tret
                     call copy_state()
                     if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
-                    if (core%pending_stat /= regdae_success .and. .not. core%pending_recoverable) then
-                        stat = core%pending_stat
-                    else
-                        stat = regdae_err_integration
-                    end if
-                    call fail(stat, 'IDA failed at t = '//format_real(tret(1))//' (flag '//format_int(int(ierr))// &
-                              '): '//core%ida_message//merge_text(' | last residual failure: ', core%pending_message))
+                    call fail(core%ida%failure_status(), 'IDA failed at t = '//format_real(tret)//' (flag '// &
+                              format_int(ierr)//'): '//core%ida%ida_message// &
+                              merge_text(' | last residual failure: ', core%ida%pending_message))
                     return
                 end if
-                if (tret(1) /= tout) then
-                    call fail(regdae_err_integration, 'IDA returned at t = '//format_real(tret(1))// &
+                if (tret /= tout) then
+                    call fail(regdae_err_integration, 'IDA returned at t = '//format_real(tret)// &
                               ' instead of the requested '//format_real(tout))
                     return
                 end if
@@ -681,7 +550,7 @@ contains
         end if
         if (present(y)) y = core%multiplier_sign*core%y_work
         if (core%opts%integrator /= integrator_dopri5) then
-            up => FN_VGetArrayPointer(core%up)   ! IDA's z'(tout): the slope it integrated
+            up => core%ida%slope()   ! IDA's z'(tout): the slope it integrated
             call core%monitor%sample(tout, core%model, u(1:core%n), up(1:core%n))
             if (branch_alarm()) return
         end if
@@ -724,9 +593,6 @@ contains
     function solver_statistics(self) result(st)
         class(regdae_solver), intent(in) :: self
         type(solver_stats) :: st
-        integer(c_long) :: k(1)
-        real(c_double) :: h(1)
-        integer(c_int) :: ierr
 
         st%t = self%t
         if (.not. associated(self%core)) return
@@ -742,17 +608,7 @@ contains
             st%invariant_change = self%core%monitor%invariant_change
             return
         end if
-        associate (mem => self%core%ida_mem)
-            ierr = FIDAGetNumSteps(mem, k); st%steps = k(1)
-            ierr = FIDAGetNumResEvals(mem, k); st%res_evals = k(1) + self%core%jac_res_evals
-            ierr = FIDAGetNumJacEvals(mem, k); st%jac_evals = k(1)
-            ierr = FIDAGetNumLinSolvSetups(mem, k); st%lin_setups = k(1)
-            ierr = FIDAGetNumNonlinSolvIters(mem, k); st%nonlin_iters = k(1)
-            ierr = FIDAGetNumErrTestFails(mem, k); st%err_test_fails = k(1)
-            ierr = FIDAGetNumNonlinSolvConvFails(mem, k); st%conv_fails = k(1)
-            ierr = FIDAGetLastStep(mem, h); st%h_last = h(1)
-        end associate
-        st%jac_res_evals = self%core%jac_res_evals
+        call self%core%ida%get_statistics(st)
         st%singular_passes = self%core%monitor%n_singular
         st%sigma_min = self%core%monitor%sigma_min
         st%velocity_jump = self%core%monitor%jump_max
@@ -810,17 +666,11 @@ contains
     subroutine solver_destroy(self)
         class(regdae_solver), intent(inout) :: self
         type(solver_core), pointer :: core
-        integer(c_int) :: ierr
 
         core => self%core
         if (.not. associated(core)) return
-        if (c_associated(core%ida_mem)) call FIDAFree(core%ida_mem)
-        if (associated(core%ls)) ierr = FSUNLinSolFree(core%ls)
-        if (associated(core%jmat)) call FSUNMatDestroy(core%jmat)
-        if (associated(core%idv)) call FN_VDestroy(core%idv)
-        if (associated(core%up)) call FN_VDestroy(core%up)
-        if (associated(core%uu)) call FN_VDestroy(core%uu)
-        if (c_associated(core%sunctx)) ierr = FSUNContext_Free(core%sunctx)
+        call core%ida%free()
+        if (associated(core%model)) deallocate (core%model)
         deallocate (self%core)
         self%core => null()
     end subroutine solver_destroy
@@ -844,6 +694,13 @@ contains
         call self%destroy()
     end subroutine solver_finalize
 
+    ! A new core with its model (both at fixed addresses until destroy).
+    subroutine new_core(core)
+        type(solver_core), pointer, intent(out) :: core
+        allocate (core)
+        allocate (core%model)
+    end subroutine new_core
+
     ! The smallest interval an integrator can step across at t and tout:
     ! 4 epsilon max(|t|, |tout|) (IDA's own test for tout too close to t0), and
     ! at least sqrt(tiny) so that a first step of a fraction of it is a normal number.
@@ -852,175 +709,6 @@ contains
         time_resolution = max(4*epsilon(1.0_wp)*max(abs(t), abs(tout)), sqrt(tiny(1.0_wp)))
     end function time_resolution
 
-    ! ---------------------------------------------------------------------
-    ! The bridge to IDA: bind(C) callbacks that reach the solver core through
-    ! IDA's user_data.
-    ! ---------------------------------------------------------------------
-
-    ! Regularized residual for the unknowns u (x, or (x, y)); returns 0, or
-    ! +1 (recoverable) / -1 (fatal) after recording the failure in the core.
-    integer(c_int) function evaluate_residual(core, t, u, up, res) result(ierr)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t, u(:), up(:)
-        real(wp), intent(out) :: res(:)
-        integer :: stat, n
-        logical :: recoverable
-
-        n = core%n
-        if (core%neq == n) then
-            call core%model%residual_eliminated(t, u, up, res, core%y_work, stat, recoverable)
-        else
-            call core%model%residual_multiplier(t, u(1:n), u(n + 1:), up(1:n), res(1:n), res(n + 1:), &
-                                                stat, recoverable)
-        end if
-        ierr = 0
-        if (stat == regdae_success) then
-            if (all(ieee_is_finite(res))) return
-            stat = regdae_err_nonfinite
-            recoverable = .true.
-            core%model%message = 'NaN or Inf in the residual at t = '//format_real(t)
-        end if
-        core%pending_stat = stat
-        core%pending_recoverable = recoverable
-        core%pending_message = core%model%message
-        if (recoverable) call note_recoverable_failure(core, t)
-        ierr = merge(1_c_int, -1_c_int, core%pending_recoverable)
-    end function evaluate_residual
-
-    ! A recoverable failure at the trial time t. IDA retries with a smaller step;
-    ! when the failure sits at a point the solution cannot pass (f NaN for all
-    ! t >= t1, say), every retry that crosses it fails and every step that
-    ! stops short succeeds, so IDA creeps towards it until max_steps. The
-    ! failures are counted from the earliest failing time t_s on, as long as
-    ! IDA's time stays below t_s; at stall_limit of them the failure becomes
-    ! unrecoverable, with a message that says where the integration is stuck.
-    subroutine note_recoverable_failure(core, t)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t
-        integer, parameter :: stall_limit = 25
-        real(c_double) :: tn(1)
-        integer(c_int) :: ierr
-        if (.not. c_associated(core%ida_mem)) return
-        ierr = FIDAGetCurrentTime(core%ida_mem, tn)
-        if (ierr /= 0) return
-        if (core%stall_count > 0 .and. tn(1) > core%stall_t) core%stall_count = 0   ! got past it
-        if (core%stall_count == 0) then
-            core%stall_t = t
-        else
-            core%stall_t = min(core%stall_t, t)
-        end if
-        core%stall_count = core%stall_count + 1
-        if (core%stall_count < stall_limit) return
-        core%pending_recoverable = .false.
-        core%pending_stat = regdae_err_integration
-        core%pending_message = 'IDA cannot get past t = '//format_real(core%stall_t)//': '// &
-                               format_int(stall_limit)//' recoverable failures of the residual at or beyond it '// &
-                               'while the integration stayed at t = '//format_real(tn(1))//' (last: '// &
-                               core%model%message//')'
-    end subroutine note_recoverable_failure
-
-    integer(c_int) function ida_residual(t, nv_u, nv_up, nv_res, user_data) result(ierr) bind(C)
-        real(c_double), value :: t
-        type(N_Vector) :: nv_u, nv_up, nv_res
-        type(c_ptr), value :: user_data
-        type(solver_core), pointer :: core
-        real(c_double), pointer :: u(:), up(:), res(:)
-
-        call c_f_pointer(user_data, core)
-        u => FN_VGetArrayPointer(nv_u)
-        up => FN_VGetArrayPointer(nv_up)
-        res => FN_VGetArrayPointer(nv_res)
-        ierr = evaluate_residual(core, t, u, up, res)
-    end function ida_residual
-
-    ! Dense Jacobian dF/du + cj dF/du' by forward differences, column j with the
-    ! increment d_j = sqrt(u) max(|u_j|, 1): independent of IDA's error weights,
-    ! so it is defined also when some weights are zero.
-    integer(c_int) function ida_jacobian(t, cj, nv_u, nv_up, nv_res, jmat, user_data, tmp1, tmp2, tmp3) &
-        result(ierr) bind(C)
-        real(c_double), value :: t, cj
-        type(N_Vector) :: nv_u, nv_up, nv_res
-        type(SUNMatrix) :: jmat
-        type(c_ptr), value :: user_data
-        type(N_Vector) :: tmp1, tmp2, tmp3
-        type(solver_core), pointer :: core
-        real(c_double), pointer :: u(:), up(:), res(:), jdata(:), jac(:, :)
-        real(wp) :: delta, sqrt_unit
-        integer :: j, neq
-
-        call c_f_pointer(user_data, core)
-        neq = core%neq
-        u => FN_VGetArrayPointer(nv_u)
-        up => FN_VGetArrayPointer(nv_up)
-        res => FN_VGetArrayPointer(nv_res)
-        ! FSUNDenseMatrix_Data returns a rank-1 pointer of extent 1: rebuild the
-        ! n x n view from its address.
-        jdata => FSUNDenseMatrix_Data(jmat)
-        call c_f_pointer(c_loc(jdata(1)), jac, [neq, neq])
-        sqrt_unit = sqrt(epsilon(1.0_wp))
-        core%u_pert = u(1:neq)
-        core%up_pert = up(1:neq)
-        do j = 1, neq
-            delta = sqrt_unit*max(abs(u(j)), 1.0_wp)
-            core%u_pert(j) = u(j) + delta
-            delta = core%u_pert(j) - u(j)       ! the increment actually represented
-            core%up_pert(j) = up(j) + cj*delta
-            ierr = evaluate_residual(core, t, core%u_pert, core%up_pert, core%r_pert)
-            core%jac_res_evals = core%jac_res_evals + 1
-            if (ierr /= 0) return
-            jac(:, j) = (core%r_pert - res(1:neq))/delta
-            core%u_pert(j) = u(j)
-            core%up_pert(j) = up(j)
-        end do
-        ierr = 0
-    end function ida_jacobian
-
-    ! Error weights 1/(rtol |u_i| + atol), 0 for the unknowns left out (y, and v if asked).
-    integer(c_int) function ida_error_weights(nv_u, nv_ewt, user_data) result(ierr) bind(C)
-        type(N_Vector) :: nv_u, nv_ewt
-        type(c_ptr), value :: user_data
-        type(solver_core), pointer :: core
-        real(c_double), pointer :: u(:), ewt(:)
-
-        call c_f_pointer(user_data, core)
-        u => FN_VGetArrayPointer(nv_u)
-        ewt => FN_VGetArrayPointer(nv_ewt)
-        ewt(1:core%neq) = merge(0.0_wp, 1.0_wp/(core%opts%rtol*abs(u(1:core%neq)) + core%opts%atol), core%excluded)
-        ierr = 0
-    end function ida_error_weights
-
-    ! Keep IDA's last message in the core instead of printing it.
-    subroutine ida_error_handler(error_code, module_name, function_name, msg, user_data) bind(C)
-        integer(c_int), value :: error_code
-        type(c_ptr), value :: module_name, function_name, msg
-        type(c_ptr), value :: user_data
-        type(solver_core), pointer :: core
-
-        if (error_code == 0) return
-        call c_f_pointer(user_data, core)
-        core%ida_message = c_string(function_name)//': '//c_string(msg)
-    end subroutine ida_error_handler
-
-    ! A C string as a Fortran string.
-    function c_string(p) result(s)
-        type(c_ptr), intent(in) :: p
-        character(len=:), allocatable :: s
-        character(kind=c_char), pointer :: chars(:)
-        integer :: k, length
-        length = 0
-        if (c_associated(p)) then
-            call c_f_pointer(p, chars, [4096])
-            do while (length < size(chars))
-                if (chars(length + 1) == c_null_char) exit
-                length = length + 1
-            end do
-        end if
-        allocate (character(len=length) :: s)
-        do k = 1, length
-            s(k:k) = chars(k)
-        end do
-    end function c_string
-
     pure function merge_text(prefix, text) result(s)
         character(len=*), intent(in) :: prefix, text
         character(len=:), allocatable :: s
@@ -1028,4 +716,4 @@ contains
         if (len(text) > 0) s = prefix//text
     end function merge_text
 
-end module regdae_ida_solver
+end module regdae_solver_front

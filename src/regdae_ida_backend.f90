@@ -1,0 +1,418 @@
+!> The IDA backend: SUNDIALS IDA integrating an `implicit_system`, with the
+!! bind(C) callbacks that reach the backend through IDA's user_data, the
+!! difference-quotient Jacobian, the error weights that leave unknowns out of
+!! the error test, and IDA's counters.
+!!
+!! The backend object must not move while IDA exists (its address is IDA's
+!! user_data): the solver front keeps it inside its heap-allocated core.
+module regdae_ida_backend
+    use, intrinsic :: iso_c_binding
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use fida_mod
+    use fsundials_context_mod
+    use fsundials_nvector_mod
+    use fnvector_serial_mod
+    use fsundials_matrix_mod
+    use fsunmatrix_dense_mod
+    use fsundials_linearsolver_mod
+    use fsunlinsol_dense_mod
+    use regdae_kinds, only: wp
+    use regdae_status
+    use regdae_format, only: format_real, format_int
+    use regdae_options, only: solver_options, exclusion_weights, exclusion_suppress
+    use regdae_implicit_system, only: implicit_system
+    use regdae_solver_stats, only: solver_stats
+    implicit none
+    private
+
+    !> IDA and everything its callbacks need.
+    type, public :: ida_backend
+        class(implicit_system), allocatable :: system   !! the residual integrated
+        type(solver_options) :: opts                    !! tolerances, exclusion, step limits
+        integer :: neq = 0
+        logical, allocatable :: excluded(:)             !! unknowns left out of the error test
+        type(c_ptr) :: sunctx = c_null_ptr
+        type(c_ptr) :: ida_mem = c_null_ptr
+        type(N_Vector), pointer :: uu => null(), up => null(), idv => null()
+        type(SUNMatrix), pointer :: jmat => null()
+        type(SUNLinearSolver), pointer :: ls => null()
+        real(wp), allocatable :: u_pert(:), up_pert(:), r_pert(:)
+        integer(c_long) :: jac_res_evals = 0
+        integer :: pending_stat = regdae_success        !! last failure seen in a callback
+        logical :: pending_recoverable = .true.
+        character(len=:), allocatable :: pending_message, ida_message
+        ! recoverable residual failures that IDA has not got past: how many, and the
+        ! earliest time at which one happened (see note_recoverable_failure)
+        integer :: stall_count = 0
+        real(wp) :: stall_t = 0.0_wp
+    contains
+        !> Create the SUNDIALS context, vectors, IDA memory and the linear solver.
+        procedure :: create => backend_create
+        !> Integrate to tout (IDA_NORMAL); tret: the time reached; ierr: IDA's flag.
+        procedure :: solve => backend_solve
+        !> IDA's solution vector u and its derivative u' (at the last return).
+        procedure :: state => backend_state
+        procedure :: slope => backend_slope
+        !> The status of a failed solve: the callback's unrecoverable status, or
+        !! regdae_err_integration.
+        procedure :: failure_status => backend_failure_status
+        !> IDA's counters into a solver_stats record.
+        procedure :: get_statistics => backend_statistics
+        !> Free all SUNDIALS objects.
+        procedure :: free => backend_free
+    end type ida_backend
+
+contains
+
+    subroutine backend_create(self, system, opts, excluded, t0, u0, up0, stat, msg)
+        class(ida_backend), target, intent(inout) :: self
+        class(implicit_system), intent(in) :: system     !! copied into the backend
+        type(solver_options), intent(in) :: opts
+        logical, intent(in) :: excluded(:)               !! length neq
+        real(wp), intent(in) :: t0, u0(:), up0(:)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        integer(c_long) :: neq
+        integer(c_int) :: ierr
+        real(c_double), pointer :: p(:)
+        type(c_ptr) :: user_data
+
+        user_data = c_null_ptr
+        select type (self)
+        type is (ida_backend)
+            user_data = c_loc(self)   ! what the callbacks receive
+        end select
+        allocate (self%system, source=system)
+        self%opts = opts
+        self%neq = system%neq
+        self%excluded = excluded
+        self%pending_message = ''
+        self%ida_message = ''
+        allocate (self%u_pert(self%neq), self%up_pert(self%neq), self%r_pert(self%neq))
+        stat = regdae_err_sundials
+        neq = int(self%neq, c_long)
+        ierr = FSUNContext_Create(c_null_ptr, self%sunctx)
+        if (ierr /= 0) then
+            msg = 'FSUNContext_Create failed'
+            return
+        end if
+        self%uu => FN_VNew_Serial(neq, self%sunctx)
+        self%up => FN_VNew_Serial(neq, self%sunctx)
+        if (.not. (associated(self%uu) .and. associated(self%up))) then
+            msg = 'FN_VNew_Serial failed'
+            return
+        end if
+        p => FN_VGetArrayPointer(self%uu)
+        p = u0(1:self%neq)
+        p => FN_VGetArrayPointer(self%up)
+        p = up0(1:self%neq)
+
+        self%ida_mem = FIDACreate(self%sunctx)
+        if (.not. c_associated(self%ida_mem)) then
+            msg = 'FIDACreate failed'
+            return
+        end if
+        ierr = FIDASetErrHandlerFn(self%ida_mem, c_funloc(ida_error_handler), user_data)
+        if (ierr == 0) ierr = FIDAInit(self%ida_mem, c_funloc(ida_residual), t0, self%uu, self%up)
+        if (ierr == 0) ierr = FIDASetUserData(self%ida_mem, user_data)
+        if (ierr /= 0) then
+            msg = 'FIDAInit failed: '//self%ida_message
+            return
+        end if
+
+        ! Tolerances and the exclusion of y (and v) from the local error test.
+        if (any(self%excluded) .and. opts%exclusion == exclusion_weights) then
+            ierr = FIDAWFtolerances(self%ida_mem, c_funloc(ida_error_weights))
+        else
+            ierr = FIDASStolerances(self%ida_mem, opts%rtol, opts%atol)
+        end if
+        if (ierr == 0 .and. any(self%excluded) .and. opts%exclusion == exclusion_suppress) then
+            self%idv => FN_VNew_Serial(neq, self%sunctx)
+            if (.not. associated(self%idv)) then
+                msg = 'FN_VNew_Serial failed'
+                return
+            end if
+            p => FN_VGetArrayPointer(self%idv)
+            p = merge(0.0_wp, 1.0_wp, self%excluded)   ! 0: left out of the error test
+            ierr = FIDASetId(self%ida_mem, self%idv)
+            if (ierr == 0) ierr = FIDASetSuppressAlg(self%ida_mem, 1_c_int)
+        end if
+        if (ierr /= 0) then
+            msg = 'setting the tolerances failed: '//self%ida_message
+            return
+        end if
+
+        ! Dense linear algebra with our own, weight-independent Jacobian.
+        self%jmat => FSUNDenseMatrix(neq, neq, self%sunctx)
+        if (.not. associated(self%jmat)) then
+            msg = 'FSUNDenseMatrix failed'
+            return
+        end if
+        self%ls => FSUNLinSol_Dense(self%uu, self%jmat, self%sunctx)
+        if (.not. associated(self%ls)) then
+            msg = 'FSUNLinSol_Dense failed'
+            return
+        end if
+        ierr = FIDASetLinearSolver(self%ida_mem, self%ls, self%jmat)
+        if (ierr == 0) ierr = FIDASetJacFn(self%ida_mem, c_funloc(ida_jacobian))
+        if (ierr == 0) ierr = FIDASetMaxNumSteps(self%ida_mem, int(opts%max_steps, c_long))
+        if (ierr == 0 .and. opts%h_init > 0.0_wp) ierr = FIDASetInitStep(self%ida_mem, opts%h_init)
+        if (ierr == 0 .and. opts%h_max > 0.0_wp) ierr = FIDASetMaxStep(self%ida_mem, opts%h_max)
+        if (ierr /= 0) then
+            msg = 'IDA setup failed: '//self%ida_message
+            return
+        end if
+        stat = regdae_success
+        msg = ''
+    end subroutine backend_create
+
+    subroutine backend_solve(self, tout, stop_at_output, tret, ierr)
+        class(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: tout
+        logical, intent(in) :: stop_at_output   !! make a step end at tout
+        real(wp), intent(inout) :: tret         !! in: the current time; out: the time reached
+        integer, intent(out) :: ierr            !! IDA's return flag (< 0: failure)
+        real(c_double) :: t_reached(1)
+        integer(c_int) :: flag
+        real(wp) :: t_before
+
+        self%pending_stat = regdae_success
+        if (len(self%pending_message) > 0) self%pending_message = ''
+        t_before = tret
+        t_reached(1) = tret   ! IDA does not write tret when it refuses its input
+        ! SUNDIALS 6.4.1 keeps a stop time in force after returning at it: set it anew each call.
+        flag = 0
+        if (stop_at_output) flag = FIDASetStopTime(self%ida_mem, tout)
+        if (flag == 0) flag = FIDASolve(self%ida_mem, tout, t_reached, self%uu, self%up, IDA_NORMAL)
+        ierr = int(flag)
+        tret = t_reached(1)
+        if (flag < 0) then
+            ! On a failure during the integration IDA returns the last time
+            ! reached and the solution there; on an input error, nothing.
+            if (flag == IDA_ILL_INPUT .or. .not. (tret >= t_before .and. tret <= tout)) tret = t_before
+        end if
+    end subroutine backend_solve
+
+    function backend_state(self) result(u)
+        class(ida_backend), intent(in) :: self
+        real(c_double), pointer :: u(:)
+        u => FN_VGetArrayPointer(self%uu)
+    end function backend_state
+
+    function backend_slope(self) result(up)
+        class(ida_backend), intent(in) :: self
+        real(c_double), pointer :: up(:)
+        up => FN_VGetArrayPointer(self%up)
+    end function backend_slope
+
+    integer function backend_failure_status(self) result(stat)
+        class(ida_backend), intent(in) :: self
+        if (self%pending_stat /= regdae_success .and. .not. self%pending_recoverable) then
+            stat = self%pending_stat
+        else
+            stat = regdae_err_integration
+        end if
+    end function backend_failure_status
+
+    subroutine backend_statistics(self, st)
+        class(ida_backend), intent(in) :: self
+        type(solver_stats), intent(inout) :: st
+        integer(c_long) :: k(1)
+        real(c_double) :: h(1)
+        integer(c_int) :: ierr
+        if (.not. c_associated(self%ida_mem)) return
+        associate (mem => self%ida_mem)
+            ierr = FIDAGetNumSteps(mem, k); st%steps = k(1)
+            ierr = FIDAGetNumResEvals(mem, k); st%res_evals = k(1) + self%jac_res_evals
+            ierr = FIDAGetNumJacEvals(mem, k); st%jac_evals = k(1)
+            ierr = FIDAGetNumLinSolvSetups(mem, k); st%lin_setups = k(1)
+            ierr = FIDAGetNumNonlinSolvIters(mem, k); st%nonlin_iters = k(1)
+            ierr = FIDAGetNumErrTestFails(mem, k); st%err_test_fails = k(1)
+            ierr = FIDAGetNumNonlinSolvConvFails(mem, k); st%conv_fails = k(1)
+            ierr = FIDAGetLastStep(mem, h); st%h_last = h(1)
+        end associate
+        st%jac_res_evals = self%jac_res_evals
+    end subroutine backend_statistics
+
+    subroutine backend_free(self)
+        class(ida_backend), intent(inout) :: self
+        integer(c_int) :: ierr
+        if (c_associated(self%ida_mem)) call FIDAFree(self%ida_mem)
+        if (associated(self%ls)) ierr = FSUNLinSolFree(self%ls)
+        if (associated(self%jmat)) call FSUNMatDestroy(self%jmat)
+        if (associated(self%idv)) call FN_VDestroy(self%idv)
+        if (associated(self%up)) call FN_VDestroy(self%up)
+        if (associated(self%uu)) call FN_VDestroy(self%uu)
+        if (c_associated(self%sunctx)) ierr = FSUNContext_Free(self%sunctx)
+        self%ida_mem = c_null_ptr
+        self%sunctx = c_null_ptr
+        self%ls => null()
+        self%jmat => null()
+        self%idv => null()
+        self%up => null()
+        self%uu => null()
+    end subroutine backend_free
+
+    ! ---------------------------------------------------------------------
+    ! The bind(C) callbacks: IDA's user_data is the backend.
+    ! ---------------------------------------------------------------------
+
+    ! The system's residual; returns 0, or +1 (recoverable) / -1 (fatal) after
+    ! recording the failure in the backend.
+    integer(c_int) function evaluate_residual(self, t, u, up, res) result(ierr)
+        type(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:), up(:)
+        real(wp), intent(out) :: res(:)
+        integer :: stat
+        logical :: recoverable
+
+        call self%system%residual(t, u, up, res, stat, recoverable)
+        ierr = 0
+        if (stat == regdae_success) then
+            if (all(ieee_is_finite(res))) return
+            stat = regdae_err_nonfinite
+            recoverable = .true.
+            self%system%message = 'NaN or Inf in the residual at t = '//format_real(t)
+        end if
+        self%pending_stat = stat
+        self%pending_recoverable = recoverable
+        self%pending_message = self%system%message
+        if (recoverable) call note_recoverable_failure(self, t)
+        ierr = merge(1_c_int, -1_c_int, self%pending_recoverable)
+    end function evaluate_residual
+
+    ! A recoverable failure at the trial time t. IDA retries with a smaller step;
+    ! when the failure sits at a point the solution cannot pass (f NaN for all
+    ! t >= t1, say), every retry that crosses it fails and every step that
+    ! stops short succeeds, so IDA creeps towards it until max_steps. The
+    ! failures are counted from the earliest failing time t_s on, as long as
+    ! IDA's time stays below t_s; at stall_limit of them the failure becomes
+    ! unrecoverable, with a message that says where the integration is stuck.
+    subroutine note_recoverable_failure(self, t)
+        type(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: t
+        integer, parameter :: stall_limit = 25
+        real(c_double) :: tn(1)
+        integer(c_int) :: ierr
+        if (.not. c_associated(self%ida_mem)) return
+        ierr = FIDAGetCurrentTime(self%ida_mem, tn)
+        if (ierr /= 0) return
+        if (self%stall_count > 0 .and. tn(1) > self%stall_t) self%stall_count = 0   ! got past it
+        if (self%stall_count == 0) then
+            self%stall_t = t
+        else
+            self%stall_t = min(self%stall_t, t)
+        end if
+        self%stall_count = self%stall_count + 1
+        if (self%stall_count < stall_limit) return
+        self%pending_recoverable = .false.
+        self%pending_stat = regdae_err_integration
+        self%pending_message = 'IDA cannot get past t = '//format_real(self%stall_t)//': '// &
+                               format_int(stall_limit)//' recoverable failures of the residual at or beyond it '// &
+                               'while the integration stayed at t = '//format_real(tn(1))//' (last: '// &
+                               self%system%message//')'
+    end subroutine note_recoverable_failure
+
+    integer(c_int) function ida_residual(t, nv_u, nv_up, nv_res, user_data) result(ierr) bind(C)
+        real(c_double), value :: t
+        type(N_Vector) :: nv_u, nv_up, nv_res
+        type(c_ptr), value :: user_data
+        type(ida_backend), pointer :: self
+        real(c_double), pointer :: u(:), up(:), res(:)
+
+        call c_f_pointer(user_data, self)
+        u => FN_VGetArrayPointer(nv_u)
+        up => FN_VGetArrayPointer(nv_up)
+        res => FN_VGetArrayPointer(nv_res)
+        ierr = evaluate_residual(self, t, u, up, res)
+    end function ida_residual
+
+    ! Dense Jacobian dF/du + cj dF/du' by forward differences, column j with the
+    ! increment d_j = sqrt(u) max(|u_j|, 1): independent of IDA's error weights,
+    ! so it is defined also when some weights are zero.
+    integer(c_int) function ida_jacobian(t, cj, nv_u, nv_up, nv_res, jmat, user_data, tmp1, tmp2, tmp3) &
+        result(ierr) bind(C)
+        real(c_double), value :: t, cj
+        type(N_Vector) :: nv_u, nv_up, nv_res
+        type(SUNMatrix) :: jmat
+        type(c_ptr), value :: user_data
+        type(N_Vector) :: tmp1, tmp2, tmp3
+        type(ida_backend), pointer :: self
+        real(c_double), pointer :: u(:), up(:), res(:), jdata(:), jac(:, :)
+        real(wp) :: delta, sqrt_unit
+        integer :: j, neq
+
+        call c_f_pointer(user_data, self)
+        neq = self%neq
+        u => FN_VGetArrayPointer(nv_u)
+        up => FN_VGetArrayPointer(nv_up)
+        res => FN_VGetArrayPointer(nv_res)
+        ! FSUNDenseMatrix_Data returns a rank-1 pointer of extent 1: rebuild the
+        ! n x n view from its address.
+        jdata => FSUNDenseMatrix_Data(jmat)
+        call c_f_pointer(c_loc(jdata(1)), jac, [neq, neq])
+        sqrt_unit = sqrt(epsilon(1.0_wp))
+        self%u_pert = u(1:neq)
+        self%up_pert = up(1:neq)
+        do j = 1, neq
+            delta = sqrt_unit*max(abs(u(j)), 1.0_wp)
+            self%u_pert(j) = u(j) + delta
+            delta = self%u_pert(j) - u(j)       ! the increment actually represented
+            self%up_pert(j) = up(j) + cj*delta
+            ierr = evaluate_residual(self, t, self%u_pert, self%up_pert, self%r_pert)
+            self%jac_res_evals = self%jac_res_evals + 1
+            if (ierr /= 0) return
+            jac(:, j) = (self%r_pert - res(1:neq))/delta
+            self%u_pert(j) = u(j)
+            self%up_pert(j) = up(j)
+        end do
+        ierr = 0
+    end function ida_jacobian
+
+    ! Error weights 1/(rtol |u_i| + atol), 0 for the unknowns left out (y, and v if asked).
+    integer(c_int) function ida_error_weights(nv_u, nv_ewt, user_data) result(ierr) bind(C)
+        type(N_Vector) :: nv_u, nv_ewt
+        type(c_ptr), value :: user_data
+        type(ida_backend), pointer :: self
+        real(c_double), pointer :: u(:), ewt(:)
+
+        call c_f_pointer(user_data, self)
+        u => FN_VGetArrayPointer(nv_u)
+        ewt => FN_VGetArrayPointer(nv_ewt)
+        ewt(1:self%neq) = merge(0.0_wp, 1.0_wp/(self%opts%rtol*abs(u(1:self%neq)) + self%opts%atol), self%excluded)
+        ierr = 0
+    end function ida_error_weights
+
+    ! Keep IDA's last message in the backend instead of printing it.
+    subroutine ida_error_handler(error_code, module_name, function_name, msg, user_data) bind(C)
+        integer(c_int), value :: error_code
+        type(c_ptr), value :: module_name, function_name, msg
+        type(c_ptr), value :: user_data
+        type(ida_backend), pointer :: self
+
+        if (error_code == 0) return
+        call c_f_pointer(user_data, self)
+        self%ida_message = c_string(function_name)//': '//c_string(msg)
+    end subroutine ida_error_handler
+
+    ! A C string as a Fortran string.
+    function c_string(p) result(s)
+        type(c_ptr), intent(in) :: p
+        character(len=:), allocatable :: s
+        character(kind=c_char), pointer :: chars(:)
+        integer :: k, length
+        length = 0
+        if (c_associated(p)) then
+            call c_f_pointer(p, chars, [4096])
+            do while (length < size(chars))
+                if (chars(length + 1) == c_null_char) exit
+                length = length + 1
+            end do
+        end if
+        allocate (character(len=length) :: s)
+        do k = 1, length
+            s(k:k) = chars(k)
+        end do
+    end function c_string
+
+end module regdae_ida_backend

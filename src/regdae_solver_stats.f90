@@ -1,0 +1,29 @@
+!> The statistics a solver reports: its integrator's counters, in IDA's terms,
+!! and the singularity diagnostics of the monitor.
+module regdae_solver_stats
+    use, intrinsic :: iso_fortran_env, only: int64
+    use regdae_kinds, only: wp
+    implicit none
+    private
+
+    !> Integration statistics, in IDA's terms, and the singularity diagnostics.
+    type, public :: solver_stats
+        integer(int64) :: steps = 0            !! steps taken
+        integer(int64) :: res_evals = 0        !! all residual evaluations (IDA's + Jacobian's)
+        integer(int64) :: jac_res_evals = 0    !! residual evaluations in difference-quotient Jacobians
+        integer(int64) :: jac_evals = 0        !! Jacobian evaluations
+        integer(int64) :: lin_setups = 0       !! linear solver setups (factorizations)
+        integer(int64) :: nonlin_iters = 0     !! Newton iterations
+        integer(int64) :: err_test_fails = 0   !! local error test failures
+        integer(int64) :: conv_fails = 0       !! nonlinear convergence failures
+        real(wp) :: t = 0.0_wp                 !! time reached
+        real(wp) :: h_last = 0.0_wp            !! last step size used
+        integer :: singular_passes = 0         !! runs of consecutive samples with sigma_min(GB) < singular_threshold
+                                               !! (samples: the output times with IDA, the accepted steps with dopri5)
+        real(wp) :: sigma_min = huge(1.0_wp)   !! smallest sigma_min(GB) over the samples
+        real(wp) :: velocity_jump = 0.0_wp     !! largest relative velocity jump across a singular interval
+        real(wp) :: max_drift = 0.0_wp         !! largest max |g(x, t)| over the samples (order >= 2)
+        real(wp) :: invariant_change = 0.0_wp  !! largest |I - I(t0)| of the problem's invariant (invariant_tol > 0)
+    end type solver_stats
+
+end module regdae_solver_stats
