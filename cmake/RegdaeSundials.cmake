@@ -3,7 +3,8 @@
 # directory <prefix>/fortran, which does not exist (the .mod files are in
 # <prefix>/include/sundials/fortran), so CMake refuses to generate.
 #
-# Result: the imported target SUNDIALS::fida_mod_shared, usable as is, and the
+# Result: the imported targets SUNDIALS::fida_mod_shared and the Fortran modules of
+# the band and sparse (KLU) matrices and linear solvers, usable as is, and the
 # cache variable REGDAE_SUNDIALS_FORTRAN_MODULE_DIR.
 if(TARGET SUNDIALS::fida_mod_shared AND REGDAE_SUNDIALS_FORTRAN_MODULE_DIR)
   return()
@@ -22,7 +23,9 @@ if(NOT REGDAE_SUNDIALS_FORTRAN_MODULE_DIR)
                       "REGDAE_SUNDIALS_FORTRAN_MODULE_DIR")
 endif()
 
-foreach(_regdae_target IN ITEMS SUNDIALS::fida_mod_shared SUNDIALS::fcvode_mod_shared)
+foreach(_regdae_target IN ITEMS SUNDIALS::fida_mod_shared SUNDIALS::fcvode_mod_shared
+                              SUNDIALS::fsunmatrixband_mod_shared SUNDIALS::fsunlinsolband_mod_shared
+                              SUNDIALS::fsunmatrixsparse_mod_shared SUNDIALS::fsunlinsolklu_mod_shared)
   if(TARGET ${_regdae_target})
     set_target_properties(${_regdae_target} PROPERTIES
       INTERFACE_INCLUDE_DIRECTORIES "${_regdae_sundials_inc};${REGDAE_SUNDIALS_FORTRAN_MODULE_DIR}")

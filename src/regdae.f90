@@ -10,7 +10,9 @@ module regdae
     use regdae_status
     use regdae_problem, only: dae_problem, constraint_dt_difference
     use regdae_second_order_problem, only: second_order_problem, velocity_constraint, curvature_difference
-    use regdae_mechanical_problem, only: mechanical_problem
+    use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
+    use regdae_sparsity, only: sparsity_pattern, dense_pattern, empty_pattern, diagonal_pattern, band_pattern, &
+                               pattern_from_entries, pattern_union
     use regdae_linear_problem, only: linear_dae_problem
     use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
     use regdae_options
@@ -25,17 +27,21 @@ module regdae
               higher_order_problem, taylor_weights
     public :: linear_dae_problem
     public :: parse_real, parse_integer
+    public :: mechanical_structure, sparsity_pattern, dense_pattern, empty_pattern, diagonal_pattern, band_pattern, &
+              pattern_from_entries, pattern_union
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     ! regdae_status
     public :: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, regdae_err_inconsistent_ic, &
               regdae_err_user_callback, &
               regdae_err_not_psd, regdae_err_singular, regdae_err_lapack, regdae_err_sundials, &
               regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, regdae_err_mass_matrix, &
-              regdae_err_branch, regdae_err_drift, regdae_err_invariant, &
+              regdae_err_branch, regdae_err_drift, regdae_err_invariant, regdae_err_structure, &
               status_message
     ! regdae_options
     public :: solver_options, set_option, validate_options, method_name, formulation_name, lsq_name, &
               exclusion_name, method_baumgarte, method_trust_region, method_direct, formulation_multiplier, &
               formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, exclusion_suppress, exclusion_weights, &
-              exclusion_off, excluded_y, excluded_vy, excluded_name, integrator_ida, integrator_dopri5, integrator_name
+              exclusion_off, excluded_y, excluded_vy, excluded_name, integrator_ida, integrator_dopri5, integrator_name, &
+              formulation_auto, formulation_augmented, augmented_min_n, linear_solver_auto, linear_solver_dense, &
+              linear_solver_band, linear_solver_sparse, linear_solver_name
 end module regdae

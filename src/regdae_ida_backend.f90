@@ -3,6 +3,14 @@
 !! difference-quotient Jacobian, the error weights that leave unknowns out of
 !! the error test, and IDA's counters.
 !!
+!! Linear solvers: dense (SUNLinSol_Dense), band (SUNLinSol_Band) and sparse
+!! (SUNLinSol_KLU). A system without a pattern gets the dense matrix and one
+!! residual per column; a structured system gets its Jacobian by grouped
+!! difference quotients (Curtis, Powell and Reid: the columns of one group share
+!! no row and are perturbed together, one residual per group), stored in the
+!! chosen matrix. The increments do not depend on IDA's error weights, so the
+!! Jacobian is defined also where a weight is zero.
+!!
 !! The backend object must not move while IDA exists (its address is IDA's
 !! user_data): the solver front keeps it inside its heap-allocated core.
 module regdae_ida_backend
@@ -14,13 +22,19 @@ module regdae_ida_backend
     use fnvector_serial_mod
     use fsundials_matrix_mod
     use fsunmatrix_dense_mod
+    use fsunmatrix_band_mod
+    use fsunmatrix_sparse_mod
     use fsundials_linearsolver_mod
     use fsunlinsol_dense_mod
+    use fsunlinsol_band_mod
+    use fsunlinsol_klu_mod
     use regdae_kinds, only: wp
     use regdae_status
     use regdae_format, only: format_real, format_int
-    use regdae_options, only: solver_options, exclusion_weights, exclusion_suppress
+    use regdae_options, only: solver_options, exclusion_weights, exclusion_suppress, linear_solver_dense, &
+                              linear_solver_band, linear_solver_sparse, linear_solver_name
     use regdae_implicit_system, only: implicit_system
+    use regdae_sparsity, only: sparsity_pattern, color_columns, permuted_bandwidths
     use regdae_solver_stats, only: solver_stats
     implicit none
     private
@@ -30,7 +44,15 @@ module regdae_ida_backend
         class(implicit_system), allocatable :: system   !! the residual integrated
         type(solver_options) :: opts                    !! tolerances, exclusion, step limits
         integer :: neq = 0
+        integer :: linear_solver = linear_solver_dense  !! the matrix IDA factors
         logical, allocatable :: excluded(:)             !! unknowns left out of the error test
+        ! grouped difference quotients (structured systems): the columns of group c are
+        ! group_cols(group_start(c):group_start(c+1)-1); column j holds the rows
+        ! csc_rows(csc_start(j):csc_start(j+1)-1)
+        integer :: ngroups = 0
+        integer, allocatable :: group_start(:), group_cols(:), csc_start(:), csc_rows(:)
+        integer :: band_upper = 0, band_lower = 0
+        real(wp), allocatable :: delta(:)
         type(c_ptr) :: sunctx = c_null_ptr
         type(c_ptr) :: ida_mem = c_null_ptr
         type(N_Vector), pointer :: uu => null(), up => null(), idv => null()
@@ -48,6 +70,9 @@ module regdae_ida_backend
     contains
         !> Create the SUNDIALS context, vectors, IDA memory and the linear solver.
         procedure :: create => backend_create
+        !> Consistent initial values by IDACalcIC (IDA_YA_YDP_INIT): the algebraic
+        !! unknowns and the derivatives of the differential ones.
+        procedure :: calc_ic => backend_calc_ic
         !> Integrate to tout (IDA_NORMAL); tret: the time reached; ierr: IDA's flag.
         procedure :: solve => backend_solve
         !> IDA's solution vector u and its derivative u' (at the last return).
@@ -64,10 +89,11 @@ module regdae_ida_backend
 
 contains
 
-    subroutine backend_create(self, system, opts, excluded, t0, u0, up0, stat, msg)
+    subroutine backend_create(self, system, opts, linear_solver, excluded, t0, u0, up0, stat, msg)
         class(ida_backend), target, intent(inout) :: self
         class(implicit_system), intent(in) :: system     !! copied into the backend
         type(solver_options), intent(in) :: opts
+        integer, intent(in) :: linear_solver             !! linear_solver_dense, _band or _sparse (resolved)
         logical, intent(in) :: excluded(:)               !! length neq
         real(wp), intent(in) :: t0, u0(:), up0(:)
         integer, intent(out) :: stat
@@ -85,6 +111,8 @@ contains
         allocate (self%system, source=system)
         self%opts = opts
         self%neq = system%neq
+        self%linear_solver = linear_solver
+        if (self%system%structured) call prepare_groups(self)
         self%excluded = excluded
         self%pending_message = ''
         self%ida_message = ''
@@ -142,19 +170,17 @@ contains
             return
         end if
 
-        ! Dense linear algebra with our own, weight-independent Jacobian.
-        self%jmat => FSUNDenseMatrix(neq, neq, self%sunctx)
-        if (.not. associated(self%jmat)) then
-            msg = 'FSUNDenseMatrix failed'
-            return
-        end if
-        self%ls => FSUNLinSol_Dense(self%uu, self%jmat, self%sunctx)
-        if (.not. associated(self%ls)) then
-            msg = 'FSUNLinSol_Dense failed'
-            return
-        end if
+        ! The linear solver, with our own, weight-independent Jacobian.
+        call create_linear_solver(self, msg)
+        if (len(msg) > 0) return
         ierr = FIDASetLinearSolver(self%ida_mem, self%ls, self%jmat)
-        if (ierr == 0) ierr = FIDASetJacFn(self%ida_mem, c_funloc(ida_jacobian))
+        if (ierr == 0) then
+            if (self%system%structured) then
+                ierr = FIDASetJacFn(self%ida_mem, c_funloc(ida_jacobian_grouped))
+            else
+                ierr = FIDASetJacFn(self%ida_mem, c_funloc(ida_jacobian))
+            end if
+        end if
         if (ierr == 0) ierr = FIDASetMaxNumSteps(self%ida_mem, int(opts%max_steps, c_long))
         if (ierr == 0 .and. opts%h_init > 0.0_wp) ierr = FIDASetInitStep(self%ida_mem, opts%h_init)
         if (ierr == 0 .and. opts%h_max > 0.0_wp) ierr = FIDASetMaxStep(self%ida_mem, opts%h_max)
@@ -165,6 +191,89 @@ contains
         stat = regdae_success
         msg = ''
     end subroutine backend_create
+
+    ! The groups of columns and the column pattern of a structured system.
+    subroutine prepare_groups(self)
+        type(ida_backend), intent(inout) :: self
+        type(sparsity_pattern) :: columns
+        integer, allocatable :: color(:), fill(:)
+        integer :: j, c
+        associate (p => self%system%jac_pattern)
+            columns = p%transposed()
+            self%csc_start = columns%row_start
+            self%csc_rows = columns%cols
+            call color_columns(p, color, self%ngroups)
+            allocate (self%group_start(self%ngroups + 1), self%group_cols(p%ncols), fill(self%ngroups))
+            self%group_start = 0
+            do j = 1, p%ncols
+                self%group_start(color(j) + 1) = self%group_start(color(j) + 1) + 1
+            end do
+            self%group_start(1) = 1
+            do c = 1, self%ngroups
+                self%group_start(c + 1) = self%group_start(c + 1) + self%group_start(c)
+            end do
+            fill = self%group_start(1:self%ngroups)
+            do j = 1, p%ncols
+                self%group_cols(fill(color(j))) = j
+                fill(color(j)) = fill(color(j)) + 1
+            end do
+            call permuted_bandwidths(p, [(j, j=1, p%ncols)], self%band_lower, self%band_upper)
+        end associate
+        allocate (self%delta(self%neq))
+    end subroutine prepare_groups
+
+    ! The SUNDIALS matrix and linear solver of `linear_solver`; msg is empty on success.
+    subroutine create_linear_solver(self, msg)
+        type(ida_backend), intent(inout) :: self
+        character(len=:), allocatable, intent(out) :: msg
+        integer(c_long) :: neq
+        msg = ''
+        neq = int(self%neq, c_long)
+        select case (self%linear_solver)
+        case (linear_solver_band)
+            self%jmat => FSUNBandMatrix(neq, int(self%band_upper, c_long), int(self%band_lower, c_long), self%sunctx)
+            if (associated(self%jmat)) self%ls => FSUNLinSol_Band(self%uu, self%jmat, self%sunctx)
+        case (linear_solver_sparse)
+            self%jmat => FSUNSparseMatrix(neq, neq, int(max(1, size(self%csc_rows)), c_long), CSC_MAT, self%sunctx)
+            if (associated(self%jmat)) self%ls => FSUNLinSol_KLU(self%uu, self%jmat, self%sunctx)
+        case default
+            self%jmat => FSUNDenseMatrix(neq, neq, self%sunctx)
+            if (associated(self%jmat)) self%ls => FSUNLinSol_Dense(self%uu, self%jmat, self%sunctx)
+        end select
+        if (.not. (associated(self%jmat) .and. associated(self%ls))) &
+            msg = 'creating the '//linear_solver_name(self%linear_solver)//' matrix or linear solver failed'
+    end subroutine create_linear_solver
+
+    subroutine backend_calc_ic(self, differential, tout1, stat, msg)
+        class(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: differential(:)   !! 1: differential unknown (kept), 0: algebraic (computed)
+        real(wp), intent(in) :: tout1             !! the first output time (sets IDA's step for the iteration)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        type(N_Vector), pointer :: id
+        real(c_double), pointer :: p(:)
+        integer(c_int) :: ierr
+        stat = regdae_success
+        msg = ''
+        id => FN_VNew_Serial(int(self%neq, c_long), self%sunctx)
+        p => FN_VGetArrayPointer(id)
+        p = differential
+        ierr = FIDASetId(self%ida_mem, id)
+        if (ierr == 0) ierr = FIDACalcIC(self%ida_mem, IDA_YA_YDP_INIT, tout1)
+        if (ierr == 0) ierr = FIDAGetConsistentIC(self%ida_mem, self%uu, self%up)
+        ! the error test's id (suppress) again, if any
+        if (associated(self%idv)) then
+            if (ierr == 0) ierr = FIDASetId(self%ida_mem, self%idv)
+        end if
+        call FN_VDestroy(id)
+        if (ierr /= 0) then
+            stat = regdae_err_inconsistent_ic
+            if (self%pending_stat /= regdae_success .and. .not. self%pending_recoverable) stat = self%pending_stat
+            msg = 'consistent initial values (IDACalcIC) failed, flag '//format_int(int(ierr))//': '// &
+                  self%ida_message
+            if (len(self%pending_message) > 0) msg = msg//' | last residual failure: '//self%pending_message
+        end if
+    end subroutine backend_calc_ic
 
     subroutine backend_solve(self, tout, stop_at_output, tret, ierr)
         class(ida_backend), intent(inout) :: self
@@ -368,6 +477,84 @@ contains
         end do
         ierr = 0
     end function ida_jacobian
+
+    ! The Jacobian dF/du + cj dF/du' of a structured system by grouped forward
+    ! differences (the increments of `ida_jacobian`), into a dense, band or
+    ! sparse (CSC) matrix.
+    integer(c_int) function ida_jacobian_grouped(t, cj, nv_u, nv_up, nv_res, jmat, user_data, tmp1, tmp2, tmp3) &
+        result(ierr) bind(C)
+        real(c_double), value :: t, cj
+        type(N_Vector) :: nv_u, nv_up, nv_res
+        type(SUNMatrix) :: jmat
+        type(c_ptr), value :: user_data
+        type(N_Vector) :: tmp1, tmp2, tmp3
+        type(ida_backend), pointer :: self
+        real(c_double), pointer :: u(:), up(:), res(:), jdata(:), dense(:, :), band(:), sparse(:)
+        integer(c_long_long), pointer :: col_ptr(:), row_idx(:)
+        real(wp) :: sqrt_unit, d
+        integer :: c, a, j, k, neq, ldim, smu
+
+        call c_f_pointer(user_data, self)
+        neq = self%neq
+        u => FN_VGetArrayPointer(nv_u)
+        up => FN_VGetArrayPointer(nv_up)
+        res => FN_VGetArrayPointer(nv_res)
+        ldim = 0
+        smu = 0
+        select case (self%linear_solver)
+        case (linear_solver_band)
+            jdata => FSUNBandMatrix_Data(jmat)
+            ldim = int(FSUNBandMatrix_LDim(jmat))
+            smu = int(FSUNBandMatrix_StoredUpperBandwidth(jmat))
+            call c_f_pointer(c_loc(jdata(1)), band, [ldim*neq])
+        case (linear_solver_sparse)
+            ! SUNMatZero cleared the index arrays too: write the pattern every time.
+            jdata => FSUNSparseMatrix_Data(jmat)
+            call c_f_pointer(c_loc(jdata(1)), sparse, [size(self%csc_rows)])
+            col_ptr => FSUNSparseMatrix_IndexPointers(jmat)
+            row_idx => FSUNSparseMatrix_IndexValues(jmat)
+            call c_f_pointer(c_loc(col_ptr(1)), col_ptr, [neq + 1])
+            call c_f_pointer(c_loc(row_idx(1)), row_idx, [size(self%csc_rows)])
+            col_ptr = int(self%csc_start - 1, c_long_long)
+            row_idx = int(self%csc_rows - 1, c_long_long)
+        case default
+            jdata => FSUNDenseMatrix_Data(jmat)
+            call c_f_pointer(c_loc(jdata(1)), dense, [neq, neq])
+        end select
+        sqrt_unit = sqrt(epsilon(1.0_wp))
+        self%u_pert = u(1:neq)
+        self%up_pert = up(1:neq)
+        do c = 1, self%ngroups
+            do a = self%group_start(c), self%group_start(c + 1) - 1
+                j = self%group_cols(a)
+                d = sqrt_unit*max(abs(u(j)), 1.0_wp)
+                self%u_pert(j) = u(j) + d
+                self%delta(j) = self%u_pert(j) - u(j)
+                self%up_pert(j) = up(j) + cj*self%delta(j)
+            end do
+            ierr = evaluate_residual(self, t, self%u_pert, self%up_pert, self%r_pert)
+            self%jac_res_evals = self%jac_res_evals + 1
+            if (ierr /= 0) return
+            do a = self%group_start(c), self%group_start(c + 1) - 1
+                j = self%group_cols(a)
+                self%u_pert(j) = u(j)
+                self%up_pert(j) = up(j)
+                do k = self%csc_start(j), self%csc_start(j + 1) - 1
+                    associate (i => self%csc_rows(k))
+                        select case (self%linear_solver)
+                        case (linear_solver_band)
+                            band((j - 1)*ldim + smu + i - j + 1) = (self%r_pert(i) - res(i))/self%delta(j)
+                        case (linear_solver_sparse)
+                            sparse(k) = (self%r_pert(i) - res(i))/self%delta(j)
+                        case default
+                            dense(i, j) = (self%r_pert(i) - res(i))/self%delta(j)
+                        end select
+                    end associate
+                end do
+            end do
+        end do
+        ierr = 0
+    end function ida_jacobian_grouped
 
     ! Error weights 1/(rtol |u_i| + atol), 0 for the unknowns left out (y, and v if asked).
     integer(c_int) function ida_error_weights(nv_u, nv_ewt, user_data) result(ierr) bind(C)

@@ -7,7 +7,7 @@ module regdae_lapack
     implicit none
     private
 
-    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv, dgesvd
+    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv, dgesvd, dgbtrf, dgbtrs
 
     interface
         !> Solve A X = B, A symmetric positive definite (Cholesky).
@@ -69,6 +69,25 @@ module regdae_lapack
             real(wp), intent(inout) :: work(*)
             integer, intent(out) :: info
         end subroutine dgesvd
+
+        !> LU factorization of a band matrix (band storage with kl extra rows for the fill).
+        subroutine dgbtrf(m, n, kl, ku, ab, ldab, ipiv, info)
+            import :: wp
+            integer, intent(in) :: m, n, kl, ku, ldab
+            real(wp), intent(inout) :: ab(ldab, *)
+            integer, intent(out) :: ipiv(*), info
+        end subroutine dgbtrf
+
+        !> Solve with the band LU factors of dgbtrf.
+        subroutine dgbtrs(trans, n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
+            import :: wp
+            character, intent(in) :: trans
+            integer, intent(in) :: n, kl, ku, nrhs, ldab, ldb
+            real(wp), intent(in) :: ab(ldab, *)
+            integer, intent(in) :: ipiv(*)
+            real(wp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dgbtrs
     end interface
 
 end module regdae_lapack

@@ -14,10 +14,18 @@
 !! (M^T M + mu I) q'' = M^T f + M^T G^T lambda, i.e. f~ = (M^T M + mu I)^{-1} M^T f and
 !! B = (M^T M + mu I)^{-1} M^T G^T. Note what this does: q'' lies in the range of
 !! M^T, so a coordinate without mass gets no acceleration from it.
+!!
+!! Structure (large problems): override `structure` to declare which entries of
+!! M, G and of the force Jacobians may be nonzero (`mechanical_structure`), and
+!! `mass_values` and `constraint_jacobian_values` to give M and G in pattern order
+!! without dense matrices. The augmented formulation (option `formulation`) then
+!! costs O(nonzeros) per residual and IDA's Newton matrix keeps the structure
+!! (band or sparse linear solver). A problem that declares nothing is dense.
 module regdae_mechanical_problem
     use regdae_kinds, only: wp
-    use regdae_status, only: regdae_err_mass_matrix
+    use regdae_status, only: regdae_err_mass_matrix, regdae_err_structure
     use regdae_lapack, only: dpotrf, dpotrs
+    use regdae_sparsity, only: sparsity_pattern
     use regdae_second_order_problem, only: second_order_problem
     implicit none
     private
@@ -25,6 +33,19 @@ module regdae_mechanical_problem
     ! Up to this size M is factored by the loops below instead of LAPACK, whose
     ! call overhead dominates for a handful of coordinates.
     integer, parameter :: small_n = 8
+
+    !> Which entries of a mechanical problem's matrices may be nonzero. Nothing
+    !! declared (the default) means dense.
+    type, public :: mechanical_structure
+        logical :: declared = .false.            !! the patterns below are set
+        type(sparsity_pattern) :: mass           !! n x n: M(q)
+        type(sparsity_pattern) :: constraint     !! m x n: G = dg/dq
+        type(sparsity_pattern) :: force_q        !! n x n: d(f - M(q) a)/dq for any a (how forces and mass
+                                                 !! depend on q); empty for constant M and q-free forces
+        type(sparsity_pattern) :: force_v        !! n x n: df/dq'
+        logical :: curvature_supplied = .false.  !! the problem overrides `constraint_curvature` (used as is;
+                                                 !! otherwise a difference quotient of the sparse G)
+    end type mechanical_structure
 
     !> Abstract constrained mechanical system.
     type, abstract, extends(second_order_problem), public :: mechanical_problem
@@ -47,6 +68,14 @@ module regdae_mechanical_problem
         procedure :: matrix_b => mechanical_b
         !> B = M^{-1} G^T from a known G.
         procedure :: matrix_b_from_jacobian => mechanical_b_from_jacobian
+        !> The declared structure; default: nothing declared (dense).
+        procedure :: structure => default_structure
+        !> The entries of M(q, t) in the order of `pattern`; default: from
+        !! `mass_matrix`, refusing (regdae_err_structure) a nonzero outside the pattern.
+        procedure :: mass_values => default_mass_values
+        !> The entries of G(q, t) in the order of `pattern`; default: from
+        !! `constraint_jacobian`, refusing a nonzero outside the pattern.
+        procedure :: constraint_jacobian_values => default_constraint_jacobian_values
     end type mechanical_problem
 
     abstract interface
@@ -68,6 +97,55 @@ module regdae_mechanical_problem
     end interface
 
 contains
+
+    function default_structure(self) result(st)
+        class(mechanical_problem), intent(in) :: self
+        type(mechanical_structure) :: st
+        st%declared = .false.
+    end function default_structure
+
+    subroutine default_mass_values(self, t, q, pattern, vals, stat)
+        class(mechanical_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern   !! the declared pattern of M
+        real(wp), intent(out) :: vals(:)                !! pattern%nnz() entries
+        integer, intent(inout) :: stat
+        real(wp), allocatable :: dense(:, :)
+        allocate (dense(self%n, self%n))
+        call self%mass_matrix(t, q, dense, stat)
+        if (stat /= 0) return
+        call gather(pattern, dense, vals, stat)
+    end subroutine default_mass_values
+
+    subroutine default_constraint_jacobian_values(self, t, q, pattern, vals, stat)
+        class(mechanical_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern   !! the declared pattern of G
+        real(wp), intent(out) :: vals(:)                !! pattern%nnz() entries
+        integer, intent(inout) :: stat
+        real(wp), allocatable :: dense(:, :)
+        allocate (dense(self%m, self%n))
+        call self%constraint_jacobian(t, q, dense, stat)
+        if (stat /= 0) return
+        call gather(pattern, dense, vals, stat)
+    end subroutine default_constraint_jacobian_values
+
+    ! The entries of a dense matrix in pattern order; stat = regdae_err_structure
+    ! if a nonzero lies outside the pattern.
+    subroutine gather(pattern, dense, vals, stat)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(inout) :: dense(:, :)
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        integer :: i, k
+        do i = 1, pattern%nrows
+            do k = pattern%row_start(i), pattern%row_start(i + 1) - 1
+                vals(k) = dense(i, pattern%cols(k))
+                dense(i, pattern%cols(k)) = 0.0_wp
+            end do
+        end do
+        if (any(dense /= 0.0_wp)) stat = regdae_err_structure
+    end subroutine gather
 
     ! Cholesky factor of M(q, t) (or of M^T M + mu I), reused while (t, q) is
     ! unchanged: `rhs` and `matrix_b` are evaluated at the same point.

@@ -64,6 +64,9 @@ module regdae_monitor
         procedure :: reset => monitor_reset
         !> Sample the model's last evaluation, made at time t on the solution.
         procedure :: sample => monitor_sample
+        !> Sample given values: the drift max |g|, sigma_min(GB), the invariant
+        !! (and its routine's stat), the velocities and their slopes at t.
+        procedure :: sample_values => monitor_sample_values
         !> The singular intervals, (2, n_singular).
         procedure :: intervals => monitor_intervals
     end type solution_monitor
@@ -108,13 +111,33 @@ contains
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
         real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
-        real(wp), allocatable :: grown(:, :)
-        real(wp) :: drift
-        integer :: stat
-        logical :: was_in_layer
-        if (self%invariant_tol > 0.0_wp) call invariant_sample(self, t, model, z)
+        real(wp) :: drift, invariant
+        integer :: stat, invariant_stat
+        invariant = 0.0_wp
+        invariant_stat = 0
+        if (self%invariant_tol > 0.0_wp) invariant = model%invariant_value(t, z, invariant_stat)
+        drift = 0.0_wp
+        if (self%np > 0) drift = model%position_drift(t, z, stat)
         if (self%np > 0) then
-            drift = model%position_drift(t, z, stat)
+            call self%sample_values(t, drift, model%sigma_min_gb(), invariant, invariant_stat, &
+                                    z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np))
+        else
+            call self%sample_values(t, drift, model%sigma_min_gb(), invariant, invariant_stat, z(1:0), dz(1:0))
+        end if
+    end subroutine monitor_sample
+
+    subroutine monitor_sample_values(self, t, drift, sigma, invariant, invariant_stat, v, a)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t
+        real(wp), intent(in) :: drift           !! max |g(x, t)| (order >= 2)
+        real(wp), intent(in) :: sigma           !! sigma_min(GB)
+        real(wp), intent(in) :: invariant       !! I(x, v, t) (read when invariant_tol > 0)
+        integer, intent(in) :: invariant_stat   !! the invariant routine's stat
+        real(wp), intent(in) :: v(:), a(:)      !! the np velocities and their slopes
+        real(wp), allocatable :: grown(:, :)
+        logical :: was_in_layer
+        if (self%invariant_tol > 0.0_wp) call invariant_sample(self, t, invariant, invariant_stat)
+        if (self%np > 0) then
             self%drift_max = max(self%drift_max, drift)
             if (self%drift_tol > 0.0_wp .and. drift > self%drift_tol .and. .not. self%alarm) then
                 self%alarm = .true.
@@ -123,7 +146,7 @@ contains
                                      ' > drift_tol = '//format_real(self%drift_tol)//' at t = '//format_real(t)
             end if
         end if
-        self%sigma_last = model%sigma_min_gb()
+        self%sigma_last = sigma
         self%sigma_min = min(self%sigma_min, self%sigma_last)
         if (self%sigma_last < self%threshold) then
             if (.not. self%in_singular) then
@@ -144,17 +167,15 @@ contains
         was_in_layer = self%in_layer
         self%in_layer = (self%sigma_last < self%layer_threshold)
         if (self%np > 0 .and. self%jump_tol > 0.0_wp .and. .not. self%in_layer) &
-            call regular_sample(self, t, z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np), was_in_layer)
-    end subroutine monitor_sample
+            call regular_sample(self, t, v, a, was_in_layer)
+    end subroutine monitor_sample_values
 
     ! The invariant at t: the first sample sets I(t0).
-    subroutine invariant_sample(self, t, model, z)
+    subroutine invariant_sample(self, t, val, stat)
         type(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        type(regularized_dae), intent(inout) :: model
-        real(wp) :: val, change
-        integer :: stat
-        val = model%invariant_value(t, z, stat)
+        real(wp), intent(in) :: t, val
+        integer, intent(in) :: stat
+        real(wp) :: change
         if (.not. self%have_invariant) then
             self%invariant0 = val
             self%have_invariant = .true.

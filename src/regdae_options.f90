@@ -4,7 +4,7 @@
 !! | key            | values                                | default        |
 !! |----------------|---------------------------------------|----------------|
 !! | method         | baumgarte, trust_region, direct       | trust_region   |
-!! | formulation    | multiplier, eliminated                | eliminated     |
+!! | formulation    | auto, eliminated, multiplier, augmented | auto (see below) |
 !! | lsq            | auto, normal, stacked                 | auto           |
 !! | exclusion      | suppress, weights, off                | suppress       |
 !! | gamma          | > 0                                   | 1e3            |
@@ -25,6 +25,14 @@
 !! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
 !! | integrator     | ida, dopri5 (explicit, eliminated formulation only) | ida |
+!! | linear_solver  | auto, dense, band, sparse (IDA's Newton matrix; band and sparse: augmented) | auto |
+!!
+!! `formulation=auto` takes `augmented` for a mechanical problem that declares its
+!! structure and has at least `augmented_min_n` coordinates (integrated by IDA, M
+!! positive definite), `eliminated` otherwise. `linear_solver=auto` takes dense for
+!! the eliminated and multiplier formulations; for the augmented one dense up to
+!! 60 unknowns, band when the ordered Newton matrix's bandwidth is at most a tenth
+!! of its size, sparse (KLU) otherwise.
 module regdae_options
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
@@ -39,8 +47,18 @@ module regdae_options
     integer, parameter, public :: method_trust_region = 2  !! (2.10)/(2.11)
     integer, parameter, public :: method_direct = 3        !! (2.12)/(2.13)
 
+    integer, parameter, public :: formulation_auto = 0        !! augmented for large structured mechanical problems, else eliminated
     integer, parameter, public :: formulation_multiplier = 1  !! IDA unknowns (x, y)
     integer, parameter, public :: formulation_eliminated = 2  !! IDA unknowns x; y solved in the residual
+    integer, parameter, public :: formulation_augmented = 3   !! mechanical: sparse unknowns (q, v, u, y, s), regdae_augmented_system
+
+    !> formulation=auto takes `augmented` from this many coordinates on (with a declared structure).
+    integer, parameter, public :: augmented_min_n = 16
+
+    integer, parameter, public :: linear_solver_auto = 0    !! by formulation, size and bandwidth
+    integer, parameter, public :: linear_solver_dense = 1   !! SUNDIALS dense LU
+    integer, parameter, public :: linear_solver_band = 2    !! SUNDIALS band LU (augmented formulation)
+    integer, parameter, public :: linear_solver_sparse = 3  !! KLU (augmented formulation)
 
     integer, parameter, public :: lsq_auto = 0  !! stacked if eps < 1e-8 max(1, |GB(t0)|_F^2), else normal
     public :: lsq_normal, lsq_stacked
@@ -58,7 +76,7 @@ module regdae_options
     !> All options of a regdae solver, with their defaults.
     type, public :: solver_options
         integer :: method = method_trust_region        !! regularization
-        integer :: formulation = formulation_eliminated !! what IDA integrates
+        integer :: formulation = formulation_auto      !! what IDA integrates
         integer :: lsq = lsq_auto                      !! damped least-squares solver
         integer :: exclusion = exclusion_suppress      !! how y leaves IDA's local error test
         real(wp) :: gamma = 1.0e3_wp                   !! Baumgarte parameter (paper: 1/h)
@@ -84,10 +102,11 @@ module regdae_options
         real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
         integer :: integrator = integrator_ida         !! ida, or dopri5 (explicit; eliminated formulation)
+        integer :: linear_solver = linear_solver_auto  !! IDA's linear solver
     end type solver_options
 
     public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name, excluded_name, &
-              integrator_name
+              integrator_name, linear_solver_name
 
 contains
 
@@ -111,8 +130,8 @@ contains
             call lookup(value, [character(len=12) :: 'baumgarte', 'trust_region', 'direct'], code)
             if (code > 0) opts%method = code
         case ('formulation')
-            call lookup(value, [character(len=12) :: 'multiplier', 'eliminated'], code)
-            if (code > 0) opts%formulation = code
+            call lookup(value, [character(len=12) :: 'multiplier', 'eliminated', 'augmented', 'auto'], code)
+            if (code > 0) opts%formulation = merge(formulation_auto, code, code == 4)
         case ('lsq')
             call lookup(value, [character(len=12) :: 'normal', 'stacked', 'auto'], code)
             if (code > 0) opts%lsq = merge(lsq_auto, code, code == 3)
@@ -167,6 +186,9 @@ contains
         case ('integrator')
             call lookup(value, [character(len=12) :: 'ida', 'dopri5'], code)
             if (code > 0) opts%integrator = code
+        case ('linear_solver')
+            call lookup(value, [character(len=12) :: 'dense', 'band', 'sparse', 'auto'], code)
+            if (code > 0) opts%linear_solver = merge(linear_solver_auto, code, code == 4)
         case default
             stat = regdae_err_bad_input
             msg = 'unknown option "'//key//'"'
@@ -208,8 +230,15 @@ contains
             return
         else if (opts%integrator /= integrator_ida .and. opts%integrator /= integrator_dopri5) then
             msg = 'integrator must be ida or dopri5'
-        else if (opts%integrator == integrator_dopri5 .and. opts%formulation /= formulation_eliminated) then
+        else if (opts%integrator == integrator_dopri5 .and. opts%formulation /= formulation_eliminated &
+                 .and. opts%formulation /= formulation_auto) then
             msg = 'integrator=dopri5 needs formulation=eliminated'
+        else if (opts%linear_solver < linear_solver_auto .or. opts%linear_solver > linear_solver_sparse) then
+            msg = 'linear_solver must be auto, dense, band or sparse'
+        else if ((opts%linear_solver == linear_solver_band .or. opts%linear_solver == linear_solver_sparse) .and. &
+                 (opts%formulation == formulation_eliminated .or. opts%formulation == formulation_multiplier)) then
+            msg = 'linear_solver='//linear_solver_name(opts%linear_solver)//' needs formulation=augmented (or auto): '// &
+                  'the Newton matrix of the '//formulation_name(opts%formulation)//' formulation is dense'
         else if (opts%index /= 2 .and. opts%index /= 3) then
             msg = 'index must be 2 or 3'
         else if (opts%excluded /= excluded_y .and. opts%excluded /= excluded_vy) then
@@ -218,7 +247,7 @@ contains
             msg = 'max_steps must be >= 1 (got '//format_int(opts%max_steps)//')'
         else if (opts%method < method_baumgarte .or. opts%method > method_direct) then
             msg = 'unknown method'
-        else if (opts%formulation < formulation_multiplier .or. opts%formulation > formulation_eliminated) then
+        else if (opts%formulation < formulation_auto .or. opts%formulation > formulation_augmented) then
             msg = 'unknown formulation'
         else if (opts%lsq < lsq_auto .or. opts%lsq > lsq_stacked) then
             msg = 'unknown lsq solver'
@@ -262,8 +291,10 @@ contains
         integer, intent(in) :: code
         character(len=:), allocatable :: name
         select case (code)
+        case (formulation_auto); name = 'auto'
         case (formulation_multiplier); name = 'multiplier'
         case (formulation_eliminated); name = 'eliminated'
+        case (formulation_augmented); name = 'augmented'
         case default; name = 'unknown'
         end select
     end function formulation_name
@@ -291,6 +322,19 @@ contains
         case default; name = 'unknown'
         end select
     end function exclusion_name
+
+    !> Name of a linear-solver code.
+    pure function linear_solver_name(code) result(name)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: name
+        select case (code)
+        case (linear_solver_auto); name = 'auto'
+        case (linear_solver_dense); name = 'dense'
+        case (linear_solver_band); name = 'band'
+        case (linear_solver_sparse); name = 'sparse'
+        case default; name = 'unknown'
+        end select
+    end function linear_solver_name
 
     !> Name of an integrator code.
     pure function integrator_name(code) result(name)
@@ -320,7 +364,8 @@ contains
         character(len=:), allocatable :: text
         select case (key)
         case ('method'); text = ' (baumgarte, trust_region or direct)'
-        case ('formulation'); text = ' (multiplier or eliminated)'
+        case ('formulation'); text = ' (auto, eliminated, multiplier or augmented)'
+        case ('linear_solver'); text = ' (auto, dense, band or sparse)'
         case ('lsq'); text = ' (auto, normal or stacked)'
         case ('exclusion'); text = ' (suppress, weights or off)'
         case ('stop_at_output', 'curvature'); text = ' (yes or no)'

@@ -26,7 +26,7 @@ module regdae_solver_front
     use regdae_status
     use regdae_problem, only: dae_problem
     use regdae_second_order_problem, only: second_order_problem, velocity_constraint
-    use regdae_mechanical_problem, only: mechanical_problem
+    use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
     use regdae_higher_order_problem, only: higher_order_problem
     use regdae_linear_problem, only: linear_dae_problem
     use regdae_velocity_index2, only: new_velocity_index2
@@ -35,6 +35,8 @@ module regdae_solver_front
     use regdae_explicit_rk, only: rk_integrator
     use regdae_ida_backend, only: ida_backend
     use regdae_regularized_system, only: new_regularized_system
+    use regdae_augmented_system, only: augmented_system
+    use regdae_sparsity, only: permuted_bandwidths
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant
     use regdae_format, only: format_real, format_int
@@ -58,6 +60,9 @@ module regdae_solver_front
         real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
         real(wp) :: t = 0.0_wp
         logical :: started = .false.       ! the integration has gone beyond t0
+        logical :: augmented = .false.     ! formulation=augmented: the state lives in IDA's vector, y too
+        integer :: formulation = formulation_eliminated   ! resolved
+        integer :: linear_solver = linear_solver_dense    ! resolved
         logical, allocatable :: excluded(:)   ! unknowns left out of the error test
         real(wp), allocatable :: y_work(:)    ! the multiplier at an output time
         ! diagnostics, sampled at the output times (IDA) or the accepted steps (dopri5)
@@ -83,6 +88,7 @@ module regdae_solver_front
         procedure, private :: init_second_order => solver_init_second
         procedure, private :: init_higher_order => solver_init_higher
         procedure, private :: start => solver_start
+        procedure, private :: start_augmented => solver_start_augmented
         procedure, private :: check_input
         !> Integrate to `tout`; return x(tout), the multiplier y(tout) (lambda for a
         !! mechanical problem) and, for second-order problems, optionally v(tout).
@@ -91,8 +97,12 @@ module regdae_solver_front
         procedure :: statistics => solver_statistics
         !> Message of the last call (empty after success).
         procedure :: message => solver_message
-        !> The resolved least-squares solver (`lsq_normal` or `lsq_stacked`).
+        !> The resolved least-squares solver (`lsq_normal` or `lsq_stacked`; 0 for
+        !! the augmented formulation, which solves no least-squares problem).
         procedure :: lsq_method => solver_lsq_method
+        !> The resolved formulation and linear solver (codes of regdae_options).
+        procedure :: formulation => solver_formulation
+        procedure :: linear_solver => solver_linear_solver
         !> sigma_min(GB) at the last sample (output time with IDA, accepted step with dopri5).
         procedure :: sigma_min => solver_sigma_min
         !> The singular intervals so far: (2, k) array of first and last sample times.
@@ -120,6 +130,7 @@ contains
         integer, intent(out) :: stat                !! regdae status code
 
         if (.not. self%check_input(t0, x0, x0, problem%n, problem%m, opts, stat)) return
+        if (.not. formulation_fits(self, opts, stat)) return
         call new_core(self%core)
         self%core%nx = problem%n
         select type (problem)
@@ -141,6 +152,7 @@ contains
         class(second_order_problem), allocatable :: copy
         real(wp) :: gval(problem%m), gnorm
         integer :: ustat
+        logical :: augmented
 
         if (.not. self%check_input(t0, x0, v0, problem%n, problem%m, opts, stat)) return
         ! Position and velocity constraints at t0 (the regularized system checks only one of them).
@@ -161,6 +173,14 @@ contains
                              '|G v0 + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
             return
         end if
+        augmented = .false.
+        select type (copy)
+        class is (mechanical_problem)
+            augmented = use_augmented(copy, opts)
+        end select
+        if (.not. augmented) then
+            if (.not. formulation_fits(self, opts, stat)) return
+        end if
         call new_core(self%core)
         self%core%nx = problem%n
         self%core%second_order = .true.
@@ -168,6 +188,10 @@ contains
         class is (mechanical_problem)
             self%core%multiplier_sign = -1.0_wp
             copy%mass_damping = opts%mass_damping
+            if (augmented) then
+                call self%start_augmented(copy, t0, x0, v0, opts, stat)
+                return
+            end if
         end select
         if (opts%index == 3) then
             call self%core%model%init_second_order(copy, opts, lsq_normal)
@@ -195,6 +219,7 @@ contains
             return
         end if
         if (.not. self%check_input(t0, xs0(:, 1), xs0(:, 2), problem%n, problem%m, opts, stat)) return
+        if (.not. formulation_fits(self, opts, stat)) return
         if (.not. all(ieee_is_finite(xs0))) then
             call self%record(regdae_err_bad_input, 'xs0 contains NaN or Inf', stat)
             return
@@ -255,6 +280,134 @@ contains
         end if
     end function check_input
 
+    ! formulation=auto takes the augmented formulation for a mechanical problem
+    ! that declares its structure and is large enough, with IDA and M positive
+    ! definite; formulation=augmented always (its setup refuses what does not fit).
+    logical function use_augmented(problem, opts)
+        class(mechanical_problem), intent(in) :: problem
+        type(solver_options), intent(in) :: opts
+        type(mechanical_structure) :: st
+        use_augmented = (opts%formulation == formulation_augmented)
+        if (opts%formulation /= formulation_auto) return
+        if (opts%integrator /= integrator_ida .or. opts%mass_damping > 0.0_wp .or. problem%n < augmented_min_n) return
+        st = problem%structure()
+        use_augmented = st%declared
+    end function use_augmented
+
+    ! The dense formulations: refuse formulation=augmented and the structured
+    ! linear solvers (the problem is not a mechanical one, or auto chose dense).
+    logical function formulation_fits(self, opts, stat) result(ok)
+        class(regdae_solver), intent(inout) :: self
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        ok = .true.
+        if (opts%formulation == formulation_augmented) then
+            call self%record(regdae_err_bad_input, 'formulation=augmented needs a mechanical_problem', stat)
+            ok = .false.
+        else if (opts%linear_solver == linear_solver_band .or. opts%linear_solver == linear_solver_sparse) then
+            call self%record(regdae_err_bad_input, 'linear_solver='//linear_solver_name(opts%linear_solver)// &
+                             ' needs the augmented formulation (a mechanical problem that declares its structure, '// &
+                             'or formulation=augmented); the Newton matrix here is dense', stat)
+            ok = .false.
+        end if
+    end function formulation_fits
+
+    ! The augmented formulation (regdae_augmented_system): the sparse residual on
+    ! IDA with a dense, band or sparse linear solver, consistent initial values by
+    ! IDACalcIC, the diagnostics from IDA's state.
+    subroutine solver_start_augmented(self, problem, t0, q0, v0, opts, stat)
+        class(regdae_solver), intent(inout) :: self
+        class(mechanical_problem), intent(in) :: problem
+        real(wp), intent(in) :: t0, q0(:), v0(:)
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        type(solver_core), pointer :: core
+        type(augmented_system) :: sys
+        real(wp), allocatable :: u0(:), up0(:), id(:)
+        character(len=:), allocatable :: msg
+        integer :: lower, upper, k
+
+        core => self%core
+        core%opts = opts
+        core%augmented = .true.
+        core%formulation = formulation_augmented
+        core%n = 2*problem%n
+        core%m = problem%m
+        core%t = t0
+        call sys%setup(problem, opts, stat)
+        if (stat /= regdae_success) then
+            call fail(stat, sys%message)
+            return
+        end if
+        core%neq = sys%neq
+        core%linear_solver = opts%linear_solver
+        if (core%linear_solver == linear_solver_auto) then
+            call permuted_bandwidths(sys%jac_pattern, [(k, k=1, sys%neq)], lower, upper)
+            if (sys%neq <= 60) then
+                core%linear_solver = linear_solver_dense
+            else if (10*max(lower, upper) <= sys%neq) then
+                core%linear_solver = linear_solver_band
+            else
+                core%linear_solver = linear_solver_sparse
+            end if
+        end if
+        allocate (u0(sys%neq), up0(sys%neq), id(sys%neq), core%y_work(core%m))
+        call sys%initial_guess(q0, v0, u0, up0, id)
+        core%excluded = sys%excluded_unknowns(opts%excluded)
+        if (opts%exclusion == exclusion_off) core%excluded = .false.
+        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg)
+        if (stat /= regdae_success) then
+            call fail(stat, msg)
+            return
+        end if
+        call core%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
+        if (stat /= regdae_success) then
+            call fail(stat, 'at the initial point: '//msg)
+            return
+        end if
+        call core%monitor%reset(opts%singular_threshold, opts%eps, problem%n, opts%jump_tol, opts%drift_tol, &
+                                opts%invariant_tol)
+        call sample_augmented(core, t0)
+        if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
+            call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
+                      '(override `invariant` of the second-order problem)')
+            return
+        end if
+        call self%record(regdae_success, '', stat)
+    contains
+        subroutine fail(code, text)
+            integer, intent(in) :: code
+            character(len=*), intent(in) :: text
+            call self%record(code, text, stat)
+            call self%destroy()
+        end subroutine fail
+    end subroutine solver_start_augmented
+
+    ! The monitor's sample of the augmented formulation at IDA's state.
+    subroutine sample_augmented(core, t)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t
+        real(c_double), pointer :: u(:), up(:)
+        real(wp) :: q(core%nx), v(core%nx), a(core%nx), drift, invariant, sigma
+        integer :: dstat, istat
+        u => core%ida%state()
+        up => core%ida%slope()
+        drift = 0.0_wp
+        invariant = 0.0_wp
+        sigma = huge(1.0_wp)
+        dstat = 0
+        istat = 0
+        select type (sys => core%ida%system)
+        type is (augmented_system)
+            call sys%unpack(u, up, q=q, v=v, a=a)
+            drift = sys%drift(t, u, dstat)
+            if (dstat /= 0) drift = huge(1.0_wp)
+            sigma = sys%sigma_min_gb(t, u, dstat)
+            if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
+        end select
+        call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a)
+    end subroutine sample_augmented
+
     ! With the model set up: consistent initial values, then the IDA objects.
     subroutine solver_start(self, t0, z0, opts, stat)
         class(regdae_solver), intent(inout) :: self
@@ -313,6 +466,8 @@ contains
         end if
 
         core%neq = n
+        core%formulation = formulation_eliminated
+        if (opts%formulation == formulation_multiplier) core%formulation = formulation_multiplier
         if (opts%formulation == formulation_multiplier) core%neq = n + m
         allocate (core%excluded(core%neq), source=.false.)
         if (opts%exclusion /= exclusion_off) then
@@ -337,7 +492,7 @@ contains
             call self%record(regdae_success, '', stat)
             return
         end if
-        call core%ida%create(new_regularized_system(core%model, n, core%neq), opts, core%excluded, t0, &
+        call core%ida%create(new_regularized_system(core%model, n, core%neq), opts, linear_solver_dense, core%excluded, t0, &
                              [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg)
         if (stat /= regdae_success) then
             call fail(stat, msg)
@@ -527,6 +682,17 @@ contains
         end if
         self%t = core%t
         call copy_state()
+        if (core%augmented) then
+            ! y is one of IDA's unknowns (interpolated like the others)
+            if (present(y)) then
+                call augmented_unpack(y=core%y_work)
+                y = core%multiplier_sign*core%y_work
+            end if
+            call sample_augmented(core, tout)
+            if (branch_alarm()) return
+            call self%record(regdae_success, '', stat)
+            return
+        end if
         ! With dopri5 the diagnostics come from the accepted steps (rk%advance
         ! samples them); the multiplier is then computed only when asked for.
         if (core%opts%integrator == integrator_dopri5) then
@@ -557,9 +723,22 @@ contains
         call self%record(regdae_success, '', stat)
     contains
         subroutine copy_state()
+            if (core%augmented) then
+                call augmented_unpack(q=x)
+                if (present(v)) call augmented_unpack(v=v)
+                return
+            end if
             x = u(1:nx)
             if (present(v)) v = u(nx + 1:2*nx)
         end subroutine copy_state
+
+        subroutine augmented_unpack(q, v, y)
+            real(wp), intent(out), optional :: q(:), v(:), y(:)
+            select type (sys => core%ida%system)
+            type is (augmented_system)
+                call sys%unpack(u, u, q=q, v=v, y=y)
+            end select
+        end subroutine augmented_unpack
 
         subroutine fail(code, text)
             integer, intent(in) :: code
@@ -626,10 +805,24 @@ contains
         end if
     end function solver_message
 
+    integer function solver_formulation(self)
+        class(regdae_solver), intent(in) :: self
+        solver_formulation = 0
+        if (associated(self%core)) solver_formulation = self%core%formulation
+    end function solver_formulation
+
+    integer function solver_linear_solver(self)
+        class(regdae_solver), intent(in) :: self
+        solver_linear_solver = 0
+        if (associated(self%core)) solver_linear_solver = self%core%linear_solver
+    end function solver_linear_solver
+
     integer function solver_lsq_method(self)
         class(regdae_solver), intent(in) :: self
         solver_lsq_method = 0
-        if (associated(self%core)) solver_lsq_method = self%core%model%lsq
+        if (associated(self%core)) then
+            if (.not. self%core%augmented) solver_lsq_method = self%core%model%lsq
+        end if
     end function solver_lsq_method
 
     real(wp) function solver_sigma_min(self)

@@ -24,6 +24,7 @@ module regdae_status
     integer, parameter, public :: regdae_err_branch = -112           !! the velocity jumped across a singular interval
     integer, parameter, public :: regdae_err_drift = -113            !! the position constraint drifted beyond drift_tol
     integer, parameter, public :: regdae_err_invariant = -114        !! the problem's invariant changed beyond invariant_tol
+    integer, parameter, public :: regdae_err_structure = -115        !! a matrix has an entry outside its declared pattern
 
     public :: status_message
 
@@ -67,6 +68,8 @@ contains
             msg = 'the position constraint g(x, t) = 0 drifted beyond drift_tol'
         case (regdae_err_invariant)
             msg = 'the invariant of the problem changed beyond invariant_tol'
+        case (regdae_err_structure)
+            msg = 'a matrix has a nonzero entry outside the sparsity pattern the problem declared'
         case default
             msg = 'unknown status code'
         end select

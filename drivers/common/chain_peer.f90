@@ -1,0 +1,455 @@
+!> The benchmark peer of the chain driver: a planar N-link chain integrated with
+!! plain SUNDIALS IDA, as a user would write it without regdae.
+!!
+!! The chain: N links of length \(L = 1\), unit point masses at joints 1..N,
+!! joint 0 a fixed pivot at the origin, gravity 9.81 in \(-y\), no damping;
+!! \(q = (x_1, y_1, \dots, x_N, y_N)\), link constraints
+!! \(g_i = (|p_i - p_{i-1}|^2 - L^2)/(2L)\), and with the slider \(g_{N+1} = y_N\).
+!! Start: the straight horizontal chain \(p_i = (iL, 0)\) at rest.
+!!
+!! The formulation: stabilized index 2 (Gear-Gupta-Leimkuhler),
+!! $$ q' = v + G^T\mu,\quad M v' = f + G^T\lambda,\quad G v = 0,\quad g(q) = 0, $$
+!! \(\lambda, \mu\) algebraic and out of the error test (FIDASetId + FIDASetSuppressAlg).
+!! The unknowns are ordered joint by joint, \((x_i, y_i, v_{x,i}, v_{y,i}, \lambda_i, \mu_i)\) with
+!! \(\lambda_i, \mu_i\) those of link i (joint i-1 to joint i), and with the slider
+!! \((\lambda_{N+1}, \mu_{N+1})\) last; each equation sits at the row of its unknown, so the
+!! Jacobian is banded with bandwidths independent of N (computed by `chain_bandwidth`).
+!! IDA's band linear solver with its own difference-quotient band Jacobian. Only for the benchmark.
+module chain_peer
+    use, intrinsic :: iso_c_binding
+    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use fida_mod
+    use fsundials_context_mod
+    use fsundials_nvector_mod
+    use fnvector_serial_mod
+    use fsundials_matrix_mod
+    use fsunmatrix_band_mod
+    use fsundials_linearsolver_mod
+    use fsunlinsol_band_mod
+    use regdae, only: wp, format_real
+    implicit none
+    private
+
+    public :: run_chain_peer
+
+    !> Gravitational acceleration (in \(-y\)).
+    real(wp), parameter :: gravity = 9.81_wp
+    !> Unknowns per joint, and the offset of each inside a joint's block.
+    integer, parameter :: block_size = 6
+    integer, parameter :: off_x = 1, off_y = 2, off_vx = 3, off_vy = 4, off_lambda = 5, off_mu = 6
+    !> IDA's step limit per output interval.
+    integer(c_long), parameter :: max_steps = 100000_c_long
+
+    !> The problem, passed to the residual through IDA's user_data.
+    type :: chain_data
+        integer :: n_links = 1
+        logical :: slider = .false.
+        real(wp) :: link = 1.0_wp        !! link length L
+        real(wp) :: mass = 1.0_wp        !! joint mass
+        character(len=:), allocatable :: ida_message   !! IDA's last error message
+    end type chain_data
+
+contains
+
+    !> Integrate the chain to the times `times` (times(1) = t0, increasing; the chain
+    !! starts there straight, horizontal, at rest) and return the positions q at each
+    !! output time in `q_out(:, k)` (shape (2 n_links, size(times)); NaN after a failure).
+    !! `steps`, `res_evals` (including the difference-quotient Jacobian's) and
+    !! `jac_evals` are IDA's counters; `seconds` the wall-clock time of the IDA setup
+    !! (band matrix, linear solver, FIDACreate to FIDASetLinearSolver) and the FIDASolve
+    !! calls, nothing else. `stat` is 0 or IDA's negative flag (IDA_ILL_INPUT for bad
+    !! arguments), `message` empty on success, else the cause. `max_drift` is the largest
+    !! \(|g_i(q)|\) over the outputs reached.
+    subroutine run_chain_peer(n_links, slider, rtol, atol, times, q_out, steps, res_evals, jac_evals, seconds, stat, &
+                              message, max_drift)
+        integer, intent(in) :: n_links
+        logical, intent(in) :: slider
+        real(wp), intent(in) :: rtol, atol, times(:)
+        real(wp), intent(out) :: q_out(:, :)
+        integer, intent(out) :: steps, res_evals, jac_evals
+        real(wp), intent(out) :: seconds
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: message
+        real(wp), intent(out), optional :: max_drift
+        type(chain_data), target :: data
+        type(c_ptr) :: ctx, mem
+        type(N_Vector), pointer :: uu, up, idv
+        type(SUNMatrix), pointer :: a
+        type(SUNLinearSolver), pointer :: ls
+        real(c_double), pointer :: u(:), p(:)
+        real(c_double) :: tret(1)
+        integer(c_long) :: counter(1), neq, upper, lower
+        integer(c_int) :: ierr
+        integer(int64) :: c0, c1, rate, ticks
+        real(wp) :: drift
+        integer :: i, k
+
+        message = ''
+        steps = 0
+        res_evals = 0
+        jac_evals = 0
+        seconds = 0.0_wp
+        stat = 0
+        q_out = ieee_value(1.0_wp, ieee_quiet_nan)
+        drift = 0.0_wp
+        if (present(max_drift)) max_drift = ieee_value(1.0_wp, ieee_quiet_nan)
+        call check_arguments(n_links, rtol, atol, times, q_out, stat, message)
+        if (stat /= 0) return
+
+        data%n_links = n_links
+        data%slider = slider
+        data%link = 1.0_wp
+        data%mass = 1.0_wp
+        data%ida_message = ''
+        neq = int(unknown_count(data), c_long)
+        call chain_bandwidth(data, upper, lower)
+
+        ctx = c_null_ptr
+        mem = c_null_ptr
+        nullify (uu, up, idv, a, ls)
+        ticks = 0_int64
+        call system_clock(c0, rate)
+        setup: block
+            ierr = FSUNContext_Create(c_null_ptr, ctx)
+            if (ierr /= 0) exit setup
+            uu => FN_VNew_Serial(neq, ctx)
+            up => FN_VNew_Serial(neq, ctx)
+            idv => FN_VNew_Serial(neq, ctx)
+            ierr = IDA_MEM_FAIL
+            if (.not. (associated(uu) .and. associated(up) .and. associated(idv))) exit setup
+            u => FN_VGetArrayPointer(uu)
+            p => FN_VGetArrayPointer(up)
+            call initial_state(data, u, p)
+            p => FN_VGetArrayPointer(idv)
+            call differential_ids(data, p)
+
+            call system_clock(c0, rate)
+            a => FSUNBandMatrix(neq, upper, lower, ctx)
+            if (.not. associated(a)) exit setup
+            ls => FSUNLinSol_Band(uu, a, ctx)
+            if (.not. associated(ls)) exit setup
+            mem = FIDACreate(ctx)
+            if (.not. c_associated(mem)) exit setup
+            ierr = FIDASetErrHandlerFn(mem, c_funloc(chain_error_handler), c_loc(data))
+            if (ierr == 0) ierr = FIDAInit(mem, c_funloc(chain_residual), times(1), uu, up)
+            if (ierr == 0) ierr = FIDASStolerances(mem, rtol, atol)
+            if (ierr == 0) ierr = FIDASetUserData(mem, c_loc(data))
+            if (ierr == 0) ierr = FIDASetId(mem, idv)
+            if (ierr == 0) ierr = FIDASetSuppressAlg(mem, 1_c_int)
+            if (ierr == 0) ierr = FIDASetMaxNumSteps(mem, max_steps)
+            if (ierr == 0) ierr = FIDASetLinearSolver(mem, ls, a)
+            call system_clock(c1)
+            ticks = ticks + (c1 - c0)
+        end block setup
+        if (ierr /= 0) then
+            stat = int(ierr)
+            message = 'chain_peer: IDA setup failed (' // FIDAGetReturnFlagName(int(ierr, c_long)) // ')'
+            if (len(data%ida_message) > 0) message = message // ': ' // data%ida_message
+        else
+            do k = 1, size(times)
+                if (k > 1) then
+                    call system_clock(c0)
+                    ierr = FIDASolve(mem, times(k), tret, uu, up, IDA_NORMAL)
+                    call system_clock(c1)
+                    ticks = ticks + (c1 - c0)
+                    if (ierr < 0) then
+                        stat = int(ierr)
+                        message = 'chain_peer: FIDASolve failed at t = ' // format_real(tret(1)) // ' (' &
+                                  // FIDAGetReturnFlagName(int(ierr, c_long)) // ')'
+                        if (len(data%ida_message) > 0) message = message // ': ' // data%ida_message
+                        exit
+                    end if
+                end if
+                do i = 1, n_links
+                    q_out(2*i - 1, k) = u(position(i, off_x))
+                    q_out(2*i, k) = u(position(i, off_y))
+                end do
+                drift = max(drift, constraint_drift(data, u))
+            end do
+            if (present(max_drift)) max_drift = drift
+        end if
+        seconds = real(ticks, wp)/real(rate, wp)
+
+        if (c_associated(mem)) then
+            ierr = FIDAGetNumSteps(mem, counter)
+            steps = int(counter(1))
+            ierr = FIDAGetNumResEvals(mem, counter)
+            res_evals = int(counter(1))
+            ierr = FIDAGetNumLinResEvals(mem, counter)
+            res_evals = res_evals + int(counter(1))
+            ierr = FIDAGetNumJacEvals(mem, counter)
+            jac_evals = int(counter(1))
+            call FIDAFree(mem)
+        end if
+        if (associated(ls)) ierr = FSUNLinSolFree(ls)
+        if (associated(a)) call FSUNMatDestroy(a)
+        if (associated(idv)) call FN_VDestroy(idv)
+        if (associated(up)) call FN_VDestroy(up)
+        if (associated(uu)) call FN_VDestroy(uu)
+        if (c_associated(ctx)) ierr = FSUNContext_Free(ctx)
+    end subroutine run_chain_peer
+
+    ! Refuse what IDA would refuse later, or what would overrun q_out.
+    subroutine check_arguments(n_links, rtol, atol, times, q_out, stat, message)
+        integer, intent(in) :: n_links
+        real(wp), intent(in) :: rtol, atol, times(:), q_out(:, :)
+        integer, intent(inout) :: stat
+        character(len=:), allocatable, intent(inout) :: message
+
+        if (n_links < 1) then
+            message = 'chain_peer: n_links must be at least 1'
+        else if (size(times) < 1) then
+            message = 'chain_peer: no output time'
+        else if (size(q_out, 1) /= 2*n_links .or. size(q_out, 2) /= size(times)) then
+            message = 'chain_peer: q_out must have shape (2 n_links, size(times))'
+        else if (.not. (rtol >= 0.0_wp .and. atol >= 0.0_wp)) then
+            message = 'chain_peer: negative or NaN tolerance'
+        else if (size(times) > 1) then
+            if (any(.not. (times(2:) > times(:size(times) - 1)))) message = 'chain_peer: times must increase'
+        end if
+        if (len(message) > 0) stat = IDA_ILL_INPUT
+    end subroutine check_arguments
+
+    ! Index in the unknown vector of unknown `offset` of joint (or link) i.
+    pure integer function position(i, offset)
+        integer, intent(in) :: i, offset
+        position = block_size*(i - 1) + offset
+    end function position
+
+    ! Index of the slider's multiplier lambda_{N+1} (offset 1) or mu_{N+1} (offset 2).
+    pure integer function slider_position(data, offset)
+        type(chain_data), intent(in) :: data
+        integer, intent(in) :: offset
+        slider_position = block_size*data%n_links + offset
+    end function slider_position
+
+    pure integer function unknown_count(data)
+        type(chain_data), intent(in) :: data
+        unknown_count = block_size*data%n_links
+        if (data%slider) unknown_count = unknown_count + 2
+    end function unknown_count
+
+    !> The upper and lower bandwidths of the residual's Jacobian for the joint-by-joint
+    !! ordering. Each constraint couples only the unknowns of its own group: link i the
+    !! positions and velocities of joints i-1 and i with (lambda_i, mu_i) (through G, G^T
+    !! and g), the slider joint N with (lambda_{N+1}, mu_{N+1}), and each joint's
+    !! q' = v + ..., M v' = f + ... its own block; inside a group every row may depend on
+    !! every column (row x_{i-1} on mu_i, row mu_i on x_{i-1}), so both bandwidths are the
+    !! widest group's span, 2 block_size - 1 = 11 for N >= 2, capped at neq - 1.
+    pure subroutine chain_bandwidth(data, upper, lower)
+        type(chain_data), intent(in) :: data
+        integer(c_long), intent(out) :: upper, lower
+        integer :: i, first, span
+
+        span = off_vy - off_x
+        do i = 1, data%n_links
+            first = position(max(i - 1, 1), off_x)
+            span = max(span, position(i, off_mu) - first)
+        end do
+        if (data%slider) span = max(span, slider_position(data, 2) - position(data%n_links, off_x))
+        upper = int(min(span, unknown_count(data) - 1), c_long)
+        lower = upper
+    end subroutine chain_bandwidth
+
+    ! 1 for positions and velocities, 0 for the multipliers.
+    pure subroutine differential_ids(data, id)
+        type(chain_data), intent(in) :: data
+        real(c_double), intent(out) :: id(:)
+        integer :: i
+        id = 0.0_wp
+        do i = 1, data%n_links
+            id(position(i, off_x):position(i, off_vy)) = 1.0_wp
+        end do
+    end subroutine differential_ids
+
+    ! The straight horizontal chain at rest with consistent (lambda, mu) and y':
+    ! mu = 0 (G q' = G v = 0), and (v', lambda) from
+    !   M v' - G^T lambda = f,   G v' = -sum |v_i - v_{i-1}|^2 / L  (the second derivative of g),
+    ! i.e. (G M^{-1} G^T) lambda = -c - G M^{-1} f, tridiagonal in the link order (the slider
+    ! row couples only to link N), symmetric positive definite while G has full rank.
+    subroutine initial_state(data, y, yp)
+        type(chain_data), intent(in) :: data
+        real(c_double), intent(out) :: y(:), yp(:)
+        real(wp) :: d(2, data%n_links + 1), dv(2), acc(2, data%n_links)
+        real(wp) :: diag(data%n_links + 1), sub(data%n_links + 1), rhs(data%n_links + 1)
+        real(wp) :: inv_mass
+        integer :: i, n, m
+
+        n = data%n_links
+        m = n
+        if (data%slider) m = n + 1
+        inv_mass = 1.0_wp/data%mass
+        y = 0.0_wp
+        yp = 0.0_wp
+        do i = 1, n
+            y(position(i, off_x)) = i*data%link
+        end do
+        ! d_i = dg_i/dp_i = (p_i - p_{i-1})/L; a link's row of G is -d_i at p_{i-1}, d_i at p_i.
+        acc(1, :) = 0.0_wp
+        acc(2, :) = -gravity
+        sub = 0.0_wp
+        do i = 1, n
+            d(:, i) = link_vector(y, i)/data%link
+            dv = y(position(i, off_vx):position(i, off_vy))
+            if (i > 1) dv = dv - y(position(i - 1, off_vx):position(i - 1, off_vy))
+            diag(i) = inv_mass*sum(d(:, i)**2)
+            rhs(i) = -sum(dv**2)/data%link - dot_product(d(:, i), acc(:, i))
+            if (i > 1) then
+                diag(i) = diag(i) + inv_mass*sum(d(:, i)**2)
+                rhs(i) = rhs(i) + dot_product(d(:, i), acc(:, i - 1))
+                sub(i) = -inv_mass*dot_product(d(:, i - 1), d(:, i))
+            end if
+        end do
+        if (data%slider) then
+            diag(m) = inv_mass
+            sub(m) = inv_mass*d(2, n)
+            rhs(m) = -acc(2, n)
+        end if
+        call symmetric_tridiagonal_solve(diag(:m), sub(:m), rhs(:m))
+        ! v' = M^{-1} (f + G^T lambda).
+        do i = 1, n
+            acc(:, i) = acc(:, i) + inv_mass*rhs(i)*d(:, i)
+            if (i > 1) acc(:, i - 1) = acc(:, i - 1) - inv_mass*rhs(i)*d(:, i)
+            y(position(i, off_lambda)) = rhs(i)
+        end do
+        if (data%slider) then
+            acc(2, n) = acc(2, n) + inv_mass*rhs(m)
+            y(slider_position(data, 1)) = rhs(m)
+        end if
+        do i = 1, n
+            yp(position(i, off_x):position(i, off_y)) = y(position(i, off_vx):position(i, off_vy))
+            yp(position(i, off_vx):position(i, off_vy)) = acc(:, i)
+        end do
+    end subroutine initial_state
+
+    ! Solve T x = b in place (b becomes x) for the symmetric tridiagonal T with diagonal
+    ! `diag` and subdiagonal `sub` (sub(i) = T(i, i-1); sub(1) unused), without pivoting
+    ! (T is positive definite here).
+    pure subroutine symmetric_tridiagonal_solve(diag, sub, b)
+        real(wp), intent(in) :: diag(:), sub(:)
+        real(wp), intent(inout) :: b(:)
+        real(wp) :: pivot(size(diag)), ratio
+        integer :: i
+        pivot(1) = diag(1)
+        do i = 2, size(diag)
+            ratio = sub(i)/pivot(i - 1)
+            pivot(i) = diag(i) - ratio*sub(i)
+            b(i) = b(i) - ratio*b(i - 1)
+        end do
+        b(size(b)) = b(size(b))/pivot(size(b))
+        do i = size(b) - 1, 1, -1
+            b(i) = (b(i) - sub(i + 1)*b(i + 1))/pivot(i)
+        end do
+    end subroutine symmetric_tridiagonal_solve
+
+    ! p_i - p_{i-1} from the unknown vector (p_0 = 0).
+    pure function link_vector(y, i) result(d)
+        real(c_double), intent(in) :: y(:)
+        integer, intent(in) :: i
+        real(wp) :: d(2)
+        d = y(position(i, off_x):position(i, off_y))
+        if (i > 1) d = d - y(position(i - 1, off_x):position(i - 1, off_y))
+    end function link_vector
+
+    ! max |g_i(q)| over the link constraints and the slider's.
+    pure real(wp) function constraint_drift(data, y) result(drift)
+        type(chain_data), intent(in) :: data
+        real(c_double), intent(in) :: y(:)
+        integer :: i
+        drift = 0.0_wp
+        do i = 1, data%n_links
+            drift = max(drift, abs((sum(link_vector(y, i)**2) - data%link**2)/(2.0_wp*data%link)))
+        end do
+        if (data%slider) drift = max(drift, abs(y(position(data%n_links, off_y))))
+    end function constraint_drift
+
+    ! The GGL residual, each equation at the row of its unknown:
+    !   rows x_i, y_i:       q_i' - v_i - (G^T mu)_i
+    !   rows vx_i, vy_i:     M v_i' - f_i - (G^T lambda)_i
+    !   row lambda_i:        G_i v = d_i . (v_i - v_{i-1})
+    !   row mu_i:            g_i(q)
+    ! and for the slider rows lambda_{N+1}: vy_N, mu_{N+1}: y_N.
+    integer(c_int) function chain_residual(t, nv_u, nv_up, nv_r, user_data) result(ierr) bind(C)
+        real(c_double), value :: t
+        type(N_Vector) :: nv_u, nv_up, nv_r
+        type(c_ptr), value :: user_data
+        type(chain_data), pointer :: data
+        real(c_double), pointer :: u(:), up(:), r(:)
+        real(wp) :: d(2), dv(2), lambda, mu
+        integer :: i, jx, jv, px, pv, n
+
+        call c_f_pointer(user_data, data)
+        u => FN_VGetArrayPointer(nv_u)
+        up => FN_VGetArrayPointer(nv_up)
+        r => FN_VGetArrayPointer(nv_r)
+        n = data%n_links
+        do i = 1, n
+            jx = position(i, off_x)
+            jv = position(i, off_vx)
+            r(jx:jx + 1) = up(jx:jx + 1) - u(jv:jv + 1)
+            r(jv) = data%mass*up(jv)
+            r(jv + 1) = data%mass*(up(jv + 1) + gravity)
+        end do
+        do i = 1, n
+            jx = position(i, off_x)
+            jv = position(i, off_vx)
+            d = link_vector(u, i)
+            lambda = u(position(i, off_lambda))
+            mu = u(position(i, off_mu))
+            r(position(i, off_mu)) = (sum(d**2) - data%link**2)/(2.0_wp*data%link)
+            d = d/data%link
+            dv = u(jv:jv + 1)
+            r(jx:jx + 1) = r(jx:jx + 1) - mu*d
+            r(jv:jv + 1) = r(jv:jv + 1) - lambda*d
+            if (i > 1) then
+                px = position(i - 1, off_x)
+                pv = position(i - 1, off_vx)
+                dv = dv - u(pv:pv + 1)
+                r(px:px + 1) = r(px:px + 1) + mu*d
+                r(pv:pv + 1) = r(pv:pv + 1) + lambda*d
+            end if
+            r(position(i, off_lambda)) = dot_product(d, dv)
+        end do
+        if (data%slider) then
+            r(position(n, off_y)) = r(position(n, off_y)) - u(slider_position(data, 2))
+            r(position(n, off_vy)) = r(position(n, off_vy)) - u(slider_position(data, 1))
+            r(slider_position(data, 1)) = u(position(n, off_vy))
+            r(slider_position(data, 2)) = u(position(n, off_y))
+        end if
+        ierr = 0
+    end function chain_residual
+
+    ! Keep IDA's last message in the problem data instead of printing it.
+    subroutine chain_error_handler(error_code, module_name, function_name, msg, user_data) bind(C)
+        integer(c_int), value :: error_code
+        type(c_ptr), value :: module_name, function_name, msg
+        type(c_ptr), value :: user_data
+        type(chain_data), pointer :: data
+
+        if (error_code >= 0) return
+        call c_f_pointer(user_data, data)
+        data%ida_message = c_string(function_name) // ': ' // c_string(msg)
+    end subroutine chain_error_handler
+
+    ! A C string as a Fortran string.
+    function c_string(p) result(s)
+        type(c_ptr), intent(in) :: p
+        character(len=:), allocatable :: s
+        character(kind=c_char), pointer :: chars(:)
+        integer :: k, length
+        length = 0
+        if (c_associated(p)) then
+            call c_f_pointer(p, chars, [4096])
+            do while (length < size(chars))
+                if (chars(length + 1) == c_null_char) exit
+                length = length + 1
+            end do
+        end if
+        allocate (character(len=length) :: s)
+        do k = 1, length
+            s(k:k) = chars(k)
+        end do
+    end function c_string
+
+end module chain_peer

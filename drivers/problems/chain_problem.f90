@@ -1,0 +1,224 @@
+!> A planar chain of N links in Cartesian coordinates: the scalable benchmark
+!! (drivers/chain). Unit links (L = 1) and unit point masses at the joints
+!! 1..N; joint 0 is a pivot at the origin; gravity g in -y. Coordinates q = (x1, y1, ..., xN, yN), n = 2N; constraints
+!! $$ g_i = \frac{|p_i - p_{i-1}|^2 - L^2}{2L}, \quad i = 1, \dots, N, $$
+!! scaled so that a row of G holds the unit vector of its link. With the slider
+!! (`slider = .true.`) the free end rides on the horizontal line through the
+!! pivot: g_{N+1} = y_N. G then loses rank where all links are vertical and
+!! folded back so that the end is on that line (for N = 2 the slider crank of
+!! Example 5.2).
+!!
+!! The problem declares its structure (M diagonal, G two 2-blocks per link row,
+!! forces independent of q and q') and gives M and G in pattern order, so that
+!! regdae's augmented formulation costs O(N) per residual. The curvature term
+!! c_i = |v_i - v_{i-1}|^2 / L is supplied analytically; the energy is the invariant.
+module chain_problem
+    use regdae, only: wp, mechanical_problem, mechanical_structure, sparsity_pattern, diagonal_pattern, &
+                      empty_pattern, pattern_from_entries
+    implicit none
+    private
+
+    !> The chain (and, with `slider`, its end on the line y = 0).
+    type, extends(mechanical_problem), public :: chain
+        integer :: links = 1
+        logical :: slider = .false.
+        real(wp) :: gravity = 9.81_wp
+        real(wp) :: length = 1.0_wp    !! of one link
+        real(wp) :: joint_mass = 1.0_wp   !! of one joint
+    contains
+        procedure :: mass_matrix => chain_mass
+        procedure :: forces => chain_forces
+        procedure :: constraint => chain_g
+        procedure :: constraint_jacobian => chain_gx
+        procedure :: constraint_dt => chain_gt
+        procedure :: constraint_curvature => chain_curvature
+        procedure :: structure => chain_structure
+        procedure :: mass_values => chain_mass_values
+        procedure :: constraint_jacobian_values => chain_gx_values
+        procedure :: invariant => chain_energy
+    end type chain
+
+    public :: new_chain, chain_start
+
+contains
+
+    function new_chain(links, slider, gravity) result(p)
+        integer, intent(in) :: links
+        logical, intent(in) :: slider
+        real(wp), intent(in) :: gravity
+        type(chain) :: p
+        p%links = links
+        p%slider = slider
+        p%gravity = gravity
+        p%length = 1.0_wp
+        p%joint_mass = 1.0_wp
+        p%n = 2*links
+        p%m = links + merge(1, 0, slider)
+    end function new_chain
+
+    !> The straight horizontal chain along +x at rest (consistent with the slider too).
+    subroutine chain_start(p, q0, v0)
+        type(chain), intent(in) :: p
+        real(wp), intent(out) :: q0(:), v0(:)
+        integer :: i
+        do i = 1, p%links
+            q0(2*i - 1) = i*p%length
+            q0(2*i) = 0.0_wp
+        end do
+        v0 = 0.0_wp
+    end subroutine chain_start
+
+    function chain_structure(self) result(st)
+        class(chain), intent(in) :: self
+        type(mechanical_structure) :: st
+        integer, allocatable :: rows(:), cols(:)
+        integer :: i, k
+        st%declared = .true.
+        st%curvature_supplied = .true.
+        st%mass = diagonal_pattern(self%n)
+        st%force_q = empty_pattern(self%n, self%n)
+        st%force_v = empty_pattern(self%n, self%n)
+        allocate (rows(4*self%links + 1), cols(4*self%links + 1))
+        k = 0
+        do i = 1, self%links   ! row i: x_{i-1}, y_{i-1}, x_i, y_i (the pivot has no coordinates)
+            if (i > 1) call add(i, 2*i - 3)
+            if (i > 1) call add(i, 2*i - 2)
+            call add(i, 2*i - 1)
+            call add(i, 2*i)
+        end do
+        if (self%slider) call add(self%links + 1, self%n)
+        st%constraint = pattern_from_entries(self%m, self%n, rows(1:k), cols(1:k))
+    contains
+        subroutine add(r, c)
+            integer, intent(in) :: r, c
+            k = k + 1
+            rows(k) = r
+            cols(k) = c
+        end subroutine add
+    end function chain_structure
+
+    ! p_i - p_{i-1} and v_i - v_{i-1} (the pivot is fixed at the origin).
+    pure subroutine link(self, i, q, d)
+        class(chain), intent(in) :: self
+        integer, intent(in) :: i
+        real(wp), intent(in) :: q(:)
+        real(wp), intent(out) :: d(2)
+        d = q(2*i - 1:2*i)
+        if (i > 1) d = d - q(2*i - 3:2*i - 2)
+    end subroutine link
+
+    subroutine chain_mass(self, t, q, mass, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        real(wp), intent(out) :: mass(:, :)
+        integer, intent(inout) :: stat
+        integer :: i
+        mass = 0.0_wp
+        do i = 1, self%n
+            mass(i, i) = self%joint_mass
+        end do
+    end subroutine chain_mass
+
+    subroutine chain_mass_values(self, t, q, pattern, vals, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        vals = self%joint_mass
+    end subroutine chain_mass_values
+
+    subroutine chain_forces(self, t, q, qd, f, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:), qd(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(inout) :: stat
+        f(1::2) = 0.0_wp
+        f(2::2) = -self%gravity*self%joint_mass
+    end subroutine chain_forces
+
+    subroutine chain_g(self, t, x, val, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        real(wp) :: d(2)
+        integer :: i
+        do i = 1, self%links
+            call link(self, i, x, d)
+            val(i) = (d(1)**2 + d(2)**2 - self%length**2)/(2.0_wp*self%length)
+        end do
+        if (self%slider) val(self%links + 1) = x(self%n)
+    end subroutine chain_g
+
+    subroutine chain_gx(self, t, x, a, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
+        real(wp) :: d(2)
+        integer :: i
+        a = 0.0_wp
+        do i = 1, self%links
+            call link(self, i, x, d)
+            a(i, 2*i - 1:2*i) = d/self%length
+            if (i > 1) a(i, 2*i - 3:2*i - 2) = -d/self%length
+        end do
+        if (self%slider) a(self%links + 1, self%n) = 1.0_wp
+    end subroutine chain_gx
+
+    ! G in the order of chain_structure's pattern (rows by link, columns increasing).
+    subroutine chain_gx_values(self, t, q, pattern, vals, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        real(wp) :: d(2)
+        integer :: i, k
+        k = 0
+        do i = 1, self%links
+            call link(self, i, q, d)
+            d = d/self%length
+            if (i > 1) then
+                vals(k + 1:k + 2) = -d
+                k = k + 2
+            end if
+            vals(k + 1:k + 2) = d
+            k = k + 2
+        end do
+        if (self%slider) vals(k + 1) = 1.0_wp
+    end subroutine chain_gx_values
+
+    subroutine chain_gt(self, t, x, val, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        val = 0.0_wp
+    end subroutine chain_gt
+
+    subroutine chain_curvature(self, t, x, v, val, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        real(wp) :: dv(2)
+        integer :: i
+        do i = 1, self%links
+            call link(self, i, v, dv)
+            val(i) = (dv(1)**2 + dv(2)**2)/self%length
+        end do
+        if (self%slider) val(self%links + 1) = 0.0_wp
+    end subroutine chain_curvature
+
+    !> Kinetic plus potential energy.
+    subroutine chain_energy(self, t, x, v, val, stat)
+        class(chain), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: val
+        integer, intent(inout) :: stat
+        val = 0.5_wp*self%joint_mass*sum(v**2) + self%joint_mass*self%gravity*sum(x(2::2))
+    end subroutine chain_energy
+
+end module chain_problem

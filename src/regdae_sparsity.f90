@@ -1,0 +1,353 @@
+!> Sparsity patterns: which entries of a matrix may be nonzero, stored by rows
+!! (compressed sparse row, column indices sorted within each row).
+!!
+!! Used to declare the structure of a problem's matrices (M, G, the Jacobians
+!! of the forces), to build the pattern of the Newton matrix IDA factors, to
+!! group its columns for difference quotients (Curtis, Powell and Reid: columns
+!! that share no row are perturbed together) and to order the unknowns so that
+!! the matrix is banded (reverse Cuthill-McKee).
+module regdae_sparsity
+    implicit none
+    private
+
+    !> The positions of the entries that may be nonzero, row by row.
+    type, public :: sparsity_pattern
+        integer :: nrows = 0                       !! rows
+        integer :: ncols = 0                       !! columns
+        integer, allocatable :: row_start(:)       !! nrows + 1: row i holds cols(row_start(i):row_start(i+1)-1)
+        integer, allocatable :: cols(:)            !! column indices, increasing within a row
+    contains
+        !> Number of entries.
+        procedure :: nnz => pattern_nnz
+        !> Index k of entry (i, j) in `cols` (and in a values array in pattern order), 0 if absent.
+        procedure :: position => pattern_position
+        !> The pattern of the transpose.
+        procedure :: transposed => pattern_transposed
+        !> The row and column of every entry, in pattern order.
+        procedure :: entries => pattern_entries
+    end type sparsity_pattern
+
+    public :: dense_pattern, empty_pattern, diagonal_pattern, band_pattern, pattern_from_entries, pattern_union
+    public :: color_columns, reverse_cuthill_mckee, permuted_bandwidths
+
+contains
+
+    integer function pattern_nnz(self)
+        class(sparsity_pattern), intent(in) :: self
+        pattern_nnz = 0
+        if (allocated(self%row_start)) pattern_nnz = self%row_start(self%nrows + 1) - 1
+    end function pattern_nnz
+
+    integer function pattern_position(self, i, j) result(k)
+        class(sparsity_pattern), intent(in) :: self
+        integer, intent(in) :: i, j
+        integer :: lo, hi, mid
+        k = 0
+        if (i < 1 .or. i > self%nrows) return
+        lo = self%row_start(i)
+        hi = self%row_start(i + 1) - 1
+        do while (lo <= hi)   ! binary search in the sorted row
+            mid = (lo + hi)/2
+            if (self%cols(mid) == j) then
+                k = mid
+                return
+            else if (self%cols(mid) < j) then
+                lo = mid + 1
+            else
+                hi = mid - 1
+            end if
+        end do
+    end function pattern_position
+
+    subroutine pattern_entries(self, rows, cols)
+        class(sparsity_pattern), intent(in) :: self
+        integer, allocatable, intent(out) :: rows(:), cols(:)
+        integer :: i
+        allocate (rows(self%nnz()))
+        do i = 1, self%nrows
+            rows(self%row_start(i):self%row_start(i + 1) - 1) = i
+        end do
+        cols = self%cols(1:self%nnz())
+    end subroutine pattern_entries
+
+    function pattern_transposed(self) result(t)
+        class(sparsity_pattern), intent(in) :: self
+        type(sparsity_pattern) :: t
+        integer, allocatable :: rows(:), cols(:)
+        call self%entries(rows, cols)
+        t = pattern_from_entries(self%ncols, self%nrows, cols, rows)
+    end function pattern_transposed
+
+    !> Every entry of an m x n matrix.
+    function dense_pattern(m, n) result(p)
+        integer, intent(in) :: m, n
+        type(sparsity_pattern) :: p
+        integer :: i, j
+        p%nrows = m
+        p%ncols = n
+        allocate (p%row_start(m + 1), p%cols(m*n))
+        do i = 1, m
+            p%row_start(i) = (i - 1)*n + 1
+            p%cols((i - 1)*n + 1:i*n) = [(j, j=1, n)]
+        end do
+        p%row_start(m + 1) = m*n + 1
+    end function dense_pattern
+
+    !> No entry.
+    function empty_pattern(m, n) result(p)
+        integer, intent(in) :: m, n
+        type(sparsity_pattern) :: p
+        p%nrows = m
+        p%ncols = n
+        allocate (p%row_start(m + 1), p%cols(0))
+        p%row_start = 1
+    end function empty_pattern
+
+    !> The diagonal of an n x n matrix.
+    function diagonal_pattern(n) result(p)
+        integer, intent(in) :: n
+        type(sparsity_pattern) :: p
+        integer :: i
+        p = pattern_from_entries(n, n, [(i, i=1, n)], [(i, i=1, n)])
+    end function diagonal_pattern
+
+    !> The entries with -lower <= j - i <= upper of an n x n matrix.
+    function band_pattern(n, lower, upper) result(p)
+        integer, intent(in) :: n, lower, upper
+        type(sparsity_pattern) :: p
+        integer :: i, j, k
+        p%nrows = n
+        p%ncols = n
+        allocate (p%row_start(n + 1))
+        allocate (p%cols(n*(lower + upper + 1)))
+        k = 0
+        do i = 1, n
+            p%row_start(i) = k + 1
+            do j = max(1, i - lower), min(n, i + upper)
+                k = k + 1
+                p%cols(k) = j
+            end do
+        end do
+        p%row_start(n + 1) = k + 1
+        p%cols = p%cols(1:k)
+    end function band_pattern
+
+    !> The pattern of an m x n matrix from the (row, column) pairs of its
+    !! entries, in any order; duplicates count once. Pairs outside the matrix
+    !! are dropped (check sizes before if they matter).
+    function pattern_from_entries(m, n, rows, cols) result(p)
+        integer, intent(in) :: m, n
+        integer, intent(in) :: rows(:), cols(:)
+        type(sparsity_pattern) :: p
+        integer, allocatable :: count_row(:), fill(:), tmp(:)
+        integer :: k, i, a, b, c, last, w, x, y
+        p%nrows = m
+        p%ncols = n
+        allocate (count_row(m + 1), source=0)
+        do k = 1, size(rows)
+            i = rows(k)
+            if (i >= 1 .and. i <= m .and. cols(k) >= 1 .and. cols(k) <= n) count_row(i) = count_row(i) + 1
+        end do
+        allocate (p%row_start(m + 1))
+        p%row_start(1) = 1
+        do i = 1, m
+            p%row_start(i + 1) = p%row_start(i) + count_row(i)
+        end do
+        allocate (tmp(p%row_start(m + 1) - 1), fill(m))
+        fill = p%row_start(1:m)
+        do k = 1, size(rows)
+            i = rows(k)
+            if (i >= 1 .and. i <= m .and. cols(k) >= 1 .and. cols(k) <= n) then
+                tmp(fill(i)) = cols(k)
+                fill(i) = fill(i) + 1
+            end if
+        end do
+        ! sort each row (insertion sort: rows are short) and drop duplicates
+        allocate (p%cols(size(tmp)))
+        w = 0
+        do i = 1, m
+            a = p%row_start(i)
+            b = p%row_start(i + 1) - 1
+            do x = a + 1, b
+                c = tmp(x)
+                y = x - 1
+                do while (y >= a)
+                    if (tmp(y) <= c) exit
+                    tmp(y + 1) = tmp(y)
+                    y = y - 1
+                end do
+                tmp(y + 1) = c
+            end do
+            p%row_start(i) = w + 1
+            last = 0
+            do x = a, b
+                if (tmp(x) /= last) then
+                    w = w + 1
+                    p%cols(w) = tmp(x)
+                    last = tmp(x)
+                end if
+            end do
+        end do
+        p%row_start(m + 1) = w + 1
+        p%cols = p%cols(1:w)
+    end function pattern_from_entries
+
+    !> The entries of a or b (same sizes).
+    function pattern_union(a, b) result(p)
+        type(sparsity_pattern), intent(in) :: a, b
+        type(sparsity_pattern) :: p
+        integer, allocatable :: ra(:), ca(:), rb(:), cb(:)
+        call a%entries(ra, ca)
+        call b%entries(rb, cb)
+        p = pattern_from_entries(a%nrows, a%ncols, [ra, rb], [ca, cb])
+    end function pattern_union
+
+    !> Groups of columns that share no row (Curtis, Powell and Reid): a greedy
+    !! coloring in column order. color(j) in 1..ncolors; one residual evaluation
+    !! per color gives every column of that color by difference quotients.
+    subroutine color_columns(p, color, ncolors)
+        type(sparsity_pattern), intent(in) :: p
+        integer, allocatable, intent(out) :: color(:)
+        integer, intent(out) :: ncolors
+        type(sparsity_pattern) :: pt
+        integer, allocatable :: forbidden(:)
+        integer :: j, k, r, q, c
+        pt = p%transposed()   ! rows of pt: the columns of p, with the rows they touch
+        allocate (color(p%ncols), source=0)
+        allocate (forbidden(p%ncols + 1), source=0)
+        ncolors = 0
+        do j = 1, p%ncols
+            do k = pt%row_start(j), pt%row_start(j + 1) - 1
+                r = pt%cols(k)   ! a row of column j
+                do q = p%row_start(r), p%row_start(r + 1) - 1
+                    c = color(p%cols(q))
+                    if (c > 0) forbidden(c) = j
+                end do
+            end do
+            c = 1
+            do while (forbidden(c) == j)
+                c = c + 1
+            end do
+            color(j) = c
+            ncolors = max(ncolors, c)
+        end do
+    end subroutine color_columns
+
+    !> A reverse Cuthill-McKee ordering of the graph of a square pattern
+    !! (symmetrized): perm(k) is the old index of the k-th unknown. Each
+    !! connected part starts from a pseudo-peripheral node of low degree.
+    function reverse_cuthill_mckee(p) result(perm)
+        type(sparsity_pattern), intent(in) :: p
+        integer, allocatable :: perm(:)
+        type(sparsity_pattern) :: g
+        integer, allocatable :: degree(:), order(:), level(:)
+        logical, allocatable :: placed(:)
+        integer :: n, nplaced, start, i, k, head, tail, node, nb, best, far, sweep
+        n = p%nrows
+        g = pattern_union(p, p%transposed())
+        allocate (degree(n), order(n), level(n), placed(n))
+        do i = 1, n
+            degree(i) = g%row_start(i + 1) - g%row_start(i)
+        end do
+        placed = .false.
+        nplaced = 0
+        do while (nplaced < n)
+            ! an unplaced node of least degree, then two sweeps towards a far node
+            best = 0
+            do i = 1, n
+                if (.not. placed(i)) then
+                    if (best == 0) then
+                        best = i
+                    else if (degree(i) < degree(best)) then
+                        best = i
+                    end if
+                end if
+            end do
+            start = best
+            do sweep = 1, 2
+                call breadth_first(start, far)
+                start = far
+            end do
+            ! Cuthill-McKee from `start`: neighbours in increasing degree
+            head = nplaced + 1
+            tail = nplaced + 1
+            order(tail) = start
+            placed(start) = .true.
+            do while (head <= tail)
+                node = order(head)
+                head = head + 1
+                do
+                    best = 0
+                    do k = g%row_start(node), g%row_start(node + 1) - 1
+                        nb = g%cols(k)
+                        if (placed(nb)) cycle
+                        if (best == 0) then
+                            best = nb
+                        else if (degree(nb) < degree(best)) then
+                            best = nb
+                        end if
+                    end do
+                    if (best == 0) exit
+                    tail = tail + 1
+                    order(tail) = best
+                    placed(best) = .true.
+                end do
+            end do
+            nplaced = tail
+        end do
+        perm = order(n:1:-1)
+    contains
+        ! The last node reached by a breadth-first search from s among the
+        ! unplaced nodes (of least degree in the last level).
+        subroutine breadth_first(s, last)
+            integer, intent(in) :: s
+            integer, intent(out) :: last
+            integer, allocatable :: queue(:)
+            integer :: qh, qt, v, kk, w
+            allocate (queue(n))
+            level = -1
+            qh = 1
+            qt = 1
+            queue(1) = s
+            level(s) = 0
+            do while (qh <= qt)
+                v = queue(qh)
+                qh = qh + 1
+                do kk = g%row_start(v), g%row_start(v + 1) - 1
+                    w = g%cols(kk)
+                    if (placed(w) .or. level(w) >= 0) cycle
+                    level(w) = level(v) + 1
+                    qt = qt + 1
+                    queue(qt) = w
+                end do
+            end do
+            last = queue(qt)
+            do kk = 1, qt
+                v = queue(kk)
+                if (level(v) == level(last) .and. degree(v) < degree(last)) last = v
+            end do
+        end subroutine breadth_first
+    end function reverse_cuthill_mckee
+
+    !> Lower and upper bandwidths of the square pattern p with its unknowns
+    !! renumbered: old index perm(k) becomes k.
+    subroutine permuted_bandwidths(p, perm, lower, upper)
+        type(sparsity_pattern), intent(in) :: p
+        integer, intent(in) :: perm(:)
+        integer, intent(out) :: lower, upper
+        integer, allocatable :: new_index(:)
+        integer :: i, k, d
+        allocate (new_index(size(perm)))
+        new_index(perm) = [(k, k=1, size(perm))]
+        lower = 0
+        upper = 0
+        do i = 1, p%nrows
+            do k = p%row_start(i), p%row_start(i + 1) - 1
+                d = new_index(p%cols(k)) - new_index(i)
+                upper = max(upper, d)
+                lower = max(lower, -d)
+            end do
+        end do
+    end subroutine permuted_bandwidths
+
+end module regdae_sparsity
