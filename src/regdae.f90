@@ -17,6 +17,7 @@ module regdae
     use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
     use regdae_options
     use regdae_parse, only: parse_real, parse_integer
+    use regdae_c_strings, only: c_string
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     use regdae_solver_front, only: regdae_solver, solver_stats
     implicit none
@@ -26,7 +27,7 @@ module regdae
     public :: second_order_problem, velocity_constraint, curvature_difference, mechanical_problem, &
               higher_order_problem, taylor_weights
     public :: linear_dae_problem
-    public :: parse_real, parse_integer
+    public :: parse_real, parse_integer, c_string
     public :: mechanical_structure, sparsity_pattern, dense_pattern, empty_pattern, diagonal_pattern, band_pattern, &
               pattern_from_entries, pattern_union
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve

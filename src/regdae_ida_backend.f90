@@ -36,6 +36,7 @@ module regdae_ida_backend
     use regdae_implicit_system, only: implicit_system
     use regdae_sparsity, only: sparsity_pattern, color_columns, permuted_bandwidths
     use regdae_solver_stats, only: solver_stats
+    use regdae_c_strings, only: c_string
     implicit none
     private
 
@@ -581,25 +582,5 @@ contains
         call c_f_pointer(user_data, self)
         self%ida_message = c_string(function_name)//': '//c_string(msg)
     end subroutine ida_error_handler
-
-    ! A C string as a Fortran string.
-    function c_string(p) result(s)
-        type(c_ptr), intent(in) :: p
-        character(len=:), allocatable :: s
-        character(kind=c_char), pointer :: chars(:)
-        integer :: k, length
-        length = 0
-        if (c_associated(p)) then
-            call c_f_pointer(p, chars, [4096])
-            do while (length < size(chars))
-                if (chars(length + 1) == c_null_char) exit
-                length = length + 1
-            end do
-        end if
-        allocate (character(len=length) :: s)
-        do k = 1, length
-            s(k:k) = chars(k)
-        end do
-    end function c_string
 
 end module regdae_ida_backend

@@ -27,7 +27,7 @@ module chain_peer
     use fsunmatrix_band_mod
     use fsundials_linearsolver_mod
     use fsunlinsol_band_mod
-    use regdae, only: wp, format_real
+    use regdae, only: wp, format_real, c_string
     implicit none
     private
 
@@ -431,25 +431,5 @@ contains
         call c_f_pointer(user_data, data)
         data%ida_message = c_string(function_name) // ': ' // c_string(msg)
     end subroutine chain_error_handler
-
-    ! A C string as a Fortran string.
-    function c_string(p) result(s)
-        type(c_ptr), intent(in) :: p
-        character(len=:), allocatable :: s
-        character(kind=c_char), pointer :: chars(:)
-        integer :: k, length
-        length = 0
-        if (c_associated(p)) then
-            call c_f_pointer(p, chars, [4096])
-            do while (length < size(chars))
-                if (chars(length + 1) == c_null_char) exit
-                length = length + 1
-            end do
-        end if
-        allocate (character(len=length) :: s)
-        do k = 1, length
-            s(k:k) = chars(k)
-        end do
-    end function c_string
 
 end module chain_peer
