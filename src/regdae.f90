@@ -41,7 +41,7 @@ module regdae
     ! regdae_options
     public :: solver_options, set_option, validate_options, method_name, formulation_name, lsq_name, &
               exclusion_name, method_baumgarte, method_trust_region, method_direct, formulation_multiplier, &
-              formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, exclusion_suppress, exclusion_weights, &
+              formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, lsq_checked, exclusion_suppress, exclusion_weights, &
               exclusion_off, excluded_y, excluded_vy, excluded_name, integrator_ida, integrator_dopri5, integrator_name, &
               formulation_auto, formulation_augmented, augmented_min_n, linear_solver_auto, linear_solver_dense, &
               linear_solver_band, linear_solver_sparse, linear_solver_name

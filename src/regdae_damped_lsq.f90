@@ -10,7 +10,14 @@
 !!   u * (sigma_max^2 + eps) / (sigma_min^2 + eps);
 !! - `lsq_stacked`: the stacked system [A; sqrt(eps) I] y ~ [r; 0] with
 !!   `dgelsd` (SVD); as accurate as the problem allows, also for eps = 0
-!!   (minimum-norm solution) and rank-deficient A.
+!!   (minimum-norm solution) and rank-deficient A;
+!! - `lsq_checked` (what `lsq=auto` uses): the normal equations, and the stacked
+!!   system for the solves where they are ill-conditioned: where the Cholesky
+!!   factor L of A^T A + eps I has (max L_ii / min L_ii)^2 > 1e8 (a lower bound
+!!   of its condition number; the normal equations' relative error could exceed
+!!   u 1e8 ~ 2e-8 there) or the factorization fails. The test is a ratio, so it
+!!   does not depend on the units of A or eps; a well-conditioned problem never
+!!   pays for the SVD, a singular configuration pays only where it is near.
 !! The direct regularization (eq. 2.12) solves (A + eps I) y = r by Cholesky
 !! (`shifted_spd_solve`), and Baumgarte's (eq. 2.7) solves A y = r by LU
 !! (`square_solve`).
@@ -27,6 +34,10 @@ module regdae_damped_lsq
 
     integer, parameter, public :: lsq_normal = 1   !! normal equations, `dposv`
     integer, parameter, public :: lsq_stacked = 2  !! stacked system, `dgelsd`
+    integer, parameter, public :: lsq_checked = 3  !! normal equations, stacked where they are ill-conditioned
+
+    !> lsq_checked: the largest (max L_ii / min L_ii)^2 the normal equations are trusted with.
+    real(wp), parameter :: normal_condition_limit = 1.0e8_wp
 
     !> Scratch space for solves with a p x q matrix (p rows, q unknowns).
     type, public :: damped_lsq_workspace
@@ -39,6 +50,7 @@ module regdae_damped_lsq
         integer, allocatable :: iwork(:)
         integer, allocatable :: ipiv(:)
         integer :: last_rank = 0
+        integer(8), public :: stacked_solves = 0   !! lsq_checked: solves that took the stacked system
     contains
         !> Size the workspace for p x q matrices (queries dgelsd's workspace).
         procedure :: init => workspace_init
@@ -125,12 +137,12 @@ contains
         end if
         stat = regdae_success
         if (q == 0) return
-        if (p == 1 .and. q == 1 .and. (method == lsq_normal .or. method == lsq_stacked)) then
+        if (p == 1 .and. q == 1 .and. method >= lsq_normal .and. method <= lsq_checked) then
             ! One constraint: both ways are y = a r / (a^2 + eps), to rounding, without
             ! LAPACK's call overhead (the minimum-norm y = 0 when a = eps = 0).
             if (a(1, 1)**2 + eps > 0.0_wp) then
                 y(1) = a(1, 1)*r(1)/(a(1, 1)**2 + eps)
-            else if (method == lsq_stacked) then
+            else if (method /= lsq_normal) then
                 y(1) = 0.0_wp
             else
                 stat = regdae_err_singular
@@ -139,14 +151,32 @@ contains
         end if
         select case (method)
         case (lsq_normal)
+            call normal_solve()
+            if (info > 0) stat = regdae_err_singular
+        case (lsq_stacked)
+            call stacked_solve()
+        case (lsq_checked)
+            call normal_solve()
+            if (info /= 0 .or. .not. well_conditioned()) then
+                ws%stacked_solves = ws%stacked_solves + 1
+                call stacked_solve()
+            end if
+        case default
+            stat = regdae_err_bad_input
+            return
+        end select
+        if (info < 0) stat = regdae_err_lapack
+    contains
+        subroutine normal_solve()
             ws%mat(1:q, 1:q) = matmul(transpose(a), a)
             do i = 1, q
                 ws%mat(i, i) = ws%mat(i, i) + eps
             end do
             y = matmul(r, a)
             call dposv('L', q, 1, ws%mat, size(ws%mat, 1), y, q, info)
-            if (info > 0) stat = regdae_err_singular
-        case (lsq_stacked)
+        end subroutine normal_solve
+
+        subroutine stacked_solve()
             rows = p + q
             ws%mat(1:p, 1:q) = a
             ws%mat(p + 1:rows, 1:q) = 0.0_wp
@@ -159,11 +189,20 @@ contains
                         ws%last_rank, ws%work, size(ws%work), ws%iwork, info)
             if (info > 0) stat = regdae_err_singular   ! SVD did not converge
             y = ws%vec(1:q)
-        case default
-            stat = regdae_err_bad_input
-            return
-        end select
-        if (info < 0) stat = regdae_err_lapack
+        end subroutine stacked_solve
+
+        ! (max L_ii / min L_ii)^2 of the Cholesky factor in ws%mat within the limit
+        logical function well_conditioned()
+            real(wp) :: dmax, dmin
+            dmax = 0.0_wp
+            dmin = huge(1.0_wp)
+            do i = 1, q
+                dmax = max(dmax, abs(ws%mat(i, i)))
+                dmin = min(dmin, abs(ws%mat(i, i)))
+            end do
+            well_conditioned = (dmin > 0.0_wp)
+            if (well_conditioned) well_conditioned = ((dmax/dmin)**2 <= normal_condition_limit)
+        end function well_conditioned
     end subroutine damped_lsq_solve
 
     !> Solve (A + eps I) y = r by Cholesky, A symmetric positive semidefinite.

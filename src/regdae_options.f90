@@ -5,7 +5,7 @@
 !! |----------------|---------------------------------------|----------------|
 !! | method         | baumgarte, trust_region, direct       | trust_region   |
 !! | formulation    | auto, eliminated, multiplier, augmented | auto (see below) |
-!! | lsq            | auto, normal, stacked                 | auto           |
+!! | lsq            | auto, normal, stacked (auto: normal, stacked where ill-conditioned) | auto |
 !! | exclusion      | suppress, weights, off                | suppress       |
 !! | gamma          | > 0                                   | 1e3            |
 !! | eps            | >= 0                                  | 1e-6           |
@@ -37,7 +37,7 @@ module regdae_options
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_bad_input
-    use regdae_damped_lsq, only: lsq_normal, lsq_stacked
+    use regdae_damped_lsq, only: lsq_normal, lsq_stacked, lsq_checked
     use regdae_parse, only: parse_real, parse_integer
     use regdae_format, only: format_real, format_int
     implicit none
@@ -60,8 +60,8 @@ module regdae_options
     integer, parameter, public :: linear_solver_band = 2    !! SUNDIALS band LU (augmented formulation)
     integer, parameter, public :: linear_solver_sparse = 3  !! KLU (augmented formulation)
 
-    integer, parameter, public :: lsq_auto = 0  !! stacked if eps < 1e-8 max(1, |GB(t0)|_F^2), else normal
-    public :: lsq_normal, lsq_stacked
+    integer, parameter, public :: lsq_auto = 0  !! normal equations, stacked per solve where they are ill-conditioned
+    public :: lsq_normal, lsq_stacked, lsq_checked
 
     integer, parameter, public :: exclusion_suppress = 1  !! FIDASetId + FIDASetSuppressAlg
     integer, parameter, public :: exclusion_weights = 2   !! zero error weights (FIDAWFtolerances)
@@ -307,6 +307,7 @@ contains
         case (lsq_auto); name = 'auto'
         case (lsq_normal); name = 'normal'
         case (lsq_stacked); name = 'stacked'
+        case (lsq_checked); name = 'checked'
         case default; name = 'unknown'
         end select
     end function lsq_name

@@ -43,7 +43,7 @@ module regdae_regularization
         integer :: n = 0            !! size of x
         integer :: m = 0            !! number of constraints
         integer :: method = method_trust_region
-        integer :: lsq = 0          !! `lsq_normal` or `lsq_stacked` (resolved)
+        integer :: lsq = 0          !! `lsq_normal`, `lsq_stacked` or `lsq_checked` (resolved)
         real(wp), allocatable :: w(:)   !! w(k+1): weight of G x^(k) (k = 0: of g; w(2) also of g_t)
         real(wp) :: eps = 0.0_wp    !! damping
         logical :: curvature = .false.  !! add c to r (order 2)

@@ -97,8 +97,9 @@ module regdae_solver_front
         procedure :: statistics => solver_statistics
         !> Message of the last call (empty after success).
         procedure :: message => solver_message
-        !> The resolved least-squares solver (`lsq_normal` or `lsq_stacked`; 0 for
-        !! the augmented formulation, which solves no least-squares problem).
+        !> The resolved least-squares solver (`lsq_normal`, `lsq_stacked` or
+        !! `lsq_checked` for auto; 0 for the augmented formulation, which solves
+        !! no least-squares problem).
         procedure :: lsq_method => solver_lsq_method
         !> The resolved formulation and linear solver (codes of regdae_options).
         procedure :: formulation => solver_formulation
@@ -443,10 +444,7 @@ contains
             return
         end if
         lsq = opts%lsq
-        if (lsq == lsq_auto) then
-            lsq = lsq_normal
-            if (opts%eps < 1.0e-8_wp*max(1.0_wp, sum(core%model%gb**2))) lsq = lsq_stacked
-        end if
+        if (lsq == lsq_auto) lsq = lsq_checked   ! by conditioning, per solve (regdae_damped_lsq)
         core%model%lsq = lsq
         allocate (y0(m), zp0(n))
         call core%model%solve_multiplier(t0, y0, stat)

@@ -4,16 +4,20 @@
 !! The chain: N links of length \(L = 1\), unit point masses at joints 1..N,
 !! joint 0 a fixed pivot at the origin, gravity 9.81 in \(-y\), no damping;
 !! \(q = (x_1, y_1, \dots, x_N, y_N)\), link constraints
-!! \(g_i = (|p_i - p_{i-1}|^2 - L^2)/(2L)\), and with the slider \(g_{N+1} = y_N\).
+!! \(g_i = (|p_i - p_{i-1}|^2 - L^2)/(2L)\), \(i = 1, \dots, N\), and with the slider
+!! (N even) every even joint on the horizontal line through the pivot,
+!! \(g_{N+k} = y_{2k}\), \(k = 1, \dots, N/2\) (as in drivers/problems/chain_problem.f90;
+!! N = 2 is the slider crank of Example 5.2).
 !! Start: the straight horizontal chain \(p_i = (iL, 0)\) at rest.
 !!
 !! The formulation: stabilized index 2 (Gear-Gupta-Leimkuhler),
 !! $$ q' = v + G^T\mu,\quad M v' = f + G^T\lambda,\quad G v = 0,\quad g(q) = 0, $$
 !! \(\lambda, \mu\) algebraic and out of the error test (FIDASetId + FIDASetSuppressAlg).
 !! The unknowns are ordered joint by joint, \((x_i, y_i, v_{x,i}, v_{y,i}, \lambda_i, \mu_i)\) with
-!! \(\lambda_i, \mu_i\) those of link i (joint i-1 to joint i), and with the slider
-!! \((\lambda_{N+1}, \mu_{N+1})\) last; each equation sits at the row of its unknown, so the
-!! Jacobian is banded with bandwidths independent of N (computed by `chain_bandwidth`).
+!! \(\lambda_i, \mu_i\) those of link i (joint i-1 to joint i), and with the slider each even
+!! joint 2k's block followed by its slider's \((\lambda_{N+k}, \mu_{N+k})\); each equation sits at
+!! the row of its unknown, so the Jacobian is banded with bandwidths independent of N
+!! (computed by `chain_bandwidth`: 11, with the slider 13).
 !! IDA's band linear solver with its own difference-quotient band Jacobian. Only for the benchmark.
 module chain_peer
     use, intrinsic :: iso_c_binding
@@ -35,18 +39,25 @@ module chain_peer
 
     !> Gravitational acceleration (in \(-y\)).
     real(wp), parameter :: gravity = 9.81_wp
-    !> Unknowns per joint, and the offset of each inside a joint's block.
-    integer, parameter :: block_size = 6
+    !> Unknowns per joint, and the offset of each inside a joint's block; with the slider an
+    !! even joint's block has two more, its slider's multipliers (off_slider_lambda, off_slider_mu).
+    integer, parameter :: block_size = 6, slider_block_size = 2
     integer, parameter :: off_x = 1, off_y = 2, off_vx = 3, off_vy = 4, off_lambda = 5, off_mu = 6
+    integer, parameter :: off_slider_lambda = 7, off_slider_mu = 8
     !> IDA's step limit per output interval.
     integer(c_long), parameter :: max_steps = 100000_c_long
+    !> Half bandwidth of \(G M^{-1} G^T\) in the constraint order link 1, link 2, slider 1,
+    !! link 3, ... (the order of the multipliers in the unknowns).
+    integer, parameter :: gram_width = 2
+    !> A Cholesky pivot below this times its diagonal entry: \(G M^{-1} G^T\) singular.
+    real(wp), parameter :: pivot_tol = 1.0e3_wp*epsilon(1.0_wp)
 
     !> The problem, passed to the residual through IDA's user_data.
     type :: chain_data
         integer :: n_links = 1
         logical :: slider = .false.
-        real(wp) :: link = 1.0_wp        !! link length L
-        real(wp) :: mass = 1.0_wp        !! joint mass
+        real(wp) :: link = 1.0_wp        !! link length L (unit links)
+        real(wp) :: mass = 1.0_wp        !! mass of each joint 1..N (unit masses)
         character(len=:), allocatable :: ida_message   !! IDA's last error message
     end type chain_data
 
@@ -55,11 +66,13 @@ contains
     !> Integrate the chain to the times `times` (times(1) = t0, increasing; the chain
     !! starts there straight, horizontal, at rest) and return the positions q at each
     !! output time in `q_out(:, k)` (shape (2 n_links, size(times)); NaN after a failure).
+    !! With `slider` (n_links even) every even joint rides on the line y = 0.
     !! `steps`, `res_evals` (including the difference-quotient Jacobian's) and
     !! `jac_evals` are IDA's counters; `seconds` the wall-clock time of the IDA setup
     !! (band matrix, linear solver, FIDACreate to FIDASetLinearSolver) and the FIDASolve
     !! calls, nothing else. `stat` is 0 or IDA's negative flag (IDA_ILL_INPUT for bad
-    !! arguments), `message` empty on success, else the cause. `max_drift` is the largest
+    !! arguments, odd n_links with the slider), `message` empty on success, else the cause.
+    !! `max_drift` is the largest
     !! \(|g_i(q)|\) over the outputs reached.
     subroutine run_chain_peer(n_links, slider, rtol, atol, times, q_out, steps, res_evals, jac_evals, seconds, stat, &
                               message, max_drift)
@@ -84,6 +97,7 @@ contains
         integer(int64) :: c0, c1, rate, ticks
         real(wp) :: drift
         integer :: i, k
+        logical :: consistent
 
         message = ''
         steps = 0
@@ -93,8 +107,9 @@ contains
         stat = 0
         q_out = ieee_value(1.0_wp, ieee_quiet_nan)
         drift = 0.0_wp
+        consistent = .true.
         if (present(max_drift)) max_drift = ieee_value(1.0_wp, ieee_quiet_nan)
-        call check_arguments(n_links, rtol, atol, times, q_out, stat, message)
+        call check_arguments(n_links, slider, rtol, atol, times, q_out, stat, message)
         if (stat /= 0) return
 
         data%n_links = n_links
@@ -120,7 +135,8 @@ contains
             if (.not. (associated(uu) .and. associated(up) .and. associated(idv))) exit setup
             u => FN_VGetArrayPointer(uu)
             p => FN_VGetArrayPointer(up)
-            call initial_state(data, u, p)
+            call initial_state(data, u, p, consistent)
+            if (.not. consistent) exit setup
             p => FN_VGetArrayPointer(idv)
             call differential_ids(data, p)
 
@@ -142,7 +158,10 @@ contains
             call system_clock(c1)
             ticks = ticks + (c1 - c0)
         end block setup
-        if (ierr /= 0) then
+        if (.not. consistent) then
+            stat = IDA_ILL_INPUT
+            message = 'chain_peer: no consistent start (G M^-1 G^T is singular there)'
+        else if (ierr /= 0) then
             stat = int(ierr)
             message = 'chain_peer: IDA setup failed (' // FIDAGetReturnFlagName(int(ierr, c_long)) // ')'
             if (len(data%ida_message) > 0) message = message // ': ' // data%ida_message
@@ -162,8 +181,8 @@ contains
                     end if
                 end if
                 do i = 1, n_links
-                    q_out(2*i - 1, k) = u(position(i, off_x))
-                    q_out(2*i, k) = u(position(i, off_y))
+                    q_out(2*i - 1, k) = u(position(data, i, off_x))
+                    q_out(2*i, k) = u(position(data, i, off_y))
                 end do
                 drift = max(drift, constraint_drift(data, u))
             end do
@@ -191,14 +210,17 @@ contains
     end subroutine run_chain_peer
 
     ! Refuse what IDA would refuse later, or what would overrun q_out.
-    subroutine check_arguments(n_links, rtol, atol, times, q_out, stat, message)
+    subroutine check_arguments(n_links, slider, rtol, atol, times, q_out, stat, message)
         integer, intent(in) :: n_links
+        logical, intent(in) :: slider
         real(wp), intent(in) :: rtol, atol, times(:), q_out(:, :)
         integer, intent(inout) :: stat
         character(len=:), allocatable, intent(inout) :: message
 
         if (n_links < 1) then
             message = 'chain_peer: n_links must be at least 1'
+        else if (slider .and. modulo(n_links, 2) /= 0) then
+            message = 'chain_peer: the slider variant needs an even n_links (every even joint on the line)'
         else if (size(times) < 1) then
             message = 'chain_peer: no output time'
         else if (size(q_out, 1) /= 2*n_links .or. size(q_out, 2) /= size(times)) then
@@ -211,43 +233,44 @@ contains
         if (len(message) > 0) stat = IDA_ILL_INPUT
     end subroutine check_arguments
 
-    ! Index in the unknown vector of unknown `offset` of joint (or link) i.
-    pure integer function position(i, offset)
+    ! Index in the unknown vector of unknown `offset` of joint (or link) i; with the slider
+    ! the blocks of the even joints before joint i hold two more unknowns each, and the
+    ! offsets off_slider_lambda, off_slider_mu of an even joint are its slider's multipliers.
+    pure integer function position(data, i, offset)
+        type(chain_data), intent(in) :: data
         integer, intent(in) :: i, offset
         position = block_size*(i - 1) + offset
+        if (data%slider) position = position + slider_block_size*((i - 1)/2)
     end function position
-
-    ! Index of the slider's multiplier lambda_{N+1} (offset 1) or mu_{N+1} (offset 2).
-    pure integer function slider_position(data, offset)
-        type(chain_data), intent(in) :: data
-        integer, intent(in) :: offset
-        slider_position = block_size*data%n_links + offset
-    end function slider_position
 
     pure integer function unknown_count(data)
         type(chain_data), intent(in) :: data
         unknown_count = block_size*data%n_links
-        if (data%slider) unknown_count = unknown_count + 2
+        if (data%slider) unknown_count = unknown_count + slider_block_size*(data%n_links/2)
     end function unknown_count
 
     !> The upper and lower bandwidths of the residual's Jacobian for the joint-by-joint
     !! ordering. Each constraint couples only the unknowns of its own group: link i the
     !! positions and velocities of joints i-1 and i with (lambda_i, mu_i) (through G, G^T
-    !! and g), the slider joint N with (lambda_{N+1}, mu_{N+1}), and each joint's
-    !! q' = v + ..., M v' = f + ... its own block; inside a group every row may depend on
-    !! every column (row x_{i-1} on mu_i, row mu_i on x_{i-1}), so both bandwidths are the
-    !! widest group's span, 2 block_size - 1 = 11 for N >= 2, capped at neq - 1.
+    !! and g), slider k joint 2k with (lambda_{N+k}, mu_{N+k}), and each joint's
+    !! q' = v + ..., M v' = f + ... its own block; inside a group the extreme entries are
+    !! row x_{i-1} on mu_i and row mu_i on x_{i-1}, so both bandwidths are the widest group's
+    !! span: 2 block_size - 1 = 11 for N >= 2, with the slider 13 for N >= 4 (link 2k+1
+    !! spans the 8 unknowns of joint 2k's block; 11 for N = 2), capped at neq - 1.
     pure subroutine chain_bandwidth(data, upper, lower)
         type(chain_data), intent(in) :: data
         integer(c_long), intent(out) :: upper, lower
-        integer :: i, first, span
+        integer :: i, k, span
 
         span = off_vy - off_x
         do i = 1, data%n_links
-            first = position(max(i - 1, 1), off_x)
-            span = max(span, position(i, off_mu) - first)
+            span = max(span, position(data, i, off_mu) - position(data, max(i - 1, 1), off_x))
         end do
-        if (data%slider) span = max(span, slider_position(data, 2) - position(data%n_links, off_x))
+        if (data%slider) then
+            do k = 1, data%n_links/2
+                span = max(span, position(data, 2*k, off_slider_mu) - position(data, 2*k, off_x))
+            end do
+        end if
         upper = int(min(span, unknown_count(data) - 1), c_long)
         lower = upper
     end subroutine chain_bandwidth
@@ -259,109 +282,165 @@ contains
         integer :: i
         id = 0.0_wp
         do i = 1, data%n_links
-            id(position(i, off_x):position(i, off_vy)) = 1.0_wp
+            id(position(data, i, off_x):position(data, i, off_vy)) = 1.0_wp
         end do
     end subroutine differential_ids
 
+    ! Index of link i's constraint, or with `is_slider` of the slider of joint i (even), in the
+    ! order of the multipliers in the unknowns: link 1, link 2, slider 1, link 3, link 4, ...
+    pure integer function constraint_row(data, i, is_slider)
+        type(chain_data), intent(in) :: data
+        integer, intent(in) :: i
+        logical, intent(in) :: is_slider
+        constraint_row = i
+        if (data%slider) constraint_row = i + (i - 1)/2
+        if (is_slider) constraint_row = constraint_row + 1
+    end function constraint_row
+
+    ! The constraints acting on joint j: their rows (constraint_row) and the 2-blocks of G at
+    ! p_j: link j (d_j), link j+1 (-d_{j+1}), the slider of an even joint ((0, 1)).
+    pure subroutine joint_constraints(data, y, j, rows, blocks, count)
+        type(chain_data), intent(in) :: data
+        real(c_double), intent(in) :: y(:)
+        integer, intent(in) :: j
+        integer, intent(out) :: rows(3), count
+        real(wp), intent(out) :: blocks(2, 3)
+        count = 1
+        rows(1) = constraint_row(data, j, .false.)
+        blocks(:, 1) = link_vector(data, y, j)/data%link
+        if (j < data%n_links) then
+            count = count + 1
+            rows(count) = constraint_row(data, j + 1, .false.)
+            blocks(:, count) = -link_vector(data, y, j + 1)/data%link
+        end if
+        if (data%slider .and. modulo(j, 2) == 0) then
+            count = count + 1
+            rows(count) = constraint_row(data, j, .true.)
+            blocks(:, count) = [0.0_wp, 1.0_wp]
+        end if
+    end subroutine joint_constraints
+
     ! The straight horizontal chain at rest with consistent (lambda, mu) and y':
     ! mu = 0 (G q' = G v = 0), and (v', lambda) from
-    !   M v' - G^T lambda = f,   G v' = -sum |v_i - v_{i-1}|^2 / L  (the second derivative of g),
-    ! i.e. (G M^{-1} G^T) lambda = -c - G M^{-1} f, tridiagonal in the link order (the slider
-    ! row couples only to link N), symmetric positive definite while G has full rank.
-    subroutine initial_state(data, y, yp)
+    !   M v' - G^T lambda = f,   G v' = -c,  c_i = |v_i - v_{i-1}|^2 / L for a link, 0 for a slider
+    ! (the second derivative of g), i.e. (G M^{-1} G^T) lambda = -c - G M^{-1} f, banded with half
+    ! bandwidth gram_width in the constraint order, symmetric positive definite while G has full
+    ! rank (it has at the start). `consistent` is false if the Cholesky factorization breaks down.
+    subroutine initial_state(data, y, yp, consistent)
         type(chain_data), intent(in) :: data
         real(c_double), intent(out) :: y(:), yp(:)
-        real(wp) :: d(2, data%n_links + 1), dv(2), acc(2, data%n_links)
-        real(wp) :: diag(data%n_links + 1), sub(data%n_links + 1), rhs(data%n_links + 1)
-        real(wp) :: inv_mass
-        integer :: i, n, m
+        logical, intent(out) :: consistent
+        real(wp) :: gram(0:gram_width, data%n_links + data%n_links/2), lambda(data%n_links + data%n_links/2)
+        real(wp) :: acc(2, data%n_links), blocks(2, 3), dv(2)
+        integer :: rows(3), i, j, a, b, k, count, n, m
 
         n = data%n_links
-        m = n
-        if (data%slider) m = n + 1
-        inv_mass = 1.0_wp/data%mass
+        m = constraint_row(data, n, .false.)
+        if (data%slider) m = constraint_row(data, n, .true.)
         y = 0.0_wp
         yp = 0.0_wp
         do i = 1, n
-            y(position(i, off_x)) = i*data%link
+            y(position(data, i, off_x)) = i*data%link
         end do
-        ! d_i = dg_i/dp_i = (p_i - p_{i-1})/L; a link's row of G is -d_i at p_{i-1}, d_i at p_i.
         acc(1, :) = 0.0_wp
         acc(2, :) = -gravity
-        sub = 0.0_wp
+        gram = 0.0_wp
+        lambda = 0.0_wp
         do i = 1, n
-            d(:, i) = link_vector(y, i)/data%link
-            dv = y(position(i, off_vx):position(i, off_vy))
-            if (i > 1) dv = dv - y(position(i - 1, off_vx):position(i - 1, off_vy))
-            diag(i) = inv_mass*sum(d(:, i)**2)
-            rhs(i) = -sum(dv**2)/data%link - dot_product(d(:, i), acc(:, i))
-            if (i > 1) then
-                diag(i) = diag(i) + inv_mass*sum(d(:, i)**2)
-                rhs(i) = rhs(i) + dot_product(d(:, i), acc(:, i - 1))
-                sub(i) = -inv_mass*dot_product(d(:, i - 1), d(:, i))
+            dv = y(position(data, i, off_vx):position(data, i, off_vy))
+            if (i > 1) dv = dv - y(position(data, i - 1, off_vx):position(data, i - 1, off_vy))
+            lambda(constraint_row(data, i, .false.)) = -sum(dv**2)/data%link
+        end do
+        do j = 1, n
+            call joint_constraints(data, y, j, rows, blocks, count)
+            do a = 1, count
+                lambda(rows(a)) = lambda(rows(a)) - dot_product(blocks(:, a), acc(:, j))
+                do b = 1, count
+                    k = rows(a) - rows(b)
+                    if (k >= 0) gram(k, rows(a)) = gram(k, rows(a)) + dot_product(blocks(:, a), blocks(:, b))/data%mass
+                end do
+            end do
+        end do
+        call band_cholesky_solve(gram(:, :m), lambda(:m), consistent)
+        if (.not. consistent) return
+        ! v' = M^{-1} (f + G^T lambda).
+        do j = 1, n
+            call joint_constraints(data, y, j, rows, blocks, count)
+            do a = 1, count
+                acc(:, j) = acc(:, j) + blocks(:, a)*lambda(rows(a))/data%mass
+            end do
+            y(position(data, j, off_lambda)) = lambda(constraint_row(data, j, .false.))
+            if (data%slider .and. modulo(j, 2) == 0) then
+                y(position(data, j, off_slider_lambda)) = lambda(constraint_row(data, j, .true.))
             end if
         end do
-        if (data%slider) then
-            diag(m) = inv_mass
-            sub(m) = inv_mass*d(2, n)
-            rhs(m) = -acc(2, n)
-        end if
-        call symmetric_tridiagonal_solve(diag(:m), sub(:m), rhs(:m))
-        ! v' = M^{-1} (f + G^T lambda).
         do i = 1, n
-            acc(:, i) = acc(:, i) + inv_mass*rhs(i)*d(:, i)
-            if (i > 1) acc(:, i - 1) = acc(:, i - 1) - inv_mass*rhs(i)*d(:, i)
-            y(position(i, off_lambda)) = rhs(i)
-        end do
-        if (data%slider) then
-            acc(2, n) = acc(2, n) + inv_mass*rhs(m)
-            y(slider_position(data, 1)) = rhs(m)
-        end if
-        do i = 1, n
-            yp(position(i, off_x):position(i, off_y)) = y(position(i, off_vx):position(i, off_vy))
-            yp(position(i, off_vx):position(i, off_vy)) = acc(:, i)
+            yp(position(data, i, off_x):position(data, i, off_y)) = y(position(data, i, off_vx):position(data, i, off_vy))
+            yp(position(data, i, off_vx):position(data, i, off_vy)) = acc(:, i)
         end do
     end subroutine initial_state
 
-    ! Solve T x = b in place (b becomes x) for the symmetric tridiagonal T with diagonal
-    ! `diag` and subdiagonal `sub` (sub(i) = T(i, i-1); sub(1) unused), without pivoting
-    ! (T is positive definite here).
-    pure subroutine symmetric_tridiagonal_solve(diag, sub, b)
-        real(wp), intent(in) :: diag(:), sub(:)
-        real(wp), intent(inout) :: b(:)
-        real(wp) :: pivot(size(diag)), ratio
-        integer :: i
-        pivot(1) = diag(1)
-        do i = 2, size(diag)
-            ratio = sub(i)/pivot(i - 1)
-            pivot(i) = diag(i) - ratio*sub(i)
-            b(i) = b(i) - ratio*b(i - 1)
+    ! Solve A x = b in place (b becomes x) for the symmetric positive definite band matrix A
+    ! given by its lower band, ab(k, i) = A(i, i-k), k = 0..ubound(ab, 1), by Cholesky
+    ! (overwriting ab with L). `ok` is false if a pivot is not positive (A singular).
+    pure subroutine band_cholesky_solve(ab, b, ok)
+        real(wp), intent(inout) :: ab(0:, :), b(:)
+        logical, intent(out) :: ok
+        real(wp) :: s
+        integer :: width, n, i, j, k
+
+        width = ubound(ab, 1)
+        n = size(b)
+        ok = .false.
+        do i = 1, n
+            do j = max(1, i - width), i
+                s = ab(i - j, i)
+                do k = max(1, i - width), j - 1
+                    s = s - ab(i - k, i)*ab(j - k, j)
+                end do
+                if (j < i) then
+                    ab(i - j, i) = s/ab(0, j)
+                else
+                    if (.not. s > pivot_tol*ab(0, i)) return
+                    ab(0, i) = sqrt(s)
+                end if
+            end do
         end do
-        b(size(b)) = b(size(b))/pivot(size(b))
-        do i = size(b) - 1, 1, -1
-            b(i) = (b(i) - sub(i + 1)*b(i + 1))/pivot(i)
+        do i = 1, n
+            do k = max(1, i - width), i - 1
+                b(i) = b(i) - ab(i - k, i)*b(k)
+            end do
+            b(i) = b(i)/ab(0, i)
         end do
-    end subroutine symmetric_tridiagonal_solve
+        do i = n, 1, -1
+            do k = i + 1, min(n, i + width)
+                b(i) = b(i) - ab(k - i, k)*b(k)
+            end do
+            b(i) = b(i)/ab(0, i)
+        end do
+        ok = .true.
+    end subroutine band_cholesky_solve
 
     ! p_i - p_{i-1} from the unknown vector (p_0 = 0).
-    pure function link_vector(y, i) result(d)
+    pure function link_vector(data, y, i) result(d)
+        type(chain_data), intent(in) :: data
         real(c_double), intent(in) :: y(:)
         integer, intent(in) :: i
         real(wp) :: d(2)
-        d = y(position(i, off_x):position(i, off_y))
-        if (i > 1) d = d - y(position(i - 1, off_x):position(i - 1, off_y))
+        d = y(position(data, i, off_x):position(data, i, off_y))
+        if (i > 1) d = d - y(position(data, i - 1, off_x):position(data, i - 1, off_y))
     end function link_vector
 
-    ! max |g_i(q)| over the link constraints and the slider's.
+    ! max |g_i(q)| over the link constraints and the sliders'.
     pure real(wp) function constraint_drift(data, y) result(drift)
         type(chain_data), intent(in) :: data
         real(c_double), intent(in) :: y(:)
         integer :: i
         drift = 0.0_wp
         do i = 1, data%n_links
-            drift = max(drift, abs((sum(link_vector(y, i)**2) - data%link**2)/(2.0_wp*data%link)))
+            drift = max(drift, abs((sum(link_vector(data, y, i)**2) - data%link**2)/(2.0_wp*data%link)))
+            if (data%slider .and. modulo(i, 2) == 0) drift = max(drift, abs(y(position(data, i, off_y))))
         end do
-        if (data%slider) drift = max(drift, abs(y(position(data%n_links, off_y))))
     end function constraint_drift
 
     ! The GGL residual, each equation at the row of its unknown:
@@ -369,7 +448,7 @@ contains
     !   rows vx_i, vy_i:     M v_i' - f_i - (G^T lambda)_i
     !   row lambda_i:        G_i v = d_i . (v_i - v_{i-1})
     !   row mu_i:            g_i(q)
-    ! and for the slider rows lambda_{N+1}: vy_N, mu_{N+1}: y_N.
+    ! and for slider k the rows lambda_{N+k}: vy_{2k}, mu_{N+k}: y_{2k}.
     integer(c_int) function chain_residual(t, nv_u, nv_up, nv_r, user_data) result(ierr) bind(C)
         real(c_double), value :: t
         type(N_Vector) :: nv_u, nv_up, nv_r
@@ -377,7 +456,7 @@ contains
         type(chain_data), pointer :: data
         real(c_double), pointer :: u(:), up(:), r(:)
         real(wp) :: d(2), dv(2), lambda, mu
-        integer :: i, jx, jv, px, pv, n
+        integer :: i, jx, jv, px, pv, ls, ms, n
 
         call c_f_pointer(user_data, data)
         u => FN_VGetArrayPointer(nv_u)
@@ -385,37 +464,43 @@ contains
         r => FN_VGetArrayPointer(nv_r)
         n = data%n_links
         do i = 1, n
-            jx = position(i, off_x)
-            jv = position(i, off_vx)
+            jx = position(data, i, off_x)
+            jv = position(data, i, off_vx)
             r(jx:jx + 1) = up(jx:jx + 1) - u(jv:jv + 1)
             r(jv) = data%mass*up(jv)
             r(jv + 1) = data%mass*(up(jv + 1) + gravity)
         end do
         do i = 1, n
-            jx = position(i, off_x)
-            jv = position(i, off_vx)
-            d = link_vector(u, i)
-            lambda = u(position(i, off_lambda))
-            mu = u(position(i, off_mu))
-            r(position(i, off_mu)) = (sum(d**2) - data%link**2)/(2.0_wp*data%link)
+            jx = position(data, i, off_x)
+            jv = position(data, i, off_vx)
+            d = link_vector(data, u, i)
+            lambda = u(position(data, i, off_lambda))
+            mu = u(position(data, i, off_mu))
+            r(position(data, i, off_mu)) = (sum(d**2) - data%link**2)/(2.0_wp*data%link)
             d = d/data%link
             dv = u(jv:jv + 1)
             r(jx:jx + 1) = r(jx:jx + 1) - mu*d
             r(jv:jv + 1) = r(jv:jv + 1) - lambda*d
             if (i > 1) then
-                px = position(i - 1, off_x)
-                pv = position(i - 1, off_vx)
+                px = position(data, i - 1, off_x)
+                pv = position(data, i - 1, off_vx)
                 dv = dv - u(pv:pv + 1)
                 r(px:px + 1) = r(px:px + 1) + mu*d
                 r(pv:pv + 1) = r(pv:pv + 1) + lambda*d
             end if
-            r(position(i, off_lambda)) = dot_product(d, dv)
+            r(position(data, i, off_lambda)) = dot_product(d, dv)
         end do
         if (data%slider) then
-            r(position(n, off_y)) = r(position(n, off_y)) - u(slider_position(data, 2))
-            r(position(n, off_vy)) = r(position(n, off_vy)) - u(slider_position(data, 1))
-            r(slider_position(data, 1)) = u(position(n, off_vy))
-            r(slider_position(data, 2)) = u(position(n, off_y))
+            do i = 2, n, 2
+                jx = position(data, i, off_y)
+                jv = position(data, i, off_vy)
+                ls = position(data, i, off_slider_lambda)
+                ms = position(data, i, off_slider_mu)
+                r(jx) = r(jx) - u(ms)
+                r(jv) = r(jv) - u(ls)
+                r(ls) = u(jv)
+                r(ms) = u(jx)
+            end do
         end if
         ierr = 0
     end function chain_residual

@@ -14,6 +14,18 @@ module driver_support
     integer, parameter, public :: max_nout = 1000000
     public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage
 
+    !> Accumulates the wall-clock time between start and stop calls: the solve
+    !! (init and advances) apart from writing the output.
+    type, public :: stopwatch
+        integer(int64) :: total = 0      !! accumulated clock counts
+        integer(int64) :: since = 0      !! count at the last start
+    contains
+        procedure :: start => stopwatch_start
+        procedure :: stop => stopwatch_stop
+        !> The accumulated seconds.
+        procedure :: seconds => stopwatch_seconds
+    end type stopwatch
+
 contains
 
     !> The i-th command-line argument.
@@ -65,6 +77,25 @@ contains
         sec = real(now - start, wp)/real(rate, wp)
     end function elapsed_seconds
 
+    subroutine stopwatch_start(self)
+        class(stopwatch), intent(inout) :: self
+        call system_clock(self%since)
+    end subroutine stopwatch_start
+
+    subroutine stopwatch_stop(self)
+        class(stopwatch), intent(inout) :: self
+        integer(int64) :: now
+        call system_clock(now)
+        self%total = self%total + (now - self%since)
+    end subroutine stopwatch_stop
+
+    real(wp) function stopwatch_seconds(self)
+        class(stopwatch), intent(in) :: self
+        integer(int64) :: rate
+        call system_clock(count_rate=rate)
+        stopwatch_seconds = real(self%total, wp)/real(rate, wp)
+    end function stopwatch_seconds
+
     !> Read a finite real option value (the forms of `parse_real`: 1e-3, 1E-3,
     !! 1d-3, .5, 5., +5), or stop with a usage error naming the key.
     subroutine read_number(program_name, key, value, x)
@@ -108,14 +139,17 @@ contains
         end if
     end subroutine common_argument
 
-    !> The statistics fields that end every summary line.
-    function stats_fields(st, seconds) result(text)
+    !> The statistics fields that end every summary line: `seconds` is the solve
+    !! (init and advances), `output_seconds` (if given) the writing of the table.
+    function stats_fields(st, seconds, output_seconds) result(text)
         type(solver_stats), intent(in) :: st
         real(wp), intent(in) :: seconds
+        real(wp), intent(in), optional :: output_seconds
         character(len=:), allocatable :: text
         text = ' steps='//format_int(int(st%steps))//' res_evals='//format_int(int(st%res_evals))// &
                ' jac_evals='//format_int(int(st%jac_evals))//' err_test_fails='//format_int(int(st%err_test_fails))// &
                ' conv_fails='//format_int(int(st%conv_fails))//' seconds='//num(seconds)
+        if (present(output_seconds)) text = text//' output_seconds='//num(output_seconds)
     end function stats_fields
 
     !> The summary's status word of a finished run: 'ok', or 'failed' after the

@@ -3,10 +3,15 @@
 !! 1..N; joint 0 is a pivot at the origin; gravity g in -y. Coordinates q = (x1, y1, ..., xN, yN), n = 2N; constraints
 !! $$ g_i = \frac{|p_i - p_{i-1}|^2 - L^2}{2L}, \quad i = 1, \dots, N, $$
 !! scaled so that a row of G holds the unit vector of its link. With the slider
-!! (`slider = .true.`) the free end rides on the horizontal line through the
-!! pivot: g_{N+1} = y_N. G then loses rank where all links are vertical and
-!! folded back so that the end is on that line (for N = 2 the slider crank of
-!! Example 5.2).
+!! (`slider = .true.`, N even) the free end and every other joint ride on the
+!! horizontal line through the pivot: g_{N+k} = y_{2k}, k = 1..N/2. The chain is
+!! then N/2 slider cranks in series (links 2k-1, 2k: the crank hangs from joint
+!! 2k-2, the rod ends at joint 2k on the line), each with one degree of freedom
+!! relative to its left end; G loses rank whenever a pair folds vertically (crank
+!! straight down, rod straight back up), which every pair does when its crank
+!! swings through the bottom: the rank-deficient path at any scale. For N = 2 it
+!! is the slider crank of Example 5.2 in Cartesian coordinates (unit masses and
+!! links), so the reduced ODE of `slider_crank_problem` is its exact reference.
 !!
 !! The problem declares its structure (M diagonal, G two 2-blocks per link row,
 !! forces independent of q and q') and gives M and G in pattern order, so that
@@ -53,7 +58,7 @@ contains
         p%length = 1.0_wp
         p%joint_mass = 1.0_wp
         p%n = 2*links
-        p%m = links + merge(1, 0, slider)
+        p%m = links + merge(links/2, 0, slider)
     end function new_chain
 
     !> The straight horizontal chain along +x at rest (consistent with the slider too).
@@ -78,7 +83,7 @@ contains
         st%mass = diagonal_pattern(self%n)
         st%force_q = empty_pattern(self%n, self%n)
         st%force_v = empty_pattern(self%n, self%n)
-        allocate (rows(4*self%links + 1), cols(4*self%links + 1))
+        allocate (rows(5*self%links), cols(5*self%links))
         k = 0
         do i = 1, self%links   ! row i: x_{i-1}, y_{i-1}, x_i, y_i (the pivot has no coordinates)
             if (i > 1) call add(i, 2*i - 3)
@@ -86,7 +91,11 @@ contains
             call add(i, 2*i - 1)
             call add(i, 2*i)
         end do
-        if (self%slider) call add(self%links + 1, self%n)
+        if (self%slider) then
+            do i = 1, self%links/2
+                call add(self%links + i, 4*i)   ! y of joint 2i
+            end do
+        end if
         st%constraint = pattern_from_entries(self%m, self%n, rows(1:k), cols(1:k))
     contains
         subroutine add(r, c)
@@ -148,7 +157,7 @@ contains
             call link(self, i, x, d)
             val(i) = (d(1)**2 + d(2)**2 - self%length**2)/(2.0_wp*self%length)
         end do
-        if (self%slider) val(self%links + 1) = x(self%n)
+        if (self%slider) val(self%links + 1:self%m) = x(4::4)
     end subroutine chain_g
 
     subroutine chain_gx(self, t, x, a, stat)
@@ -164,7 +173,11 @@ contains
             a(i, 2*i - 1:2*i) = d/self%length
             if (i > 1) a(i, 2*i - 3:2*i - 2) = -d/self%length
         end do
-        if (self%slider) a(self%links + 1, self%n) = 1.0_wp
+        if (self%slider) then
+            do i = 1, self%links/2
+                a(self%links + i, 4*i) = 1.0_wp
+            end do
+        end if
     end subroutine chain_gx
 
     ! G in the order of chain_structure's pattern (rows by link, columns increasing).
@@ -187,7 +200,7 @@ contains
             vals(k + 1:k + 2) = d
             k = k + 2
         end do
-        if (self%slider) vals(k + 1) = 1.0_wp
+        if (self%slider) vals(k + 1:k + self%links/2) = 1.0_wp
     end subroutine chain_gx_values
 
     subroutine chain_gt(self, t, x, val, stat)
@@ -209,7 +222,7 @@ contains
             call link(self, i, v, dv)
             val(i) = (dv(1)**2 + dv(2)**2)/self%length
         end do
-        if (self%slider) val(self%links + 1) = 0.0_wp
+        if (self%slider) val(self%links + 1:self%m) = 0.0_wp
     end subroutine chain_curvature
 
     !> Kinetic plus potential energy.

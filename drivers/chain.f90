@@ -1,0 +1,197 @@
+!> Driver: the scalable benchmark, a planar chain of N unit links with unit
+!! masses in Cartesian coordinates (drivers/problems/chain_problem.f90), started
+!! straight and horizontal at rest, falling under gravity; optionally with every
+!! other joint and the free end on the horizontal line through the pivot
+!! (slider=yes: N/2 slider cranks in series, each passing a rank-deficient
+!! configuration when its crank swings through the bottom).
+!!
+!! Usage: chain [key=value ...]
+!!   n_links=16 (N >= 1; even with slider=yes)   slider=no|yes   tf=1   nout=100   gravity=9.81
+!!   peer=no|yes (yes: plain IDA with its band solver on the unregularized stabilized index-2
+!!   form, drivers/common/chain_peer.f90, instead of regdae), and the solver options (formulation
+!!   and linear_solver choose the engine; the defaults take the augmented formulation and a
+!!   band or sparse solver from 16 links on)
+!! Output: '#' lines, the table 't x_end y_end energy max_abs_g' at nout+1 equally spaced times,
+!! and the last line
+!!   summary n_links=... slider=... engine=... status=ok|failed t_end=... max_drift=... energy_change=...
+!!           singular_passes=... sigma_min=... [max_err_th=... (N = 2 with slider: against the slider
+!!           crank's reduced ODE by CVODE at 1e-13)] steps=... res_evals=... jac_evals=...
+!!           err_test_fails=... conv_fails=... seconds=... output_seconds=... seconds_per_step=...
+!! (engine: formulation/linear solver, or peer/band; seconds: init and advances, not the output;
+!! max_drift: max |g| at the outputs; energy_change: max |E - E(0)| at the outputs.)
+!! Exit status: 0 ok, 1 solver failure, 2 bad arguments.
+program chain_driver
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use regdae
+    use chain_problem, only: chain, new_chain, chain_start
+    use chain_peer, only: run_chain_peer
+    use slider_crank_problem, only: slider_crank_reduced
+    use reference_ode, only: integrate_reference
+    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
+                              stopwatch, die_usage, read_number, read_count
+    implicit none
+
+    character(len=*), parameter :: prog = 'chain'
+    real(wp), parameter :: t0 = 0.0_wp, pi = acos(-1.0_wp)
+    call run_chain()
+
+contains
+
+    subroutine run_chain()
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        type(chain) :: problem
+        type(stopwatch) :: solve_clock, output_clock
+        type(slider_crank_reduced) :: reduced
+        character(len=:), allocatable :: key, value, status_text, engine, extra
+        integer :: i, k, nout, stat, n_links
+        logical :: ok, slider, peer
+        real(wp) :: tf, gravity, seconds, e, e0, energy_change, max_drift, drift, max_err
+        real(wp), allocatable :: times(:), q0(:), v0(:), q(:), v(:), y(:), table(:, :), qpeer(:, :), ref(:, :), angle1(:)
+        integer :: steps, res_evals, jac_evals
+        character(len=:), allocatable :: peer_message
+
+        n_links = 16
+        slider = .false.
+        peer = .false.
+        tf = 1.0_wp
+        nout = 100
+        gravity = 9.81_wp
+        do i = 1, command_argument_count()
+            call split_key_value(argument(i), key, value, ok)
+            if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
+            select case (key)
+            case ('n_links'); call read_count(prog, key, value, n_links, 1, 1000000)
+            case ('slider'); slider = yes_no(key, value)
+            case ('peer'); peer = yes_no(key, value)
+            case ('tf'); call read_number(prog, key, value, tf)
+            case ('gravity'); call read_number(prog, key, value, gravity)
+            case default
+                call common_argument(prog, key, value, opts, nout)
+            end select
+        end do
+        if (.not. (tf > t0)) call die_usage(prog, 'tf must be > 0')
+        if (slider .and. mod(n_links, 2) /= 0) call die_usage(prog, 'slider=yes needs an even n_links')
+
+        problem = new_chain(n_links, slider, gravity)
+        allocate (q0(problem%n), v0(problem%n), q(problem%n), v(problem%n), y(problem%m))
+        allocate (table(5, 0:nout), angle1(0:nout))
+        call chain_start(problem, q0, v0)
+        times = [(t0 + (tf - t0)*real(k, wp)/real(nout, wp), k=0, nout)]
+        write (*, '(a)') '# regdae chain: '//format_int(n_links)//' unit links, unit masses, Cartesian coordinates'
+        if (slider) write (*, '(a)') '# slider: every other joint and the free end on the line y = 0'
+        write (*, '(a)') '# n = '//format_int(problem%n)//' coordinates, m = '//format_int(problem%m)// &
+            ' constraints; rtol='//num(opts%rtol)//' atol='//num(opts%atol)//' tf='//num(tf)//' nout='//format_int(nout)
+
+        max_drift = 0.0_wp
+        energy_change = 0.0_wp
+        max_err = -1.0_wp
+        e0 = energy(problem, q0, v0)
+        if (peer) then
+            ! plain IDA (band) on the unregularized stabilized index-2 form
+            allocate (qpeer(problem%n, nout + 1))
+            call run_chain_peer(n_links, slider, opts%rtol, opts%atol, times, qpeer, steps, res_evals, jac_evals, &
+                                seconds, stat, peer_message, max_drift)
+            st%steps = steps
+            st%res_evals = res_evals
+            st%jac_evals = jac_evals
+            st%t = t0
+            energy_change = ieee_value(1.0_wp, ieee_quiet_nan)   ! the peer returns positions only
+            do k = 0, nout
+                if (stat /= 0 .and. .not. all(qpeer(:, k + 1) == qpeer(:, k + 1))) exit
+                st%t = times(k + 1)
+                table(:, k) = [times(k + 1), qpeer(problem%n - 1, k + 1), qpeer(problem%n, k + 1), &
+                               ieee_value(1.0_wp, ieee_quiet_nan), 0.0_wp]
+            end do
+            engine = 'peer/band'
+            status_text = 'ok'
+            if (stat /= 0) then
+                write (*, '(a)') '# error: '//peer_message
+                status_text = 'failed'
+            end if
+            call output_clock%start()
+            call write_table(table, min(nout, nint((st%t - t0)/(tf - t0)*nout)))
+            call output_clock%stop()
+            extra = ''
+        else
+            call solve_clock%start()
+            call solver%init(problem, t0, q0, v0, opts, stat)
+            call solve_clock%stop()
+            engine = formulation_name(solver%formulation())//'/'//linear_solver_name(solver%linear_solver())
+            k = -1
+            if (stat == regdae_success) then
+                do k = 0, nout
+                    call solve_clock%start()
+                    call solver%advance(times(k + 1), q, y, stat, v)
+                    call solve_clock%stop()
+                    if (stat < 0) exit
+                    e = energy(problem, q, v)
+                    drift = constraint_violation(problem, q)
+                    energy_change = max(energy_change, abs(e - e0))
+                    max_drift = max(max_drift, drift)
+                    table(:, k) = [times(k + 1), q(problem%n - 1), q(problem%n), e, drift]
+                    angle1(k) = atan2(q(1), -q(2))   ! joint 1 from the downward vertical
+                end do
+                if (stat > 0) stat = regdae_success
+            end if
+            seconds = solve_clock%seconds()
+            st = solver%statistics()
+            status_text = run_status(solver, stat)
+            call output_clock%start()
+            call write_table(table, k - 1)
+            call output_clock%stop()
+            extra = ' singular_passes='//format_int(st%singular_passes)//' sigma_min='//num(st%sigma_min)
+            if (slider .and. n_links == 2 .and. k > nout) then
+                ! the slider crank of Example 5.2: joint 1 at (sin th1, -cos th1)
+                allocate (ref(2, 0:nout))
+                reduced%gravity = gravity
+                call integrate_reference(reduced, t0, [pi/2, 0.0_wp], times, ref, 1.0e-13_wp, 1.0e-13_wp, k)
+                max_err = ieee_value(1.0_wp, ieee_quiet_nan)
+                if (k == 0) max_err = maxval(abs(angle1 - ref(1, :)))
+                extra = extra//' max_err_th='//num(max_err)
+            end if
+            call solver%destroy()
+        end if
+        write (*, '(a)') 'summary n_links='//format_int(n_links)//' slider='//trim(merge('yes', 'no ', slider))// &
+            ' engine='//engine//' status='//status_text//' t_end='//num(st%t)//' max_drift='//num(max_drift)// &
+            ' energy_change='//num(energy_change)//extra//stats_fields(st, seconds, output_clock%seconds())// &
+            ' seconds_per_step='//num(seconds/max(1.0_wp, real(st%steps, wp)))
+        if (status_text /= 'ok') stop 1
+    end subroutine run_chain
+
+    logical function yes_no(name, text)
+        character(len=*), intent(in) :: name, text
+        if (text /= 'yes' .and. text /= 'no') call die_usage(prog, 'bad value "'//text//'" for '//name//' (yes, no)')
+        yes_no = (text == 'yes')
+    end function yes_no
+
+    real(wp) function energy(problem, q, v)
+        type(chain), intent(inout) :: problem
+        real(wp), intent(in) :: q(:), v(:)
+        integer :: ustat
+        ustat = 0
+        call problem%invariant(t0, q, v, energy, ustat)
+    end function energy
+
+    real(wp) function constraint_violation(problem, q)
+        type(chain), intent(inout) :: problem
+        real(wp), intent(in) :: q(:)
+        real(wp) :: g(problem%m)
+        integer :: ustat
+        ustat = 0
+        call problem%constraint(t0, q, g, ustat)
+        constraint_violation = maxval(abs(g))
+    end function constraint_violation
+
+    subroutine write_table(table, last)
+        real(wp), intent(in) :: table(:, 0:)
+        integer, intent(in) :: last
+        integer :: j
+        write (*, '(a1,a23,4a24)') '#', 't', 'x_end', 'y_end', 'energy', 'max_abs_g'
+        do j = 0, last
+            write (*, '(5es24.15e3)') table(:, j)
+        end do
+    end subroutine write_table
+
+end program chain_driver
