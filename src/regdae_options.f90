@@ -26,6 +26,7 @@
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
 !! | integrator     | ida, dopri5 (explicit, eliminated formulation only) | ida |
 !! | linear_solver  | auto, dense, band, sparse (IDA's Newton matrix; band and sparse: augmented) | auto |
+!! | check_jacobians | yes, no (at init: G against difference quotients of g; augmented: the grouped Newton matrix against the full one) | no |
 !!
 !! `formulation=auto` takes `augmented` for a mechanical problem that declares its
 !! structure and has at least `augmented_min_n` coordinates (integrated by IDA, M
@@ -103,6 +104,8 @@ module regdae_options
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
         integer :: integrator = integrator_ida         !! ida, or dopri5 (explicit; eliminated formulation)
         integer :: linear_solver = linear_solver_auto  !! IDA's linear solver
+        logical :: check_jacobians = .false.           !! compare the user's G (and the grouped Newton matrix) with
+                                                       !! difference quotients at init (regdae_err_jacobian)
     end type solver_options
 
     public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name, excluded_name, &
@@ -186,6 +189,9 @@ contains
         case ('integrator')
             call lookup(value, [character(len=12) :: 'ida', 'dopri5'], code)
             if (code > 0) opts%integrator = code
+        case ('check_jacobians')
+            call lookup(value, [character(len=12) :: 'yes', 'no'], code)
+            if (code > 0) opts%check_jacobians = (code == 1)
         case ('linear_solver')
             call lookup(value, [character(len=12) :: 'dense', 'band', 'sparse', 'auto'], code)
             if (code > 0) opts%linear_solver = merge(linear_solver_auto, code, code == 4)
@@ -369,7 +375,7 @@ contains
         case ('linear_solver'); text = ' (auto, dense, band or sparse)'
         case ('lsq'); text = ' (auto, normal or stacked)'
         case ('exclusion'); text = ' (suppress, weights or off)'
-        case ('stop_at_output', 'curvature'); text = ' (yes or no)'
+        case ('stop_at_output', 'curvature', 'check_jacobians'); text = ' (yes or no)'
         case ('index'); text = ' (2 or 3)'
         case ('excluded'); text = ' (y or vy)'
         case ('integrator'); text = ' (ida or dopri5)'

@@ -37,6 +37,7 @@ module regdae_solver_front
     use regdae_regularized_system, only: new_regularized_system
     use regdae_augmented_system, only: augmented_system
     use regdae_sparsity, only: permuted_bandwidths
+    use regdae_differences, only: central_difference_step
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant
     use regdae_format, only: format_real, format_int
@@ -154,6 +155,7 @@ contains
         real(wp) :: gval(problem%m), gnorm
         integer :: ustat
         logical :: augmented
+        character(len=:), allocatable :: msg
 
         if (.not. self%check_input(t0, x0, v0, problem%n, problem%m, opts, stat)) return
         ! Position and velocity constraints at t0 (the regularized system checks only one of them).
@@ -173,6 +175,13 @@ contains
             call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
                              '|G v0 + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
             return
+        end if
+        if (opts%check_jacobians) then
+            call check_second_order_jacobian(copy, t0, x0, ustat, msg)
+            if (ustat /= regdae_success) then
+                call self%record(ustat, msg, stat)
+                return
+            end if
         end if
         augmented = .false.
         select type (copy)
@@ -366,6 +375,14 @@ contains
             call fail(stat, 'at the initial point: '//msg)
             return
         end if
+        if (opts%check_jacobians) then
+            call core%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
+            if (stat == regdae_success) call check_structured_jacobian(problem, sys, t0, q0, stat, msg)
+            if (stat /= regdae_success) then
+                call fail(stat, msg)
+                return
+            end if
+        end if
         call core%monitor%reset(opts%singular_threshold, opts%eps, problem%n, opts%jump_tol, opts%drift_tol, &
                                 opts%invariant_tol)
         call sample_augmented(core, t0)
@@ -408,6 +425,101 @@ contains
         end select
         call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a)
     end subroutine sample_augmented
+
+    ! check_jacobians: the user's G (constraint_jacobian) against central
+    ! difference quotients of g at (t0, x0); regdae_err_jacobian names the worst entry.
+    subroutine check_second_order_jacobian(problem, t0, x0, stat, msg)
+        class(second_order_problem), intent(inout) :: problem
+        real(wp), intent(in) :: t0, x0(:)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp) :: gx(problem%m, problem%n), dq(problem%m, problem%n)
+        stat = 0
+        call problem%constraint_jacobian(t0, x0, gx, stat)
+        if (stat == 0) call constraint_difference_quotient(problem, t0, x0, dq, stat)
+        if (stat /= 0) then
+            msg = 'check_jacobians: a user routine of the constraint failed (stat = '//format_int(stat)//')'
+            stat = regdae_err_user_callback
+            return
+        end if
+        call compare_jacobian('constraint_jacobian', gx, dq, stat, msg)
+    end subroutine check_second_order_jacobian
+
+    ! check_jacobians, structured problems: the sparse G of constraint_jacobian_values too.
+    subroutine check_structured_jacobian(problem, sys, t0, q0, stat, msg)
+        class(mechanical_problem), intent(in) :: problem
+        type(augmented_system), intent(in) :: sys
+        real(wp), intent(in) :: t0, q0(:)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        class(mechanical_problem), allocatable :: copy
+        real(wp) :: gx(problem%m, problem%n), dq(problem%m, problem%n), vals(sys%st%constraint%nnz())
+        integer :: i, k
+        allocate (copy, source=problem)
+        stat = 0
+        msg = ''
+        call copy%constraint_jacobian_values(t0, q0, sys%st%constraint, vals, stat)
+        if (stat == 0) call constraint_difference_quotient(copy, t0, q0, dq, stat)
+        if (stat /= 0) then
+            if (stat /= regdae_err_structure) msg = 'check_jacobians: a user routine of the constraint failed '// &
+                                                    '(stat = '//format_int(stat)//')'
+            if (stat == regdae_err_structure) msg = 'constraint_jacobian has a nonzero outside the declared '// &
+                                                    'constraint pattern'
+            if (stat /= regdae_err_structure) stat = regdae_err_user_callback
+            return
+        end if
+        gx = 0.0_wp
+        do i = 1, problem%m
+            do k = sys%st%constraint%row_start(i), sys%st%constraint%row_start(i + 1) - 1
+                gx(i, sys%st%constraint%cols(k)) = vals(k)
+            end do
+        end do
+        call compare_jacobian('constraint_jacobian_values', gx, dq, stat, msg)
+    end subroutine check_structured_jacobian
+
+    ! Central difference quotients of g(x, t0), column j with the step of
+    ! regdae_differences for x_j.
+    subroutine constraint_difference_quotient(problem, t0, x0, dq, stat)
+        class(second_order_problem), intent(inout) :: problem
+        real(wp), intent(in) :: t0, x0(:)
+        real(wp), intent(out) :: dq(:, :)
+        integer, intent(inout) :: stat
+        real(wp) :: x(size(x0)), gp(problem%m), gm(problem%m), d
+        integer :: j
+        x = x0
+        do j = 1, problem%n
+            d = central_difference_step(x0(j))
+            x(j) = x0(j) + d
+            call problem%constraint(t0, x, gp, stat)
+            if (stat /= 0) return
+            x(j) = x0(j) - d
+            call problem%constraint(t0, x, gm, stat)
+            if (stat /= 0) return
+            x(j) = x0(j)
+            dq(:, j) = (gp - gm)/(2.0_wp*d)
+        end do
+    end subroutine constraint_difference_quotient
+
+    ! |analytic - dq| <= 1e-6 max(1, max |dq|) entry by entry (central differences
+    ! are accurate to about u^(2/3) ~ 4e-11 relative); else regdae_err_jacobian.
+    subroutine compare_jacobian(name, analytic, dq, stat, msg)
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: analytic(:, :), dq(:, :)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: worst(2)
+        real(wp) :: scale
+        stat = regdae_success
+        msg = ''
+        if (size(dq) == 0) return
+        scale = max(1.0_wp, maxval(abs(dq)))
+        worst = maxloc(abs(analytic - dq))
+        if (abs(analytic(worst(1), worst(2)) - dq(worst(1), worst(2))) <= 1.0e-6_wp*scale) return
+        stat = regdae_err_jacobian
+        msg = 'check_jacobians: '//name//' disagrees with the difference quotient of the constraint at entry ('// &
+              format_int(worst(1))//', '//format_int(worst(2))//'): '//format_real(analytic(worst(1), worst(2)))// &
+              ' against '//format_real(dq(worst(1), worst(2)))
+    end subroutine compare_jacobian
 
     ! With the model set up: consistent initial values, then the IDA objects.
     subroutine solver_start(self, t0, z0, opts, stat)

@@ -32,13 +32,13 @@ module regdae_sparsity
 
 contains
 
-    integer function pattern_nnz(self)
+    pure integer function pattern_nnz(self)
         class(sparsity_pattern), intent(in) :: self
         pattern_nnz = 0
         if (allocated(self%row_start)) pattern_nnz = self%row_start(self%nrows + 1) - 1
     end function pattern_nnz
 
-    integer function pattern_position(self, i, j) result(k)
+    pure integer function pattern_position(self, i, j) result(k)
         class(sparsity_pattern), intent(in) :: self
         integer, intent(in) :: i, j
         integer :: lo, hi, mid

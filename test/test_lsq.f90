@@ -8,7 +8,7 @@
 !! tolerances below measure the solvers alone.
 module test_lsq
     use regdae, only: wp, damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve, &
-                      lsq_normal, lsq_stacked, regdae_success, regdae_err_singular, regdae_err_not_psd, &
+                      lsq_normal, lsq_stacked, lsq_checked, regdae_success, regdae_err_singular, regdae_err_not_psd, &
                       regdae_err_bad_input
     use regdae_testing, only: checker, test_case, new_test
     implicit none
@@ -31,8 +31,36 @@ contains
                  new_test('eps_zero_rank_deficient', eps_zero_rank_deficient), &
                  new_test('shifted_spd', shifted_spd), &
                  new_test('square', square), &
-                 new_test('bad_input', bad_input)]
+                 new_test('bad_input', bad_input), &
+                 new_test('checked_switches_by_conditioning', checked_switches)]
     end function lsq_tests
+
+    ! lsq=auto (lsq_checked): the normal equations where A^T A + eps I is well
+    ! conditioned (s = 2, 1, 1/2, 1/4: cond 64), the stacked system where it is
+    ! not (s down to 2^-20 with eps = 2^-60: cond ~ 2^40); the result then as
+    ! accurate as lsq_stacked's (both within 1e-10 of the exact reference).
+    subroutine checked_switches(chk)
+        type(checker), intent(inout) :: chk
+        type(damped_lsq_workspace) :: ws
+        real(wp) :: s_good(4), s_bad(4), y(4), y_ref(4), eps
+        integer :: stat
+        call ws%init(4, 4)
+        s_good = [2.0_wp, 1.0_wp, 0.5_wp, 0.25_wp]
+        eps = 1.0e-6_wp
+        call damped_lsq_solve(ws, a_matrix(s_good), matmul(h, c), eps, lsq_checked, y, stat)
+        call chk%equal(stat, regdae_success, 'well conditioned: success')
+        call chk%true(ws%stacked_solves == 0, 'well conditioned: the normal equations')
+        call chk%true(maxval(abs(y - damped_reference(s_good, eps))) <= 1.0e-12_wp, 'well conditioned: accurate')
+        s_bad = [1.0_wp, 2.0_wp**(-8), 2.0_wp**(-14), 2.0_wp**(-20)]
+        eps = 2.0_wp**(-60)
+        y_ref = damped_reference(s_bad, eps)
+        call damped_lsq_solve(ws, a_matrix(s_bad), matmul(h, c), eps, lsq_checked, y, stat)
+        call chk%equal(stat, regdae_success, 'ill conditioned: success')
+        call chk%true(ws%stacked_solves == 1, 'ill conditioned: the stacked system')
+        call chk%true(maxval(abs(y - y_ref))/maxval(abs(y_ref)) <= 1.0e-10_wp, 'ill conditioned: accurate')
+        write (*, '(a,es10.2)') '    ill conditioned, relative error of lsq_checked: ', &
+            maxval(abs(y - y_ref))/maxval(abs(y_ref))
+    end subroutine checked_switches
 
     pure function v_matrix() result(v)
         real(wp) :: v(4, 4)

@@ -1,0 +1,51 @@
+#!/bin/sh
+# Driver-level checks of the chain (issue 10): every linear solver, with and
+# without the sliders, the slider crank case against its reduced ODE, the peer.
+# Usage: check_chain.sh path/to/chain
+driver=${1:?usage: check_chain.sh path/to/chain}
+tmp=$(mktemp -d) || exit 1
+trap 'rm -rf "$tmp"' EXIT INT TERM
+. "$(dirname "$0")/check_lib.sh"
+
+# 1. N = 2 with the slider is Example 5.2's slider crank in Cartesian coordinates: joint 1's angle
+#    against the reduced ODE (CVODE at 1e-13) through the singular configuration (t ~ 0.85).
+#    Measured 4.2e-7 at rtol = 1e-8 and eps = 1e-10 (eps = 1e-6: 3.4e-6, the regularization's floor).
+run crank n_links=2 slider=yes rtol=1e-8 atol=1e-8 eps=1e-10
+[ "$(rc crank)" = 0 ] && le "$(field crank max_err_th)" 1e-6
+check "slider crank (N = 2): max_err_th=$(field crank max_err_th) <= 1e-6" $?
+
+# 2. Dense, band and sparse (augmented formulation), N = 8, with and without the sliders: all ok,
+#    the constraint kept (max |g| <= 10 rtol) and the same end position (to 10 rtol times |x| <= 8).
+for slider in no yes; do
+    for ls in dense band sparse; do
+        run "${slider}_$ls" n_links=8 slider=$slider formulation=augmented linear_solver=$ls rtol=1e-7 atol=1e-7
+        [ "$(rc "${slider}_$ls")" = 0 ] && [ "$(field "${slider}_$ls" engine)" = "augmented/$ls" ] && \
+            le "$(field "${slider}_$ls" max_drift)" 1e-6
+        check "N = 8 slider=$slider $ls: ok, max_drift=$(field "${slider}_$ls" max_drift) <= 1e-6" $?
+    done
+    end_dense=$(grep -v '^#' "$tmp/${slider}_dense.out" | grep -v '^summary' | tail -n 1)
+    for ls in band sparse; do
+        end_other=$(grep -v '^#' "$tmp/${slider}_$ls.out" | grep -v '^summary' | tail -n 1)
+        echo "$end_dense $end_other" | awk '{ exit !((($2 - $7)^2 + ($3 - $8)^2) <= (8e-6)^2) }'
+        check "N = 8 slider=$slider: $ls ends where dense does" $?
+    done
+done
+
+# 3. The defaults choose the augmented formulation and a structured solver from 16 links on.
+run defaults n_links=32
+[ "$(rc defaults)" = 0 ] && case $(field defaults engine) in augmented/band | augmented/sparse) true ;; *) false ;; esac
+check "N = 32 defaults: engine=$(field defaults engine)" $?
+
+# 4. The plain IDA peer runs on the same chain.
+run peer n_links=8 slider=yes peer=yes
+[ "$(rc peer)" = 0 ] && [ "$(field peer engine)" = peer/band ]
+check "peer: ok" $?
+
+# 5. Bad arguments.
+run odd n_links=3 slider=yes
+[ "$(rc odd)" = 2 ] && grep -q 'even n_links' "$tmp/odd.err"
+check "slider=yes with odd n_links: exit 2, says why" $?
+run zero n_links=0
+[ "$(rc zero)" = 2 ] && grep -q n_links "$tmp/zero.err"
+check "n_links=0: exit 2, names n_links" $?
+finish

@@ -1,0 +1,290 @@
+!> The structured engine (issue 10): the augmented formulation against the
+!! eliminated one, the band and sparse linear solvers against dense, the
+!! sigma_min(GB) estimate against the SVD, the Jacobian checks, and the refusal
+!! of patterns that miss an entry or do not fit.
+module test_structure
+    use regdae
+    use chain_problem, only: chain, new_chain, chain_start
+    use slider_crank_problem, only: slider_crank, new_slider_crank
+    use regdae_testing, only: checker, test_case, new_test
+    implicit none
+    private
+    public :: structure_tests
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+
+    !> The chain with a spring that pulls joint 1 by the height of joint 3 (a
+    !! force that depends on q outside the constraints' couplings) while the
+    !! inherited structure declares force_q empty.
+    type, extends(chain) :: sprung_chain
+    contains
+        procedure :: forces => sprung_forces
+    end type sprung_chain
+
+    !> The chain with one wrong entry in its sparse G.
+    type, extends(chain) :: wrong_g_chain
+    contains
+        procedure :: constraint_jacobian_values => wrong_g_values
+    end type wrong_g_chain
+
+    !> The slider crank declaring a G pattern without column 1 (the dense G has it).
+    type, extends(slider_crank) :: short_pattern_crank
+    contains
+        procedure :: structure => short_structure
+    end type short_pattern_crank
+
+    !> The slider crank declaring a 3 x 3 mass pattern (n = 2).
+    type, extends(slider_crank) :: misfit_crank
+    contains
+        procedure :: structure => misfit_structure
+    end type misfit_crank
+
+contains
+
+    function structure_tests() result(tests)
+        type(test_case), allocatable :: tests(:)
+        tests = [new_test('linear_solvers_agree', linear_solvers_agree), &
+                 new_test('augmented_matches_eliminated', augmented_matches_eliminated), &
+                 new_test('sigma_min_matches_svd', sigma_min_matches_svd), &
+                 new_test('jacobian_checks_pass', jacobian_checks_pass), &
+                 new_test('missing_force_dependence_reported', missing_force_dependence_reported), &
+                 new_test('wrong_g_reported', wrong_g_reported), &
+                 new_test('pattern_missing_an_entry', pattern_missing_an_entry), &
+                 new_test('structure_that_does_not_fit', structure_that_does_not_fit), &
+                 new_test('dense_formulations_refuse_band', dense_formulations_refuse_band)]
+    end function structure_tests
+
+    subroutine sprung_forces(self, t, q, qd, f, stat)
+        class(sprung_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:), qd(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(inout) :: stat
+        call self%chain%forces(t, q, qd, f, stat)
+        f(2) = f(2) - 50.0_wp*q(6)
+    end subroutine sprung_forces
+
+    subroutine wrong_g_values(self, t, q, pattern, vals, stat)
+        class(wrong_g_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        call self%chain%constraint_jacobian_values(t, q, pattern, vals, stat)
+        vals(3) = vals(3) + 0.5_wp
+    end subroutine wrong_g_values
+
+    function short_structure(self) result(st)
+        class(short_pattern_crank), intent(in) :: self
+        type(mechanical_structure) :: st
+        st%declared = .true.
+        st%mass = dense_pattern(2, 2)
+        st%constraint = pattern_from_entries(1, 2, [1], [2])
+        st%force_q = dense_pattern(2, 2)
+        st%force_v = dense_pattern(2, 2)
+    end function short_structure
+
+    function misfit_structure(self) result(st)
+        class(misfit_crank), intent(in) :: self
+        type(mechanical_structure) :: st
+        st%declared = .true.
+        st%mass = dense_pattern(3, 3)
+        st%constraint = dense_pattern(1, 2)
+        st%force_q = dense_pattern(2, 2)
+        st%force_v = dense_pattern(2, 2)
+    end function misfit_structure
+
+    ! Positions of a chain at t = 0.5 and 1 with the given options.
+    subroutine run_chain(links, slider, opts, q_end, stat, solver_used)
+        integer, intent(in) :: links
+        logical, intent(in) :: slider
+        type(solver_options), intent(in) :: opts
+        real(wp), intent(out) :: q_end(:, :)   ! (2 links, 2)
+        integer, intent(out) :: stat
+        integer, intent(out), optional :: solver_used
+        type(regdae_solver) :: solver
+        type(chain) :: p
+        real(wp) :: q0(2*links), v0(2*links)
+        integer :: k
+        p = new_chain(links, slider, 9.81_wp)
+        call chain_start(p, q0, v0)
+        call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+        if (present(solver_used)) solver_used = solver%linear_solver()
+        if (stat /= regdae_success) return
+        do k = 1, 2
+            call solver%advance(0.5_wp*k, q_end(:, k), stat=stat)
+            if (stat < 0) return
+        end do
+        stat = regdae_success
+        call solver%destroy()
+    end subroutine run_chain
+
+    ! Dense, band and sparse LU solve the same Newton systems (the same grouped
+    ! Jacobian): the runs differ by rounding only. Bound 1e-7 at rtol = 1e-8:
+    ! 10 rtol times the largest coordinate (about 8).
+    subroutine linear_solvers_agree(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        real(wp) :: q(16, 2, 3)
+        integer :: ls, stat, used, pass
+        logical :: slider
+        do pass = 1, 2
+            slider = (pass == 2)
+            do ls = linear_solver_dense, linear_solver_sparse
+                opts = solver_options()
+                opts%formulation = formulation_augmented
+                opts%linear_solver = ls
+                opts%rtol = 1.0e-8_wp
+                opts%atol = 1.0e-8_wp
+                call run_chain(8, slider, opts, q(:, :, ls), stat, used)
+                call chk%equal(stat, regdae_success, linear_solver_name(ls)//' run')
+                call chk%equal(used, ls, 'the solver asked for is used')
+            end do
+            call chk%true(maxval(abs(q(:, :, 2) - q(:, :, 1))) <= 8.0e-7_wp, 'band agrees with dense')
+            call chk%true(maxval(abs(q(:, :, 3) - q(:, :, 1))) <= 8.0e-7_wp, 'sparse agrees with dense')
+            write (*, '(a,2es10.2)') '    max |band - dense|, |sparse - dense|: ', maxval(abs(q(:, :, 2) - q(:, :, 1))), &
+                maxval(abs(q(:, :, 3) - q(:, :, 1)))
+        end do
+    end subroutine linear_solvers_agree
+
+    ! The augmented and eliminated formulations integrate the same regularized
+    ! equations: at rtol = 1e-9 they agree to the integration error (bound 1e-6).
+    subroutine augmented_matches_eliminated(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        real(wp) :: q(8, 2, 2), th(2, 2), lam(1)
+        integer :: form, stat, k
+        do form = 1, 2
+            opts = solver_options()
+            opts%rtol = 1.0e-9_wp
+            opts%atol = 1.0e-9_wp
+            opts%formulation = merge(formulation_eliminated, formulation_augmented, form == 1)
+            call run_chain(4, .false., opts, q(:, :, form), stat)
+            call chk%equal(stat, regdae_success, 'chain run '//formulation_name(opts%formulation))
+            ! the slider crank (no structure declared: dense patterns), through t = 1
+            call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+            do k = 1, 2
+                call solver%advance(0.5_wp*k, th(:, form), lam, stat)
+            end do
+            call chk%equal(stat, regdae_success, 'slider crank '//formulation_name(opts%formulation))
+        end do
+        call chk%true(maxval(abs(q(:, :, 1) - q(:, :, 2))) <= 1.0e-6_wp, 'chain: augmented = eliminated')
+        call chk%true(maxval(abs(th(:, 1) - th(:, 2))) <= 1.0e-6_wp, 'slider crank: augmented = eliminated')
+        write (*, '(a,2es10.2)') '    chain, slider crank: max |augmented - eliminated|: ', &
+            maxval(abs(q(:, :, 1) - q(:, :, 2))), maxval(abs(th(:, 1) - th(:, 2)))
+        call solver%destroy()
+    end subroutine augmented_matches_eliminated
+
+    ! The inverse-iteration estimate of sigma_min(GB) on the banded saddle-point
+    ! matrix against the dense SVD (eliminated formulation), at t0 of a chain:
+    ! eight inverse iterations with a spectral gap of about 4 give 1e-6 relative.
+    subroutine sigma_min_matches_svd(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: a, b
+        type(chain) :: p
+        real(wp) :: q0(16), v0(16)
+        integer :: stat
+        p = new_chain(8, .true., 9.81_wp)
+        call chain_start(p, q0, v0)
+        opts%formulation = formulation_augmented
+        call a%init(p, 0.0_wp, q0, v0, opts, stat)
+        opts%formulation = formulation_eliminated
+        call b%init(p, 0.0_wp, q0, v0, opts, stat)
+        call chk%close_rel([a%sigma_min()], [b%sigma_min()], 1.0e-6_wp, 'sigma_min(GB): estimate = SVD')
+        write (*, '(a,2es22.14)') '    sigma_min estimate, SVD: ', a%sigma_min(), b%sigma_min()
+        call a%destroy()
+        call b%destroy()
+    end subroutine sigma_min_matches_svd
+
+    subroutine jacobian_checks_pass(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        real(wp) :: q(32, 2)
+        integer :: stat
+        opts%check_jacobians = .true.
+        opts%formulation = formulation_augmented
+        call run_chain(16, .true., opts, q, stat)
+        call chk%equal(stat, regdae_success, 'the chain passes the checks')
+    end subroutine jacobian_checks_pass
+
+    ! Forces that depend on q with force_q declared empty: the grouped Newton
+    ! matrix misses entries; check_jacobians says so.
+    subroutine missing_force_dependence_reported(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(sprung_chain) :: p
+        real(wp) :: q0(16), v0(16)
+        integer :: stat, i
+        p%chain = new_chain(8, .false., 9.81_wp)
+        call chain_start(p%chain, q0, v0)
+        q0(2::2) = [(0.1_wp*i, i=1, 8)]   ! off the axis: nonzero spring forces
+        q0(1::2) = [(sqrt(real(i, wp)**2 - (0.1_wp*i)**2), i=1, 8)]   ! unit links along one ray
+        opts%formulation = formulation_augmented
+        opts%check_jacobians = .true.
+        call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+        call chk%equal(stat, regdae_err_jacobian, 'reported')
+        call chk%true(index(solver%message(), 'pattern') > 0, 'the message points at the patterns')
+    end subroutine missing_force_dependence_reported
+
+    subroutine wrong_g_reported(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(wrong_g_chain) :: p
+        real(wp) :: q0(8), v0(8)
+        integer :: stat
+        p%chain = new_chain(4, .false., 9.81_wp)
+        call chain_start(p%chain, q0, v0)
+        opts%formulation = formulation_augmented
+        opts%check_jacobians = .true.
+        call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+        call chk%equal(stat, regdae_err_jacobian, 'reported')
+        call chk%true(index(solver%message(), 'constraint_jacobian_values') > 0, 'the message names the routine')
+        opts%check_jacobians = .false.   ! without the check: the run goes on (wrong)
+        call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+        call chk%equal(stat, regdae_success, 'not checked by default')
+        call solver%destroy()
+    end subroutine wrong_g_reported
+
+    ! The dense G has an entry outside the declared pattern: the default
+    ! constraint_jacobian_values refuses it with a clear status.
+    subroutine pattern_missing_an_entry(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(short_pattern_crank) :: p
+        integer :: stat
+        p%slider_crank = new_slider_crank(9.8_wp)
+        opts%formulation = formulation_augmented
+        call solver%init(p, 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_structure, 'refused')
+        call chk%true(index(solver%message(), 'constraint_jacobian_values') > 0, 'the message names the routine')
+    end subroutine pattern_missing_an_entry
+
+    subroutine structure_that_does_not_fit(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(misfit_crank) :: p
+        integer :: stat
+        p%slider_crank = new_slider_crank(9.8_wp)
+        opts%formulation = formulation_augmented
+        call solver%init(p, 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_bad_input, 'refused')
+        call chk%true(index(solver%message(), 'mass pattern is 3 x 3, expected 2 x 2') > 0, 'the message says what')
+    end subroutine structure_that_does_not_fit
+
+    subroutine dense_formulations_refuse_band(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        integer :: stat
+        opts%linear_solver = linear_solver_band
+        call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_err_bad_input, 'band on the dense formulation refused')
+        call chk%true(index(solver%message(), 'augmented') > 0, 'the message says what is needed')
+    end subroutine dense_formulations_refuse_band
+
+end module test_structure
