@@ -7,11 +7,14 @@
 !!
 !! Usage: chain [key=value ...]
 !!   n_links=16 (N >= 1; even with slider=yes)   slider=no|yes   tf=1   nout=100   gravity=9.81
+!!   mass=1 (of each joint)   stiffness=0 damping=0 (vertical springs -k y and dashpots -c y' under
+!!   every joint: with a light mass, the stiff variant, e.g. mass=1e-2 stiffness=1e4 damping=10)
 !!   peer=no|yes (yes: plain IDA with its band solver on the unregularized stabilized index-2
 !!   form, drivers/common/chain_peer.f90, instead of regdae), and the solver options (formulation
 !!   and linear_solver choose the engine; the defaults take the augmented formulation and a
 !!   band or sparse solver from 16 links on)
-!! Output: '#' lines, the table 't x_end y_end energy max_abs_g' at nout+1 equally spaced times,
+!! Output: '#' lines, the table 't x_end y_end energy max_abs_g sigma_min' at nout+1 equally spaced
+!! times (sigma_min: sigma_min(GB) there, NaN for the peer),
 !! and the last line
 !!   summary n_links=... slider=... engine=... status=ok|failed t_end=... max_drift=... energy_change=...
 !!           singular_passes=... sigma_min=... [max_err_th=... (N = 2 with slider: against the slider
@@ -47,7 +50,7 @@ contains
         character(len=:), allocatable :: key, value, status_text, engine, extra
         integer :: i, k, nout, stat, n_links
         logical :: ok, slider, peer
-        real(wp) :: tf, gravity, seconds, e, e0, energy_change, max_drift, drift, max_err
+        real(wp) :: tf, gravity, seconds, e, e0, energy_change, max_drift, drift, max_err, joint_mass, stiffness, damping
         real(wp), allocatable :: times(:), q0(:), v0(:), q(:), v(:), y(:), table(:, :), qpeer(:, :), ref(:, :), angle1(:)
         integer :: steps, res_evals, jac_evals
         character(len=:), allocatable :: peer_message
@@ -58,6 +61,9 @@ contains
         tf = 1.0_wp
         nout = 100
         gravity = 9.81_wp
+        joint_mass = 1.0_wp
+        stiffness = 0.0_wp
+        damping = 0.0_wp
         do i = 1, command_argument_count()
             call split_key_value(argument(i), key, value, ok)
             if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
@@ -67,6 +73,12 @@ contains
             case ('peer'); peer = yes_no(key, value)
             case ('tf'); call read_number(prog, key, value, tf)
             case ('gravity'); call read_number(prog, key, value, gravity)
+            case ('mass'); call read_number(prog, key, value, joint_mass)
+                if (.not. (joint_mass > 0.0_wp)) call die_usage(prog, 'mass must be > 0')
+            case ('stiffness'); call read_number(prog, key, value, stiffness)
+                if (.not. (stiffness >= 0.0_wp)) call die_usage(prog, 'stiffness must be >= 0')
+            case ('damping'); call read_number(prog, key, value, damping)
+                if (.not. (damping >= 0.0_wp)) call die_usage(prog, 'damping must be >= 0')
             case default
                 call common_argument(prog, key, value, opts, nout)
             end select
@@ -75,8 +87,11 @@ contains
         if (slider .and. mod(n_links, 2) /= 0) call die_usage(prog, 'slider=yes needs an even n_links')
 
         problem = new_chain(n_links, slider, gravity)
+        problem%joint_mass = joint_mass
+        problem%stiffness = stiffness
+        problem%damping = damping
         allocate (q0(problem%n), v0(problem%n), q(problem%n), v(problem%n), y(problem%m))
-        allocate (table(5, 0:nout), angle1(0:nout))
+        allocate (table(6, 0:nout), angle1(0:nout))
         call chain_start(problem, q0, v0)
         times = [(t0 + (tf - t0)*real(k, wp)/real(nout, wp), k=0, nout)]
         write (*, '(a)') '# regdae chain: '//format_int(n_links)//' unit links, unit masses, Cartesian coordinates'
@@ -92,7 +107,7 @@ contains
             ! plain IDA (band) on the unregularized stabilized index-2 form
             allocate (qpeer(problem%n, nout + 1))
             call run_chain_peer(n_links, slider, opts%rtol, opts%atol, times, qpeer, steps, res_evals, jac_evals, &
-                                seconds, stat, peer_message, max_drift)
+                                seconds, stat, peer_message, max_drift, joint_mass, stiffness, damping)
             st%steps = steps
             st%res_evals = res_evals
             st%jac_evals = jac_evals
@@ -102,7 +117,8 @@ contains
                 if (stat /= 0 .and. .not. all(qpeer(:, k + 1) == qpeer(:, k + 1))) exit
                 st%t = times(k + 1)
                 table(:, k) = [times(k + 1), qpeer(problem%n - 1, k + 1), qpeer(problem%n, k + 1), &
-                               ieee_value(1.0_wp, ieee_quiet_nan), 0.0_wp]
+                               ieee_value(1.0_wp, ieee_quiet_nan), constraint_violation(problem, qpeer(:, k + 1)), &
+                               ieee_value(1.0_wp, ieee_quiet_nan)]
             end do
             engine = 'peer/band'
             status_text = 'ok'
@@ -130,7 +146,7 @@ contains
                     drift = constraint_violation(problem, q)
                     energy_change = max(energy_change, abs(e - e0))
                     max_drift = max(max_drift, drift)
-                    table(:, k) = [times(k + 1), q(problem%n - 1), q(problem%n), e, drift]
+                    table(:, k) = [times(k + 1), q(problem%n - 1), q(problem%n), e, drift, solver%sigma_min()]
                     angle1(k) = atan2(q(1), -q(2))   ! joint 1 from the downward vertical
                 end do
                 if (stat > 0) stat = regdae_success
@@ -188,9 +204,9 @@ contains
         real(wp), intent(in) :: table(:, 0:)
         integer, intent(in) :: last
         integer :: j
-        write (*, '(a1,a23,4a24)') '#', 't', 'x_end', 'y_end', 'energy', 'max_abs_g'
+        write (*, '(a1,a23,5a24)') '#', 't', 'x_end', 'y_end', 'energy', 'max_abs_g', 'sigma_min'
         do j = 0, last
-            write (*, '(5es24.15e3)') table(:, j)
+            write (*, '(6es24.15e3)') table(:, j)
         end do
     end subroutine write_table
 

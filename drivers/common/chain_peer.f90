@@ -2,7 +2,8 @@
 !! plain SUNDIALS IDA, as a user would write it without regdae.
 !!
 !! The chain: N links of length \(L = 1\), unit point masses at joints 1..N,
-!! joint 0 a fixed pivot at the origin, gravity 9.81 in \(-y\), no damping;
+!! joint 0 a fixed pivot at the origin, gravity 9.81 in \(-y\), optionally light joints on stiff
+!! vertical springs and dashpots (forces \(-k y_i - c y_i'\)) as the stiff variant;
 !! \(q = (x_1, y_1, \dots, x_N, y_N)\), link constraints
 !! \(g_i = (|p_i - p_{i-1}|^2 - L^2)/(2L)\), \(i = 1, \dots, N\), and with the slider
 !! (N even) every even joint on the horizontal line through the pivot,
@@ -58,6 +59,8 @@ module chain_peer
         logical :: slider = .false.
         real(wp) :: link = 1.0_wp        !! link length L (unit links)
         real(wp) :: mass = 1.0_wp        !! mass of each joint 1..N (unit masses)
+        real(wp) :: stiffness = 0.0_wp   !! vertical spring k y under every joint (0: none)
+        real(wp) :: damping = 0.0_wp     !! vertical dashpot c y' under every joint (0: none)
         character(len=:), allocatable :: ida_message   !! IDA's last error message
     end type chain_data
 
@@ -75,7 +78,7 @@ contains
     !! `max_drift` is the largest
     !! \(|g_i(q)|\) over the outputs reached.
     subroutine run_chain_peer(n_links, slider, rtol, atol, times, q_out, steps, res_evals, jac_evals, seconds, stat, &
-                              message, max_drift)
+                              message, max_drift, joint_mass, stiffness, damping)
         integer, intent(in) :: n_links
         logical, intent(in) :: slider
         real(wp), intent(in) :: rtol, atol, times(:)
@@ -85,6 +88,9 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: message
         real(wp), intent(out), optional :: max_drift
+        real(wp), intent(in), optional :: joint_mass   !! mass of each joint (default 1)
+        real(wp), intent(in), optional :: stiffness    !! vertical springs k y under the joints (default 0)
+        real(wp), intent(in), optional :: damping      !! vertical dashpots c y' under the joints (default 0)
         type(chain_data), target :: data
         type(c_ptr) :: ctx, mem
         type(N_Vector), pointer :: uu, up, idv
@@ -116,6 +122,9 @@ contains
         data%slider = slider
         data%link = 1.0_wp
         data%mass = 1.0_wp
+        if (present(joint_mass)) data%mass = joint_mass
+        if (present(stiffness)) data%stiffness = stiffness
+        if (present(damping)) data%damping = damping
         data%ida_message = ''
         neq = int(unknown_count(data), c_long)
         call chain_bandwidth(data, upper, lower)
@@ -468,7 +477,7 @@ contains
             jv = position(data, i, off_vx)
             r(jx:jx + 1) = up(jx:jx + 1) - u(jv:jv + 1)
             r(jv) = data%mass*up(jv)
-            r(jv + 1) = data%mass*(up(jv + 1) + gravity)
+            r(jv + 1) = data%mass*(up(jv + 1) + gravity) + data%stiffness*u(jx + 1) + data%damping*u(jv + 1)
         end do
         do i = 1, n
             jx = position(data, i, off_x)

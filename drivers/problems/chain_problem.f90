@@ -17,6 +17,10 @@
 !! forces independent of q and q') and gives M and G in pattern order, so that
 !! regdae's augmented formulation costs O(N) per residual. The curvature term
 !! c_i = |v_i - v_{i-1}|^2 / L is supplied analytically; the energy is the invariant.
+!!
+!! The stiff variant (`stiffness` k, `damping` c, light `joint_mass`): every joint
+!! also hangs on a vertical spring and dashpot, forces -k y_i - c y_i' (light
+!! bodies on stiff springs: fast damped modes of frequency sqrt(k/m)).
 module chain_problem
     use regdae, only: wp, mechanical_problem, mechanical_structure, sparsity_pattern, diagonal_pattern, &
                       empty_pattern, pattern_from_entries
@@ -30,6 +34,8 @@ module chain_problem
         real(wp) :: gravity = 9.81_wp
         real(wp) :: length = 1.0_wp    !! of one link
         real(wp) :: joint_mass = 1.0_wp   !! of one joint
+        real(wp) :: stiffness = 0.0_wp    !! vertical springs k y under the joints
+        real(wp) :: damping = 0.0_wp      !! vertical dashpots c y' under the joints
     contains
         procedure :: mass_matrix => chain_mass
         procedure :: forces => chain_forces
@@ -83,6 +89,8 @@ contains
         st%mass = diagonal_pattern(self%n)
         st%force_q = empty_pattern(self%n, self%n)
         st%force_v = empty_pattern(self%n, self%n)
+        if (self%stiffness /= 0.0_wp) st%force_q = vertical_diagonal(self%n)
+        if (self%damping /= 0.0_wp) st%force_v = vertical_diagonal(self%n)
         allocate (rows(5*self%links), cols(5*self%links))
         k = 0
         do i = 1, self%links   ! row i: x_{i-1}, y_{i-1}, x_i, y_i (the pivot has no coordinates)
@@ -105,6 +113,14 @@ contains
             cols(k) = c
         end subroutine add
     end function chain_structure
+
+    ! The y entries of the diagonal (the springs and dashpots act on y_i alone).
+    function vertical_diagonal(n) result(p)
+        integer, intent(in) :: n
+        type(sparsity_pattern) :: p
+        integer :: i
+        p = pattern_from_entries(n, n, [(2*i, i=1, n/2)], [(2*i, i=1, n/2)])
+    end function vertical_diagonal
 
     ! p_i - p_{i-1} and v_i - v_{i-1} (the pivot is fixed at the origin).
     pure subroutine link(self, i, q, d)
@@ -143,7 +159,7 @@ contains
         real(wp), intent(out) :: f(:)
         integer, intent(inout) :: stat
         f(1::2) = 0.0_wp
-        f(2::2) = -self%gravity*self%joint_mass
+        f(2::2) = -self%gravity*self%joint_mass - self%stiffness*q(2::2) - self%damping*qd(2::2)
     end subroutine chain_forces
 
     subroutine chain_g(self, t, x, val, stat)
@@ -231,7 +247,8 @@ contains
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: val
         integer, intent(inout) :: stat
-        val = 0.5_wp*self%joint_mass*sum(v**2) + self%joint_mass*self%gravity*sum(x(2::2))
+        val = 0.5_wp*self%joint_mass*sum(v**2) + self%joint_mass*self%gravity*sum(x(2::2)) + &
+              0.5_wp*self%stiffness*sum(x(2::2)**2)
     end subroutine chain_energy
 
 end module chain_problem
