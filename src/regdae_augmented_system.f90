@@ -45,7 +45,7 @@ module regdae_augmented_system
     use regdae_differences, only: central_difference_step
     use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
     use regdae_implicit_system, only: implicit_system
-    use regdae_options, only: solver_options, method_trust_region, method_direct, excluded_vy
+    use regdae_options, only: solver_options, method_trust_region, method_direct, excluded_vy, option_auto
     implicit none
     private
 
@@ -119,14 +119,14 @@ contains
             .or. .not. sizes_fit(self%st%force_q, n, n, 'force_q') .or. .not. sizes_fit(self%st%force_v, n, n, &
                                                                                           'force_v')) return
         self%method = opts%method
-        self%eps = opts%eps
+        self%eps = merge(0.0_wp, opts%eps, opts%eps == option_auto)   ! auto: set by the solver
         if (opts%index == 3) then
-            self%gamma0 = opts%gamma0
-            self%gamma1 = opts%gamma1
+            self%gamma0 = merge(1.0_wp, opts%gamma0, opts%gamma0 == option_auto)
+            self%gamma1 = merge(1.0_wp, opts%gamma1, opts%gamma1 == option_auto)
             self%curvature = opts%curvature
         else   ! the regularized velocity constraint: d/dt (G v + g_t) + gamma (G v + g_t)
             self%gamma0 = 0.0_wp
-            self%gamma1 = opts%gamma
+            self%gamma1 = merge(1.0_wp, opts%gamma, opts%gamma == option_auto)
             self%curvature = .true.
         end if
         ! the natural numbering: q, v, [u], y, [s]

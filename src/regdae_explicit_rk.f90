@@ -23,6 +23,7 @@ module regdae_explicit_rk
         real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:), z_new(:), z_stage(:), work(:), y_work(:)
         integer :: steps = 0, evals = 0, rejects = 0
         integer :: stiff_count = 0, quiet_count = 0   ! the stiffness test's counters
+        logical :: stiff_detected = .false.          !! the last advance stopped because the system is stiff
         ! the continuous extension's vectors of the step ending at dense_t
         real(wp), allocatable :: dense_dz(:), dense_p(:), dense_q(:), dense_r(:)
         real(wp) :: dense_t = -huge(1.0_wp)
@@ -62,6 +63,12 @@ contains
         integer :: n
         logical :: recoverable
         n = size(z0)
+        if (allocated(self%z)) deallocate (self%dense_dz, self%dense_p, self%dense_q, self%dense_r, self%z, self%k1, &
+                                           self%z_old, self%k_old, self%k2, self%k3, self%k4, self%k5, self%k6, &
+                                           self%k7, self%z_new, self%z_stage, self%work, self%y_work)
+        self%stiff_count = 0
+        self%quiet_count = 0
+        self%stiff_detected = .false.
         allocate (self%dense_dz(n), self%dense_p(n), self%dense_q(n), self%dense_r(n))
         self%dense_t = -huge(1.0_wp)
         allocate (self%z(n), self%k1(n), self%z_old(n), self%k_old(n), self%k2(n), self%k3(n), self%k4(n), &
@@ -85,7 +92,8 @@ contains
     !! regdae_err_mass_matrix, regdae_err_not_psd), which stops the integration at once. `monitor`, if given, samples every
     !! accepted step's end, where `model` holds the evaluation of the
     !! first-same-as-last stage (no extra evaluation).
-    subroutine rk_advance(self, model, tout, rtol, atol, h_max, max_steps, land_on_tout, zout, stat, monitor)
+    subroutine rk_advance(self, model, tout, rtol, atol, h_max, max_steps, land_on_tout, zout, stat, monitor, &
+                          stop_when_stiff)
         class(rk_integrator), intent(inout) :: self
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: tout, rtol, atol, h_max
@@ -94,12 +102,14 @@ contains
         real(wp), intent(out) :: zout(:)
         integer, intent(out) :: stat
         type(solution_monitor), intent(inout), optional :: monitor
+        logical, intent(in), optional :: stop_when_stiff   !! return (success, stiff_detected) instead of failing
         real(wp) :: h, e, theta, fac
         integer :: taken, n, i
         logical :: recoverable
 
         n = size(self%z)
         stat = regdae_success
+        self%stiff_detected = .false.
         taken = 0
         do while (self%t < tout)
             if (taken >= max_steps) then
@@ -108,6 +118,7 @@ contains
             end if
             h = self%h
             if (h_max > 0.0_wp) h = min(h, h_max)
+            if (present(monitor)) h = min(h, monitor%step_limit)   ! approaching a singular configuration
             if (land_on_tout .and. self%t + h > tout) h = tout - self%t
             if (land_on_tout .and. h <= 16*epsilon(1.0_wp)*max(1.0_wp, abs(self%t)) .and. h == tout - self%t) then
                 ! tout within a few roundoffs of t: one Euler step with the slope at t
@@ -136,6 +147,14 @@ contains
                     self%stiff_count = self%stiff_count + 1
                     self%quiet_count = 0
                     if (self%stiff_count >= 15) then
+                        if (present(stop_when_stiff)) then
+                            if (stop_when_stiff) then   ! the caller switches integrators at t
+                                self%stiff_detected = .true.
+                                self%stiff_count = 0
+                                zout = self%z
+                                return
+                            end if
+                        end if
                         call fail('the regularized system is stiff here (h |lambda| at the stability limit '// &
                                   'of the explicit method for 15 steps): use integrator=ida, or smaller gamma1, gamma0')
                         return

@@ -27,18 +27,32 @@
 !! Invariant: if the problem supplies an invariant I(x, v, t) (e.g. the energy
 !! of a conservative mechanism) and invariant_tol > 0, |I - I(t0)| above
 !! invariant_tol raises the alarm (`alarm_kind = alarm_invariant`).
+!!
+!! Work-energy balance (mechanical problems, regdae_work_energy): the kinetic
+!! energy T and the power P of the applied forces at each sample; the work W is
+!! the quadrature of P over the samples (the quadratic through the last three
+!! samples; trapezoidal on the first interval), and the defect
+!! D = T - T(t0) - W, relative to the energy scale of the motion
+!! S = max over the samples of (T, |W|, |T - T(t0)|), must stay below work_tol
+!! plus the quadrature's own error estimate E (the sum of
+!! |quadratic - trapezoidal| per interval: large steps do not raise false
+!! alarms) (`alarm_kind = alarm_work`). Inside a regularization layer the
+!! damped multiplier exchanges energy with the motion for a moment (a spike of
+!! lambda^T G v): D is tested at the samples outside the layers only.
 module regdae_monitor
     use regdae_kinds, only: wp
     use regdae_format, only: format_real, format_int
     use regdae_regularization, only: regularized_dae
+    use regdae_options, only: option_auto
     implicit none
     private
 
-    integer, parameter, public :: alarm_none = 0, alarm_jump = 1, alarm_drift = 2, alarm_invariant = 3
+    integer, parameter, public :: alarm_none = 0, alarm_jump = 1, alarm_drift = 2, alarm_invariant = 3, alarm_work = 4
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
         real(wp) :: threshold = 0.05_wp          !! sigma_min(GB) below this marks a singular sample
+        logical :: relative = .false.            !! threshold = 0.05 times the running maximum of sigma_min(GB)
         real(wp) :: sigma_last = huge(1.0_wp)    !! sigma_min(GB) at the last sample
         real(wp) :: sigma_min = huge(1.0_wp)     !! smallest sigma_min(GB) over the samples
         integer :: n_singular = 0                !! singular intervals so far
@@ -52,16 +66,28 @@ module regdae_monitor
         real(wp) :: invariant_tol = 0.0_wp       !! alarm when |I - I(t0)| exceeds this (0: no check)
         real(wp) :: invariant0 = 0.0_wp          !! I(t0)
         real(wp) :: invariant_change = 0.0_wp    !! largest |I - I(t0)| so far
+        real(wp) :: step_limit = huge(1.0_wp)    !! the largest next step the approach to a singular
+                                                 !! configuration allows (huge: none)
+        real(wp) :: work_tol = 0.0_wp            !! alarm when |D| > work_tol S (0: no check)
+        real(wp) :: work_defect = 0.0_wp         !! largest |D| / S so far
         logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
         integer :: alarm_kind = alarm_none       !! alarm_jump or alarm_drift
         character(len=:), allocatable :: alarm_message   !! what, where and how much
-        logical, private :: have_regular = .false., have_invariant = .false., in_layer = .false.
+        logical, private :: have_regular = .false., have_invariant = .false., in_layer = .false., have_work = .false.
+        real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
+                             t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
+        integer, private :: work_samples = 0
         real(wp), private :: layer_threshold = 0.05_wp   ! max(threshold, 3 sqrt(eps)): J's end samples lie above
+        real(wp), private :: layer_eps = 0.0_wp
+        real(wp), private :: sigma_peak = 0.0_wp         ! relative threshold: the largest sigma_min(GB) so far
+        real(wp), private :: sigma_prev = huge(1.0_wp), t_prev = 0.0_wp
         real(wp), private :: t_regular = 0.0_wp
         real(wp), allocatable, private :: v_regular(:), a_regular(:)
     contains
         !> Forget all samples; set the threshold.
         procedure :: reset => monitor_reset
+        !> Sample the kinetic energy and the power of the applied forces at t (work-energy balance).
+        procedure :: sample_work => monitor_sample_work
         !> Sample the model's last evaluation, made at time t on the solution.
         procedure :: sample => monitor_sample
         !> Sample given values: the drift max |g|, sigma_min(GB), the invariant
@@ -73,7 +99,7 @@ module regdae_monitor
 
 contains
 
-    subroutine monitor_reset(self, threshold, eps, np, jump_tol, drift_tol, invariant_tol)
+    subroutine monitor_reset(self, threshold, eps, np, jump_tol, drift_tol, invariant_tol, work_tol)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: threshold
         real(wp), intent(in) :: eps         !! the regularization parameter (its layer: sigma_min(GB)^2 < eps)
@@ -81,8 +107,11 @@ contains
         real(wp), intent(in) :: jump_tol    !! <= 0: no velocity-jump check
         real(wp), intent(in) :: drift_tol   !! <= 0: no drift check
         real(wp), intent(in) :: invariant_tol   !! <= 0: no invariant check
-        self%threshold = threshold
-        self%layer_threshold = max(threshold, 3*sqrt(eps))
+        real(wp), intent(in), optional :: work_tol   !! <= 0 or absent: no work-energy check
+        self%relative = (threshold == option_auto)
+        self%threshold = merge(0.0_wp, threshold, self%relative)
+        self%layer_eps = eps
+        self%layer_threshold = max(self%threshold, 3*sqrt(eps))
         self%in_layer = .false.
         self%invariant_tol = invariant_tol
         self%invariant_change = 0.0_wp
@@ -92,10 +121,17 @@ contains
         self%drift_tol = drift_tol
         self%jump_max = 0.0_wp
         self%drift_max = 0.0_wp
+        self%work_tol = 0.0_wp
+        if (present(work_tol)) self%work_tol = max(0.0_wp, work_tol)
+        self%work_defect = 0.0_wp
+        self%have_work = .false.
         self%alarm = .false.
         self%alarm_kind = alarm_none
         self%alarm_message = ''
         self%have_regular = .false.
+        self%sigma_peak = 0.0_wp
+        self%sigma_prev = huge(1.0_wp)
+        self%step_limit = huge(1.0_wp)
         if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)
         allocate (self%v_regular(self%np), self%a_regular(self%np))
         self%sigma_last = huge(1.0_wp)
@@ -111,7 +147,7 @@ contains
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
         real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
-        real(wp) :: drift, invariant
+        real(wp) :: drift, invariant, kinetic, power
         integer :: stat, invariant_stat
         invariant = 0.0_wp
         invariant_stat = 0
@@ -123,6 +159,10 @@ contains
                                     z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np))
         else
             call self%sample_values(t, drift, model%sigma_min_gb(), invariant, invariant_stat, z(1:0), dz(1:0))
+        end if
+        if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
+            call model%work_sample(t, z, kinetic, power, stat)
+            call self%sample_work(t, kinetic, power, stat)
         end if
     end subroutine monitor_sample
 
@@ -146,8 +186,23 @@ contains
                                      ' > drift_tol = '//format_real(self%drift_tol)//' at t = '//format_real(t)
             end if
         end if
+        ! Approaching a singular configuration (sigma_min(GB) falling below half its
+        ! peak): the next step at most 0.3 of the time sigma would take to reach 0 at
+        ! its present rate, so that the integrator comes down to the layer in steps
+        ! that see it instead of stepping over it (an embedded error estimate is blind
+        ! to a layer between its stages).
+        self%step_limit = huge(1.0_wp)
+        if (sigma < self%sigma_prev .and. sigma < 0.5_wp*max(self%sigma_peak, sigma) .and. t > self%t_prev) &
+            self%step_limit = 0.3_wp*sigma*(t - self%t_prev)/(self%sigma_prev - sigma)
+        self%sigma_prev = sigma
+        self%t_prev = t
         self%sigma_last = sigma
         self%sigma_min = min(self%sigma_min, self%sigma_last)
+        if (self%relative .and. sigma == sigma) then
+            self%sigma_peak = max(self%sigma_peak, sigma)
+            self%threshold = 0.05_wp*self%sigma_peak
+            self%layer_threshold = max(self%threshold, 3*sqrt(self%layer_eps))
+        end if
         if (self%sigma_last < self%threshold) then
             if (.not. self%in_singular) then
                 if (.not. allocated(self%singular)) allocate (self%singular(2, 8))
@@ -169,6 +224,58 @@ contains
         if (self%np > 0 .and. self%jump_tol > 0.0_wp .and. .not. self%in_layer) &
             call regular_sample(self, t, v, a, was_in_layer)
     end subroutine monitor_sample_values
+
+    subroutine monitor_sample_work(self, t, kinetic, power, stat)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, kinetic, power
+        integer, intent(in) :: stat   !! the user routines' status (nonzero: the sample is skipped)
+        real(wp) :: defect, h, trapezoid, quadratic, d2
+        if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
+        if (.not. self%have_work) then
+            self%kinetic0 = kinetic
+            self%work = 0.0_wp
+            self%work_scale = kinetic
+            self%power_last = power
+            self%t_work = t
+            self%quadrature_error = 0.0_wp
+            self%work_samples = 1
+            self%have_work = .true.
+            return
+        end if
+        h = t - self%t_work
+        if (.not. (h > 0.0_wp)) return
+        trapezoid = 0.5_wp*h*(power + self%power_last)
+        quadratic = trapezoid
+        if (self%work_samples >= 2) then   ! the quadratic through the last three samples
+            d2 = ((power - self%power_last)/h - (self%power_last - self%power_before)/(self%t_work - self%t_before))/ &
+                 (t - self%t_before)
+            quadratic = trapezoid - d2*h**3/6.0_wp
+            self%quadrature_error = self%quadrature_error + abs(quadratic - trapezoid)
+        else
+            self%quadrature_error = self%quadrature_error + 0.5_wp*h*abs(power - self%power_last)
+        end if
+        self%work = self%work + quadratic
+        self%power_before = self%power_last
+        self%t_before = self%t_work
+        self%power_last = power
+        self%t_work = t
+        self%work_samples = self%work_samples + 1
+        defect = kinetic - self%kinetic0 - self%work
+        self%work_scale = max(self%work_scale, kinetic, abs(self%work), abs(kinetic - self%kinetic0))
+        if (.not. (self%work_scale > 0.0_wp)) return
+        if (.not. (abs(defect) <= huge(1.0_wp))) defect = huge(1.0_wp)   ! NaN or Inf: a failure
+        if (self%in_layer) return   ! tested outside the layers only
+        self%work_defect = max(self%work_defect, abs(defect)/self%work_scale)
+        if (abs(defect) > self%work_tol*self%work_scale + self%quadrature_error .and. .not. self%alarm) then
+            self%alarm = .true.
+            self%alarm_kind = alarm_work
+            self%alarm_message = 'the work-energy balance failed at t = '//format_real(t)//': the kinetic energy '// &
+                                 'changed by '//format_real(kinetic - self%kinetic0)//' but the applied forces did '// &
+                                 format_real(self%work)//' of work (defect '//format_real(abs(defect)/self%work_scale)// &
+                                 ' of the energy scale '//format_real(self%work_scale)//' > work_tol = '// &
+                                 format_real(self%work_tol)//')'
+        end if
+    end subroutine monitor_sample_work
 
     ! The invariant at t: the first sample sets I(t0).
     subroutine invariant_sample(self, t, val, stat)
