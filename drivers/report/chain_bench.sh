@@ -440,7 +440,9 @@ decreasing rtol, as for the slider crank: a matched accuracy that one curve firs
 a lucky loose run shows a larger ratio than the runs at the same rtol do (last column of the
 table above). At the same rtol the two take about the same steps: regdae's extra time is not in
 the step count but per run and per output (the setup of the augmented system, and `advance` with
-the multiplier and the checks at each output; by hand on 2026-11-29, rtol 1e-3: nout=1000 instead
-of 100 adds about 4 ms to regdae's time and 0.3 ms to the peer's).
+the multiplier and the checks at each output, most of it the sigma_min(GB) estimate: a band LU of
+the saddle-point matrix and three to eight solves; by hand on 2026-11-29, rtol 1e-3, medians of 7:
+nout=1000 instead of 100 adds 2.8 ms to regdae's time and 0.3 ms to the peer's, about 5 ms before the
+estimate started from the last output's vector and stopped when it settled).
 
 TXT
