@@ -4,7 +4,8 @@
 !! Problems: the slider crank (index 3 and 2, 1001 outputs on [0, 10], error in theta
 !! against the reduced ODE by CVODE at 1e-13) and Example 5.1 (201 outputs on [-1, 1],
 !! error in x against t + 1). Oracles on the slider crank's reduced ODE (they know the
-!! branch): the project's Dormand-Prince 5(4) and CVODE Adams. Time: median of at least
+!! branch): the project's Dormand-Prince 5(4), CVODE Adams and IDA (BDF, dense, its own
+!! Jacobian; drivers/common/ida_ode_oracle.f90). Time: median of at least
 !! `reps` repetitions inside this process, repeated until they take `min_time` seconds
 !! in all (at most 201; the machine's timing noise shrinks with the count), setup included; outputs are interpolated (no
 !! stop at output times) and nothing is printed while timing.
@@ -27,6 +28,7 @@ program bench_driver
     use reference_ode, only: integrate_reference
     use dopri5, only: dopri5_integrate
     use ida_peers, only: run_peer, peer_kkt, peer_index2
+    use ida_ode_oracle, only: integrate_ida
     use slider_crank_problem, only: new_redundant_slider_crank
     use order3_problem, only: new_order3, order3_exact
     use massless_problem, only: new_massless_carrier
@@ -92,8 +94,9 @@ program bench_driver
             call crank('crank3', 'trust_region eps=1e-14 dopri5 gamma1=20', 3, 'trust_region', 1.0e-14_wp, tol, &
                        rk=.true., pair=.true.)
             call crank('crank2', 'trust_region gamma=1e6 eps=1e-12', 2, 'trust_region', 1.0e-12_wp, tol)
-            call oracle_dopri(tol)
-            call oracle_cvode(tol)
+            call oracle('dopri5', tol)
+            call oracle('cvode_adams', tol)
+            call oracle('ida_bdf', tol)
             call peer(peer_kkt, 'ida index-1 KKT, no regularization', tol)
             call peer(peer_index2, 'ida index-2, no regularization', tol)
         end if
@@ -137,8 +140,9 @@ program bench_driver
             call crank('crank3', 'trust_region eps=1e-14 dopri5 gamma1=20', 3, 'trust_region', 1.0e-14_wp, tol, &
                        rk=.true., pair=.true.)
             call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
-            call oracle_dopri(tol)
-            call oracle_cvode(tol)
+            call oracle('dopri5', tol)
+            call oracle('cvode_adams', tol)
+            call oracle('ida_bdf', tol)
         end do
     end if
     write (*, '(a)') 'summary rows='//format_int(sum(row_counts))//' ok='//format_int(row_counts(1))//' failed='// &
@@ -328,43 +332,42 @@ contains
         call solver%destroy()
     end subroutine one_run
 
-    subroutine oracle_dopri(tol)
+    ! An oracle on the slider crank's reduced ODE (it knows the branch): the project's
+    ! Dormand-Prince 5(4) ('dopri5'), CVODE Adams ('cvode_adams', the reference integrator)
+    ! or IDA's BDF with its own dense Jacobian ('ida_bdf': BDF's step count without
+    ! regularization, against regdae's IDA path on the index-3 system).
+    subroutine oracle(name, tol)
+        character(len=*), intent(in) :: name
         real(wp), intent(in) :: tol
         type(slider_crank_reduced) :: sys
         type(solver_stats) :: st
         real(wp) :: states(2, 1001), seconds(max_reps)
         integer(int64) :: c0, c1, rate
-        integer :: r, steps, evals
+        integer :: r, stat, steps, evals, jacs
+        steps = 0
+        evals = 0
+        jacs = 0
+        stat = 0
         do r = 1, max_reps
             call system_clock(c0, rate)
-            call dopri5_integrate(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, steps, evals)
+            select case (name)
+            case ('dopri5')
+                call dopri5_integrate(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, steps, evals)
+            case ('cvode_adams')
+                call integrate_reference(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, stat)
+            case default
+                call integrate_ida(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, steps, evals, jacs, stat)
+            end select
             call system_clock(c1)
             seconds(r) = real(c1 - c0, wp)/real(rate, wp)
             if (enough(r, seconds)) exit
         end do
         st%steps = steps
         st%res_evals = evals
-        call row('crank_oracle', 'dopri5 reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), median(seconds(1:r)), &
-                 st, regdae_success)
-    end subroutine oracle_dopri
-
-    subroutine oracle_cvode(tol)
-        real(wp), intent(in) :: tol
-        type(slider_crank_reduced) :: sys
-        type(solver_stats) :: st
-        real(wp) :: states(2, 1001), seconds(max_reps)
-        integer(int64) :: c0, c1, rate
-        integer :: r, stat
-        do r = 1, max_reps
-            call system_clock(c0, rate)
-            call integrate_reference(sys, 0.0_wp, [pi/2, 0.0_wp], crank_times, states, tol, tol, stat)
-            call system_clock(c1)
-            seconds(r) = real(c1 - c0, wp)/real(rate, wp)
-            if (enough(r, seconds)) exit
-        end do
-        call row('crank_oracle', 'cvode_adams reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), &
+        st%jac_evals = jacs
+        call row('crank_oracle', name//' reduced ODE', tol, maxval(abs(states(1, :) - ref(1, :))), &
                  median(seconds(1:r)), st, merge(regdae_success, regdae_err_integration, stat == 0))
-    end subroutine oracle_cvode
+    end subroutine oracle
 
     ! IDA on the unregularized formulations (drivers/common/ida_peers.f90).
     subroutine peer(kind, config, tol)

@@ -11,8 +11,8 @@
 !!   every joint: with a light mass, the stiff variant, e.g. mass=1e-2 stiffness=1e4 damping=10)
 !!   peer=no|yes (yes: plain IDA with its band solver on the unregularized stabilized index-2
 !!   form, drivers/common/chain_peer.f90, instead of regdae), and the solver options (formulation
-!!   and linear_solver choose the engine; the defaults take the augmented formulation and a
-!!   band or sparse solver from 16 links on)
+!!   and linear_solver choose the engine; the defaults take the augmented formulation and the
+!!   sparse (KLU) solver from 8 links on)
 !! Output: '#' lines, the table 't x_end y_end energy max_abs_g sigma_min' at nout+1 equally spaced
 !! times (sigma_min: sigma_min(GB) there, NaN for the peer),
 !! and the last line

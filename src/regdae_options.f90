@@ -32,9 +32,7 @@
 !! `formulation=auto` takes `augmented` for a mechanical problem that declares its
 !! structure and has at least `augmented_min_n` coordinates (integrated by IDA, M
 !! positive definite), `eliminated` otherwise. `linear_solver=auto` takes dense for
-!! the eliminated and multiplier formulations; for the augmented one dense up to
-!! 60 unknowns, band when the ordered Newton matrix's bandwidth is at most a tenth
-!! of its size, sparse (KLU) otherwise.
+!! the eliminated and multiplier formulations and sparse (KLU) for the augmented one.
 module regdae_options
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp

@@ -176,8 +176,10 @@ contains
     end subroutine augmented_matches_eliminated
 
     ! The inverse-iteration estimate of sigma_min(GB) on the banded saddle-point
-    ! matrix against the dense SVD (eliminated formulation), at t0 of a chain:
-    ! eight inverse iterations with a spectral gap of about 4 give 1e-6 relative.
+    ! matrix against the dense SVD (eliminated formulation), at t0 of a chain: the
+    ! iteration stops when the Rayleigh quotient moves by less than 1e-3 (relative), and
+    ! its error is below that step with a spectral gap of about 4 (measured 6e-7); the
+    ! Rayleigh quotient of (GB)^-1 bounds sigma_min from above.
     subroutine sigma_min_matches_svd(chk)
         type(checker), intent(inout) :: chk
         type(solver_options) :: opts
@@ -191,7 +193,8 @@ contains
         call a%init(p, 0.0_wp, q0, v0, opts, stat)
         opts%formulation = formulation_eliminated
         call b%init(p, 0.0_wp, q0, v0, opts, stat)
-        call chk%close_rel([a%sigma_min()], [b%sigma_min()], 1.0e-6_wp, 'sigma_min(GB): estimate = SVD')
+        call chk%close_rel([a%sigma_min()], [b%sigma_min()], 1.0e-3_wp, 'sigma_min(GB): estimate = SVD')
+        call chk%true(a%sigma_min() >= b%sigma_min()*(1.0_wp - 1.0e-12_wp), 'sigma_min(GB): the estimate is an upper bound')
         write (*, '(a,2es22.14)') '    sigma_min estimate, SVD: ', a%sigma_min(), b%sigma_min()
         call a%destroy()
         call b%destroy()

@@ -1,7 +1,8 @@
 #!/bin/sh
-# Issue 5's benchmark and stability grid: build (Release), run drivers/bench and
-# drivers/stability, and regenerate doc/performance.md with its PNGs
-# (doc/figures/perf_*.png). About 5 minutes on a 2-core machine.
+# Issue 5's benchmark and stability grid and issue 10's chain: build (Release), run drivers/bench,
+# drivers/stability and drivers/report/chain_bench.sh (the chain driver from 2 to 1024 links, its
+# slider variant, the stiff chain against the plain IDA peer), and regenerate doc/performance.md
+# with its PNGs (doc/figures/perf_*.png). About 5 minutes on a 2-core machine.
 # Usage: tools/benchmark.sh [--reuse]   (--reuse: redraw from the raw outputs of the last run,
 #        kept in build/benchmark/)
 set -eu
@@ -12,6 +13,7 @@ cmake --build build -j "$(nproc 2>/dev/null || echo 2)" >/dev/null
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 raw=build/benchmark   # the raw outputs are kept; --reuse redraws the document from them
+matched=tools/matched.awk   # values at matched accuracy (log-log interpolation)
 mkdir -p "$raw"
 if [ "${1:-}" != "--reuse" ]; then
     build/bin/bench reps=5 >"$raw/bench.txt.new" && mv "$raw/bench.txt.new" "$raw/bench.txt"
@@ -23,8 +25,11 @@ if [ "${1:-}" != "--reuse" ]; then
         build/bin/stability problem=crank3 rtol=1e-3 checks=off
         build/bin/stability problem=crank3 rtol=1e-5 checks=off
     } | grep -v -e '^#' -e '^summary' >"$raw/unchecked.txt.new" && mv "$raw/unchecked.txt.new" "$raw/unchecked.txt"
+    sh drivers/report/chain_bench.sh run build/bin "$raw"   # chain.txt, chain_slider.txt, chain_stiff.txt
 fi
 cp "$raw/bench.txt" "$raw/stability.txt" "$raw/unchecked.txt" "$tmp/"
+# Issue 10's sections (perf_chain_*.png, perf_stiff_chain.png, the target rows in chain_targets.md).
+sh drivers/report/chain_bench.sh report "$raw" "$tmp" >"$tmp/chain_sections.md"
 
 # Work-precision: error (x) against seconds (y), one curve per configuration.
 curves() {   # curves PROBLEM_REGEX [CONFIG_REGEX]: gnuplot plot clauses, one per (problem, configuration)
@@ -86,19 +91,7 @@ ratio_rows() {   # ratio_rows CONFIG ORACLE: lines 'k regdae_seconds oracle_seco
         "$tmp/bench.txt" | sort -g -r >"$tmp/ratio_a.txt"
     awk -F'"' -v c="$2" '$2 == c && $1 ~ /^crank_oracle / { split($3, a, " "); print a[1], a[2], a[3] }' \
         "$tmp/bench.txt" | sort -g -r >"$tmp/ratio_b.txt"
-    awk '
-        FNR == 1 { f++ }
-        f == 1 { n1++; e1[n1] = $2; s1[n1] = $3 }
-        f == 2 { n2++; e2[n2] = $2; s2[n2] = $3 }
-        function at(n, e, s, target,   i, lo, hi) {   # seconds at error target (log-linear)
-            for (i = 1; i < n; i++) {
-                lo = e[i]; hi = e[i + 1]
-                if ((lo - target) * (hi - target) <= 0 && lo != hi)
-                    return exp(log(s[i]) + (log(target) - log(lo)) * (log(s[i + 1]) - log(s[i])) / (log(hi) - log(lo)))
-            }
-            return -1
-        }
-        END { for (k = 2; k <= 8; k++) print k, at(n1, e1, s1, 10 ^ (-k)), at(n2, e2, s2, 10 ^ (-k)) }' \
+    awk -v from=2 -v to=8 -f "$matched" \
         "$tmp/ratio_a.txt" "$tmp/ratio_b.txt"
 }
 ratio_table() {   # ratio_table CONFIG ORACLE LABEL
@@ -122,6 +115,50 @@ verdict() {   # verdict CONDITION: met / not met
 v_speed=$(awk -v r="${ratio4:-999}" 'BEGIN { print (r <= 10) ? 1 : 0 }')
 v_tight=$(awk -v e="$best_err" 'BEGIN { print (e <= 1e-8) ? 1 : 0 }')
 v_silent=$([ "$silent" = 0 ] && echo 1 || echo 0)
+# Issue 10: regdae's IDA path (best_ida) against the paired Dormand-Prince oracle.
+ida_ratio() {   # ida_ratio K: the time ratio at accuracy 1e-K, empty if not reached
+    ratio_rows "$best_ida" "dopri5 reduced ODE, paired: $best_ida" | awk -v k="$1" '$1 == k && $2 > 0 && $3 > 0 { printf "%.1f", $2 / $3 }'
+}
+ida4=$(ida_ratio 4)
+ida6=$(ida_ratio 6)
+ida_err=$(awk -F'"' -v c="$best_ida" '$2 == c && $1 ~ /^crank3 / { split($3, a, " "); if (a[7] == "ok") print a[2] }' "$tmp/bench.txt" | sort -g | head -n 1)
+ida_err_rtol=$(awk -F'"' -v c="$best_ida" -v e="$ida_err" '$2 == c && $1 ~ /^crank3 / { split($3, a, " "); if (a[7] == "ok" && a[2] == e) { print a[1]; exit } }' "$tmp/bench.txt")
+v_ida4=$(awk -v r="${ida4:-999}" 'BEGIN { print (r <= 10) ? 1 : 0 }')
+v_ida6=$(awk -v r="${ida6:-999}" 'BEGIN { print (r <= 20) ? 1 : 0 }')
+v_ida8=$(awk -v e="${ida_err:-1}" 'BEGIN { print (e <= 1e-8) ? 1 : 0 }')
+
+# Steps of one bench row: steps_of PROBLEM CONFIG RTOL ('-' if absent; 'failed' etc. appended).
+steps_of() {
+    awk -F'"' -v p="$1" -v c="$2" -v t="$3" '{ sub(/ +$/, "", $1) } $1 == p && $2 == c { split($3, a, " ")
+        if (a[1] == t) { printf "%d (%.1e)%s", a[4], a[2], (a[7] == "ok" ? "" : " " a[7]); found = 1; exit } }
+        END { if (!found) printf "-" }' "$tmp/bench.txt"
+}
+# Steps at matched accuracy 1e-K along two curves (log-log interpolation of steps against error, in
+# decreasing rtol, as ratio_rows does for seconds): lines 'K steps_a steps_b' (-1: not reached).
+matched_steps() {   # matched_steps PROBLEM_A CONFIG_A PROBLEM_B CONFIG_B
+    for side in a b; do
+        if [ "$side" = a ]; then p=$1; c=$2; else p=$3; c=$4; fi
+        awk -F'"' -v p="$p" -v c="$c" '{ sub(/ +$/, "", $1) } $1 == p && $2 == c { split($3, a, " "); if (a[7] == "ok") print a[1], a[2], a[4] }' \
+            "$tmp/bench.txt" | sort -g -r >"$tmp/steps_$side.txt"
+    done
+    awk -v from=2 -v to=8 -f "$matched" \
+        "$tmp/steps_a.txt" "$tmp/steps_b.txt"
+}
+best_rk_steps_ratio=$(for t in 1.0000E-03 1.0000E-04 1.0000E-05 1.0000E-06 1.0000E-07 1.0000E-08 1.0000E-09 1.0000E-10; do
+    a=$(steps_of crank_oracle "ida_bdf reduced ODE" "$t"); b=$(steps_of crank_oracle "dopri5 reduced ODE" "$t")
+    echo "${a%% *} ${b%% *}"; done | awk '$1 > 0 && $2 > 0 { r = $1 / $2; if (lo == "" || r < lo) lo = r; if (r > hi) hi = r }
+    END { if (lo != "") printf "%.1f-%.1f", lo, hi; else print "?" }')
+matched_steps_ratio=$(matched_steps crank_oracle "ida_bdf reduced ODE" crank_oracle "dopri5 reduced ODE" |
+    awk '$2 > 0 && $3 > 0 { r = $2 / $3; if (lo == "" || r < lo) lo = r; if (r > hi) hi = r }
+    END { if (lo != "") printf "%.1f-%.1f", lo, hi; else print "?" }')
+# regdae's paths against the same method on the reduced ODE, steps at matched accuracy: 'lo-hi'.
+path_ratio() {   # path_ratio REGDAE_CONFIG ORACLE_CONFIG
+    matched_steps crank3 "$1" crank_oracle "$2" |
+        awk '$2 > 0 && $3 > 0 { r = $2 / $3; if (lo == "" || r < lo) lo = r; if (r > hi) hi = r }
+        END { if (lo != "") printf "%.1f-%.1f", lo, hi; else print "?" }'
+}
+ida_path_steps=$(path_ratio "$best_ida" "ida_bdf reduced ODE")
+rk_path_steps=$(path_ratio "$best_rk" "dopri5 reduced ODE")
 
 {
 cat <<TXT
@@ -140,6 +177,17 @@ Issue 5's targets, from this run:
 | max theta error <= 1e-8 reachable | ${best_err} (${best_row}) | $(verdict "$v_tight") |
 | stability grid without silent cells | ${silent} silent cells (without regdae's checks: ${unchecked_silent} of the ${unchecked_cells} crank cells rerun) | $(verdict "$v_silent") |
 
+Issue 10's targets, from this run (default options unless stated; sections
+[Chain](#chain-cost-against-the-number-of-bodies), [A stiff mechanism](#a-stiff-mechanism) and
+[Small problems](#small-problems-why-ida-takes-more-steps)):
+
+| target | measured | |
+|---|---|---|
+$(cat "$tmp/chain_targets.md")
+| slider crank, index 3, regdae's IDA path: max theta error 1e-4 at most 10x the explicit oracle's time | ${ida4:-not reached}x (\`$best_ida\`, paired runs) | $(verdict "$v_ida4") |
+| the same at 1e-6: at most 20x | ${ida6:-not reached}x | $(verdict "$v_ida6") |
+| the same: 1e-8 reachable | ${ida_err} (rtol ${ida_err_rtol}) | $(verdict "$v_ida8") |
+
 ## Work-precision
 
 ![slider crank](figures/perf_crank.png)
@@ -147,7 +195,8 @@ Issue 5's targets, from this run:
 ![Example 5.1](figures/perf_ex51.png)
 
 The slider crank (index 3 and 2) against the reduced ODE, which knows the branch, solved by the
-project's Dormand-Prince 5(4) (\`drivers/common/dopri5.f90\`) and by CVODE (Adams). regdae's
+project's Dormand-Prince 5(4) (\`drivers/common/dopri5.f90\`), by CVODE (Adams) and by IDA (BDF,
+dense, its own Jacobian: \`ida_bdf reduced ODE\`, drivers/common/ida_ode_oracle.f90). regdae's
 configurations: IDA with the trust region (eps = 1e-12 and 1e-6, the paper's weights gamma0 = 2e6,
 gamma1 = 2e3; eliminated and multiplier formulations), direct, Baumgarte, \`excluded=vy\` (the
 paper's error test), index 2 (gamma = 1e6), and the explicit integrator (\`integrator=dopri5\`, gamma1 = 20, gamma0 = 200, eps = 1e-14). The curvature
@@ -227,6 +276,64 @@ integrator's slope (`slope_eliminated`), the loops of the 2x2 Cholesky factor an
 the same accuracy on this non-stiff problem, and each step costs a few residual evaluations and,
 now and then, a Jacobian (neq + 1 evaluations).
 
+TXT
+cat <<TXT
+## Small problems: why IDA takes more steps
+
+The slider crank at index 3 (1001 interpolated outputs on [0, 10]; rows of the raw table above):
+the steps of regdae's IDA path (\`$best_ida\`, and the range over the six configurations at index 3
+that use IDA), of regdae's explicit path (\`$best_rk\`), of plain IDA (BDF of variable order up to
+5, dense, its own Jacobian) on the reduced ODE th1'' = sin th1 (4 cos th1 th1'^2 - g)/(1 + 4 cos^2 th1)
+in (th1, th1'), and of the Dormand-Prince oracle on the same ODE; max theta error in parentheses.
+
+| rtol | regdae IDA | regdae IDA, index-3 range | regdae dopri5 | IDA (BDF) on the reduced ODE | DOPRI5 on the reduced ODE | IDA / DOPRI5 on the reduced ODE |
+|---|---|---|---|---|---|---|
+TXT
+for t in 1.0000E-03 1.0000E-04 1.0000E-05 1.0000E-06 1.0000E-07 1.0000E-08 1.0000E-09 1.0000E-10 1.0000E-11 1.0000E-12; do
+    a=$(steps_of crank_oracle "ida_bdf reduced ODE" "$t"); b=$(steps_of crank_oracle "dopri5 reduced ODE" "$t")
+    range=$(awk -F'"' -v t="$t" '$1 ~ /^crank3 / && $2 !~ /dopri5/ { split($3, a, " ")
+            if (a[1] == t && a[7] == "ok") { if (lo == "" || a[4] + 0 < lo) lo = a[4] + 0; if (a[4] + 0 > hi) hi = a[4] + 0 } }
+        END { if (lo == "") print "-"; else if (lo == hi) print lo; else print lo "-" hi }' "$tmp/bench.txt")
+    ratio=$(echo "${a%% *} ${b%% *}" | awk '$1 > 0 && $2 > 0 { printf "%.1f", $1 / $2; ok = 1 } END { if (!ok) printf "-" }')
+    printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$(awk -v t="$t" 'BEGIN { printf "%.0e", t }')" \
+        "$(steps_of crank3 "$best_ida" "$t")" "$range" "$(steps_of crank3 "$best_rk" "$t")" "$a" "$b" "$ratio"
+done
+echo
+echo "Steps at matched accuracy (log-log interpolation of steps against error along each curve):"
+echo
+echo "| max theta error | regdae IDA | regdae dopri5 | IDA on the reduced ODE | DOPRI5 on the reduced ODE | IDA / DOPRI5 on the reduced ODE |"
+echo "|---|---|---|---|---|---|"
+matched_steps crank3 "$best_ida" crank3 "$best_rk" >"$tmp/ms_regdae.txt"
+matched_steps crank_oracle "ida_bdf reduced ODE" crank_oracle "dopri5 reduced ODE" >"$tmp/ms_oracle.txt"
+paste "$tmp/ms_regdae.txt" "$tmp/ms_oracle.txt" | awk '
+    function c(x) { return (x > 0) ? sprintf("%.0f", x) : "not reached" }
+    { printf "| 1e-%d | %s | %s | %s | %s | %s |\n", $1, c($2), c($3), c($5), c($6), ($5 > 0 && $6 > 0) ? sprintf("%.1f", $5 / $6) : "-" }'
+cat <<TXT
+
+On the smooth two-state reduced ODE, with nothing stiff and nothing singular, IDA's BDF takes
+${best_rk_steps_ratio}x the steps of Dormand-Prince at the same rtol (rtol 1e-3 ... 1e-10), and
+${matched_steps_ratio}x at matched accuracy (1e-2 ... 1e-8). regdae's IDA path on the regularized
+index-3 system takes ${ida_path_steps}x the steps of IDA on the reduced ODE at matched accuracy (the
+larger factors at the tight end), its explicit path ${rk_path_steps}x those of Dormand-Prince. The
+step count is mostly BDF's, not the regularization's: a variable-order multistep method of order
+at most 5 with its error constants, against a one-step method of order 5. What each step costs on top is the second factor in the
+IDA path's ratio to the oracle (the issue-10 rows above: ${ida4:-?}x at 1e-4, ${ida6:-?}x at 1e-6):
+a Newton iteration on the regularized system and, now and then, a Jacobian.
+
+**Proposal** (not implemented; what these numbers support): a Radau IIA integrator of order 5
+(three stages, the method of Hairer and Wanner's RADAU5) as regdae's way to small stiff mechanisms.
+It is a one-step method of order 5 like Dormand-Prince, so on a smooth problem its step count
+should be of the explicit method's size (DOPRI5 on the reduced ODE: $(steps_of crank_oracle "dopri5 reduced ODE" 1.0000E-04 | sed 's/ .*//')
+/ $(steps_of crank_oracle "dopri5 reduced ODE" 1.0000E-06 | sed 's/ .*//') / $(steps_of crank_oracle "dopri5 reduced ODE" 1.0000E-08 | sed 's/ .*//') steps at rtol 1e-4 / 1e-6 / 1e-8, against IDA's $(steps_of crank_oracle "ida_bdf reduced ODE" 1.0000E-04 | sed 's/ .*//')
+/ $(steps_of crank_oracle "ida_bdf reduced ODE" 1.0000E-06 | sed 's/ .*//') / $(steps_of crank_oracle "ida_bdf reduced ODE" 1.0000E-08 | sed 's/ .*//')), and it is L-stable and stiffly accurate like BDF, so it applies where the
+explicit path does not (stiff forces, large regularization weights gamma0, gamma1). Each step
+solves the 3n-dimensional collocation system with one real and one complex LU of the n x n
+iteration matrix (n the size of the regularized system). Expected: the explicit path's step count
+at IDA's stability, i.e. RADAU5's speed on small stiff mechanisms; to be measured against these
+tables when it exists.
+
+TXT
+cat <<'TXT'
 ## Stability grid
 
 Trust region; Example 5.1 and the slider crank at index 2 and 3 (index 3 with gamma1 = gamma,
@@ -307,12 +414,18 @@ exactly. With eps = 0 the trust region is Baumgarte's multiplier where GB is inv
 minimum-norm one (stacked solve) where it is not: a run either passes or stops with a status
 (at index 2 the velocity-jump check stops the branch change).
 
+TXT
+cat "$tmp/chain_sections.md"
+cat <<'TXT'
 ## Machine and commands
 
-`sh tools/benchmark.sh` (about 5 minutes on 2 cores: the bench about 1, the stability grid about
-4, most of it index 3 with gamma >= 1e7 at tight tolerances). Single runs: `build/bin/bench
+`sh tools/benchmark.sh` (5 minutes on 2 cores, measured on 2026-11-29: the bench under 1, the
+stability grid about 2, most of it index 3 with gamma >= 1e7 at tight tolerances, the chain
+sections about 2.5, of which 40 s are the two runs stopped at 20 s). Single runs: `build/bin/bench
 problem=crank tol_from=4 tol_to=6`, `build/bin/stability problem=crank2 rtol=1e-5 checks=off`,
-`build/bin/ex52 integrator=dopri5 gamma1=20 gamma0=200 eps=1e-14 stop_at_output=no`.
+`build/bin/ex52 integrator=dopri5 gamma1=20 gamma0=200 eps=1e-14 stop_at_output=no`,
+`build/bin/chain n_links=128 tf=1 nout=10 rtol=1e-6 atol=1e-6` (add `peer=yes` for the peer),
+`sh drivers/report/chain_bench.sh run build/bin build/benchmark` (the chain sections' runs alone).
 TXT
 } >"$tmp/performance.md"
 mkdir -p doc/figures
