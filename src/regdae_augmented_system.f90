@@ -49,6 +49,8 @@ module regdae_augmented_system
     implicit none
     private
 
+    public :: user_routine_failure
+
     !> The augmented residual of one mechanical problem (a copy).
     type, extends(implicit_system), public :: augmented_system
         class(mechanical_problem), allocatable :: problem
@@ -526,16 +528,7 @@ contains
             character(len=*), intent(in) :: name
             failed = (ustat /= 0)
             if (.not. failed) return
-            recoverable = (ustat > 0)
-            if (ustat == regdae_err_mass_matrix .or. ustat == regdae_err_structure) then
-                stat = ustat
-                recoverable = .false.
-                self%message = status_message(stat)//' at t = '//format_real(t)//' (in '//name//')'
-            else
-                stat = regdae_err_user_callback
-                self%message = 'user routine '//name//' reported failure (stat = '//format_int(ustat)// &
-                               ') at t = '//format_real(t)
-            end if
+            call user_routine_failure(ustat, name, t, stat, self%message, recoverable)
         end function failed
 
         ! G(qq, tt) vv + g_t(qq, tt) with the sparse G
@@ -587,5 +580,27 @@ contains
             end do
         end do
     end subroutine csr_transpose_add
+
+    !> The status, message and recoverability of a user routine `name` of a mechanical
+    !! problem that returned ustat /= 0 at t: the library's own codes (M not positive
+    !! definite, an entry outside the declared pattern) pass through and are fatal; any
+    !! other is regdae_err_user_callback, recoverable when ustat > 0.
+    subroutine user_routine_failure(ustat, name, t, stat, message, recoverable)
+        integer, intent(in) :: ustat
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: t
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: message
+        logical, intent(out) :: recoverable
+        recoverable = (ustat > 0)
+        if (ustat == regdae_err_mass_matrix .or. ustat == regdae_err_structure) then
+            stat = ustat
+            recoverable = .false.
+            message = status_message(stat)//' at t = '//format_real(t)//' (in '//name//')'
+        else
+            stat = regdae_err_user_callback
+            message = 'user routine '//name//' reported failure (stat = '//format_int(ustat)//') at t = '//format_real(t)
+        end if
+    end subroutine user_routine_failure
 
 end module regdae_augmented_system

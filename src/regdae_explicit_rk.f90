@@ -118,7 +118,6 @@ contains
             end if
             h = self%h
             if (h_max > 0.0_wp) h = min(h, h_max)
-            if (present(monitor)) h = min(h, monitor%step_limit)   ! approaching a singular configuration
             if (land_on_tout .and. self%t + h > tout) h = tout - self%t
             if (land_on_tout .and. h <= 16*epsilon(1.0_wp)*max(1.0_wp, abs(self%t)) .and. h == tout - self%t) then
                 ! tout within a few roundoffs of t: one Euler step with the slope at t

@@ -80,8 +80,6 @@ module regdae_ida_backend
         procedure :: step => backend_step
         !> IDA's internal time (the end of its last step).
         procedure :: current_time => backend_current_time
-        !> Limit IDA's next steps to h_max (0: no limit).
-        procedure :: limit_step => backend_limit_step
         !> The step size IDA used last.
         procedure :: last_step => backend_last_step
         !> Restart IDA at (t, u, u') (its history forgotten).
@@ -350,13 +348,6 @@ contains
         ierr = FIDAGetCurrentTime(self%ida_mem, tcur)
         t = tcur(1)
     end function backend_current_time
-
-    subroutine backend_limit_step(self, h_max)
-        class(ida_backend), intent(inout) :: self
-        real(wp), intent(in) :: h_max
-        integer(c_int) :: ierr
-        ierr = FIDASetMaxStep(self%ida_mem, h_max)
-    end subroutine backend_limit_step
 
     real(wp) function backend_last_step(self) result(h)
         class(ida_backend), intent(in) :: self

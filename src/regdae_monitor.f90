@@ -66,8 +66,6 @@ module regdae_monitor
         real(wp) :: invariant_tol = 0.0_wp       !! alarm when |I - I(t0)| exceeds this (0: no check)
         real(wp) :: invariant0 = 0.0_wp          !! I(t0)
         real(wp) :: invariant_change = 0.0_wp    !! largest |I - I(t0)| so far
-        real(wp) :: step_limit = huge(1.0_wp)    !! the largest next step the approach to a singular
-                                                 !! configuration allows (huge: none)
         real(wp) :: work_tol = 0.0_wp            !! alarm when |D| > work_tol S (0: no check)
         real(wp) :: work_defect = 0.0_wp         !! largest |D| / S so far
         logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
@@ -80,7 +78,6 @@ module regdae_monitor
         real(wp), private :: layer_threshold = 0.05_wp   ! max(threshold, 3 sqrt(eps)): J's end samples lie above
         real(wp), private :: layer_eps = 0.0_wp
         real(wp), private :: sigma_peak = 0.0_wp         ! relative threshold: the largest sigma_min(GB) so far
-        real(wp), private :: sigma_prev = huge(1.0_wp), t_prev = 0.0_wp
         real(wp), private :: t_regular = 0.0_wp
         real(wp), allocatable, private :: v_regular(:), a_regular(:)
     contains
@@ -130,8 +127,6 @@ contains
         self%alarm_message = ''
         self%have_regular = .false.
         self%sigma_peak = 0.0_wp
-        self%sigma_prev = huge(1.0_wp)
-        self%step_limit = huge(1.0_wp)
         if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)
         allocate (self%v_regular(self%np), self%a_regular(self%np))
         self%sigma_last = huge(1.0_wp)
@@ -186,16 +181,6 @@ contains
                                      ' > drift_tol = '//format_real(self%drift_tol)//' at t = '//format_real(t)
             end if
         end if
-        ! Approaching a singular configuration (sigma_min(GB) falling below half its
-        ! peak): the next step at most 0.3 of the time sigma would take to reach 0 at
-        ! its present rate, so that the integrator comes down to the layer in steps
-        ! that see it instead of stepping over it (an embedded error estimate is blind
-        ! to a layer between its stages).
-        self%step_limit = huge(1.0_wp)
-        if (sigma < self%sigma_prev .and. sigma < 0.5_wp*max(self%sigma_peak, sigma) .and. t > self%t_prev) &
-            self%step_limit = 0.3_wp*sigma*(t - self%t_prev)/(self%sigma_prev - sigma)
-        self%sigma_prev = sigma
-        self%t_prev = t
         self%sigma_last = sigma
         self%sigma_min = min(self%sigma_min, self%sigma_last)
         if (self%relative .and. sigma == sigma) then

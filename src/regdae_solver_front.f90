@@ -35,7 +35,7 @@ module regdae_solver_front
     use regdae_explicit_rk, only: rk_integrator
     use regdae_ida_backend, only: ida_backend
     use regdae_regularized_system, only: new_regularized_system
-    use regdae_augmented_system, only: augmented_system
+    use regdae_augmented_system, only: augmented_system, user_routine_failure
     use regdae_differences, only: central_difference_step
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant, alarm_work
@@ -69,7 +69,6 @@ module regdae_solver_front
         integer :: switches = 0                ! switches so far
         integer :: explicit_votes = 0          ! consecutive checks that found the explicit method would do
         real(wp), allocatable :: rho_w(:)      ! power iteration's vector (the stiffness estimate)
-        real(wp) :: ida_h_max = -1.0_wp        ! the step limit IDA was given last
         character(len=:), allocatable :: events   ! the log of switches
         integer :: linear_solver = linear_solver_dense    ! resolved
         logical, allocatable :: excluded(:)   ! unknowns left out of the error test
@@ -799,7 +798,9 @@ contains
             if (opts%drift_tol == option_auto) then
                 opts%drift_tol = 1.0e3_wp*maxval(sqrt(sum(model%gx**2, dim=2)), 1, mask=.true.)* &
                                  (opts%rtol*maxval(abs(z0(1:core%nx))) + opts%atol)
-                if (core%m == 0 .or. .not. core%second_order) opts%drift_tol = 0.0_wp
+                ! off without constraints, for first-order problems, and for order >= 3, whose
+                ! Taylor weights leave a constraint error O(taylor_h^2) by design (doc/methods.md)
+                if (core%m == 0 .or. .not. core%second_order .or. model%order /= 2) opts%drift_tol = 0.0_wp
             end if
             if (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto) then
                 call model%solve_multiplier(t0, y, stat)
@@ -907,18 +908,17 @@ contains
         character(len=:), allocatable, intent(out) :: msg
         real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), w(sys%n), g0(sys%st%constraint%nnz()), &
                     g1(sys%st%constraint%nnz()), scale, row, d, ell, change, size_g, rate, gmax
-        integer :: i, k
+        integer :: i, k, ustat
+        logical :: recoverable
         stat = 0
         msg = ''
         associate (opts => core%opts, mp => sys%st%mass, gp => sys%st%constraint)
-            call sys%problem%mass_values(t0, q0, mp, sys%mvals, stat)
-            if (stat == 0) call sys%problem%constraint_jacobian_values(t0, q0, gp, g0, stat)
-            if (stat == 0) call sys%problem%forces(t0, q0, v0, f, stat)
-            if (stat /= 0) then
-                msg = 'choosing the automatic parameters: a user routine failed at t0 (stat = '//format_int(stat)//')'
-                stat = regdae_err_user_callback
-                return
-            end if
+            call sys%problem%mass_values(t0, q0, mp, sys%mvals, ustat)
+            if (failed('mass_values')) return
+            call sys%problem%constraint_jacobian_values(t0, q0, gp, g0, ustat)
+            if (failed('constraint_jacobian_values')) return
+            call sys%problem%forces(t0, q0, v0, f, ustat)
+            if (failed('forces')) return
             mdiag = 1.0_wp
             do i = 1, sys%n
                 k = mp%position(i, i)
@@ -973,6 +973,13 @@ contains
                 sys%gamma1 = opts%gamma
             end if
         end associate
+    contains
+        ! A user routine returned ustat /= 0 at t0: stat and msg say which and what.
+        logical function failed(name)
+            character(len=*), intent(in) :: name
+            failed = (ustat /= 0)
+            if (failed) call user_routine_failure(ustat, name, t0, stat, msg, recoverable)
+        end function failed
     end subroutine resolve_augmented_parameters
 
     ! Can an integrator take a first step from (t0, z0) with slope zp0? The
@@ -1202,7 +1209,6 @@ contains
                               ' steps without reaching tout = '//format_real(t_out)//' (t = '//format_real(t_now)//')')
                     return
                 end if
-                call limit_ida_step()
                 call core%ida%step(t_out, core%opts%stop_at_output, t_now, ierr)
                 if (ierr < 0) then
                     core%t = t_now
@@ -1235,21 +1241,6 @@ contains
             end if
             stopped = .false.
         end function ida_to
-
-        ! IDA's largest step: the user's h_max, and the monitor's limit while a
-        ! singular configuration comes near (set only when it changes)
-        subroutine limit_ida_step()
-            real(wp) :: h_max
-            h_max = core%opts%h_max
-            if (core%monitor%step_limit < huge(1.0_wp)) then
-                if (h_max > 0.0_wp) h_max = min(h_max, core%monitor%step_limit)
-                if (.not. (h_max > 0.0_wp)) h_max = core%monitor%step_limit
-            end if
-            if (h_max /= core%ida_h_max) then
-                call core%ida%limit_step(h_max)
-                core%ida_h_max = h_max
-            end if
-        end subroutine limit_ida_step
 
         subroutine copy_state()
             if (core%augmented) then
@@ -1297,23 +1288,38 @@ contains
             if (core%monitor%alarm_kind == alarm_jump) then
                 call fail(regdae_err_branch, core%monitor%alarm_message// &
                           ': the solution probably changed branch there; x(tout) is returned but not trustworthy '// &
-                          '(a smaller rtol or eps, or index=3, may help)')
+                          '(a smaller rtol or eps'//trim(merge(', or index=3,', '             ', index2()))// &
+                          ' may help; jump_tol=0 turns this check off, at the risk of a run that leaves the '// &
+                          'physical branch with status ok)')
             else if (core%monitor%alarm_kind == alarm_work) then
                 call fail(regdae_err_work, core%monitor%alarm_message// &
                           ': x is returned but not trustworthy (the constraint forces did work: a drift, a '// &
                           'branch change or too stiff a regularization; a smaller rtol or smaller Baumgarte '// &
-                          'weights may help; work_tol=0 turns the check off, at the risk of a wrong answer '// &
+                          'weights may help; work_tol=0 turns this check off, at the risk of a wrong answer '// &
                           'with status ok)')
             else if (core%monitor%alarm_kind == alarm_invariant) then
                 call fail(regdae_err_invariant, core%monitor%alarm_message// &
                           ': x(tout) is returned but not trustworthy (a smaller rtol, or smaller Baumgarte weights, '// &
-                          'may help)')
+                          'may help; invariant_tol=0 turns this check off)')
+            else if (.not. core%opts%curvature .and. .not. index2()) then
+                call fail(regdae_err_drift, core%monitor%alarm_message// &
+                          ': x(tout) is returned but not trustworthy (with curvature=no the constraint error '// &
+                          'has a floor of about |g_xx(v, v)|/gamma0 whatever the tolerance: curvature=yes '// &
+                          'removes it; drift_tol=0 turns this check off, at the risk of positions that violate '// &
+                          'the constraint with status ok)')
             else
                 call fail(regdae_err_drift, core%monitor%alarm_message// &
-                          ': x(tout) is returned but not trustworthy (index=3, a larger gamma or a smaller rtol '// &
-                          'may help)')
+                          ': x(tout) is returned but not trustworthy (a smaller rtol'// &
+                          trim(merge(', index=3,', '          ', index2()))//' or a larger gamma may help; '// &
+                          'drift_tol=0 turns this check off, at the risk of positions that violate the '// &
+                          'constraint with status ok)')
             end if
         end function branch_alarm
+
+        ! The problem is integrated at index 2 (the constraint on velocities only).
+        logical function index2()
+            index2 = core%second_order .and. core%opts%index == 2
+        end function index2
     end subroutine solver_advance
 
     function solver_statistics(self) result(st)
