@@ -91,6 +91,9 @@ module regdae_augmented_system
         procedure :: drift => augmented_drift
         !> sigma_min(GB) at IDA's u, by inverse iteration (stat: the user routines').
         procedure :: sigma_min_gb => augmented_sigma_min
+        !> max_i (GB)_ii (with M's diagonal) and max_i |G_i| of the M and G of the last
+        !! sigma_min_gb (the automatic eps and drift bound, regdae_scales).
+        procedure :: diagonal_scales => augmented_diagonal_scales
     end type augmented_system
 
 contains
@@ -392,6 +395,28 @@ contains
             self%kband(self%kl + self%ku + 1 + a - b, b) = self%kband(self%kl + self%ku + 1 + a - b, b) + val
         end subroutine put
     end function augmented_sigma_min
+
+    subroutine augmented_diagonal_scales(self, gb, g)
+        class(augmented_system), intent(in) :: self
+        real(wp), intent(out) :: gb, g
+        real(wp) :: row, diag
+        integer :: i, k, j
+        gb = 0.0_wp
+        g = 0.0_wp
+        associate (mp => self%st%mass, gp => self%st%constraint)
+            do i = 1, self%m
+                row = 0.0_wp
+                do k = gp%row_start(i), gp%row_start(i + 1) - 1
+                    j = mp%position(gp%cols(k), gp%cols(k))
+                    diag = 1.0_wp
+                    if (j > 0) diag = self%mvals(j)
+                    if (diag > 0.0_wp) row = row + self%gvals(k)**2/diag
+                end do
+                gb = max(gb, row)
+                g = max(g, norm2(self%gvals(gp%row_start(i):gp%row_start(i + 1) - 1)))
+            end do
+        end associate
+    end subroutine augmented_diagonal_scales
 
     subroutine augmented_initial_guess(self, q0, v0, u, up, id)
         class(augmented_system), intent(in) :: self

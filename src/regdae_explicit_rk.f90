@@ -184,7 +184,18 @@ contains
             taken = taken + 1
             fac = 0.9_wp*max(e, 1.0e-10_wp)**(-0.2_wp)
             self%h = h*min(5.0_wp, max(0.2_wp, fac))
-            if (present(monitor)) call monitor%sample(self%t, model, self%z, self%k1)
+            if (present(monitor)) then
+                call monitor%sample(self%t, model, self%z, self%k1)
+                if (monitor%model_changed) then   ! eps raised: the first stage of the next step anew
+                    monitor%model_changed = .false.
+                    call slope(self, model, self%t, self%z, self%k1, stat, recoverable)
+                    if (stat /= regdae_success) then
+                        self%message = 'dopri5 at t = '//format_real(self%t)//': '//model%message
+                        zout = self%z
+                        return
+                    end if
+                end if
+            end if
         end do
         if (tout >= self%t) then
             zout = self%z

@@ -44,6 +44,7 @@ module regdae_monitor
     use regdae_format, only: format_real, format_int
     use regdae_regularization, only: regularized_dae
     use regdae_options, only: option_auto
+    use regdae_scales, only: running_scales
     implicit none
     private
 
@@ -68,6 +69,11 @@ module regdae_monitor
         real(wp) :: invariant_change = 0.0_wp    !! largest |I - I(t0)| so far
         real(wp) :: work_tol = 0.0_wp            !! alarm when |D| > work_tol S (0: no check)
         real(wp) :: work_defect = 0.0_wp         !! largest |D| / S so far
+        real(wp) :: work_floor = 0.0_wp          !! the smallest energy scale S (set after reset)
+        type(running_scales) :: scales           !! the problem's scales seen so far (automatic eps, drift bound)
+        logical :: drift_auto = .false.          !! drift_tol follows scales%drift_bound()
+        logical :: model_changed = .false.       !! the last sample raised the model's eps (an explicit
+                                                 !! integrator must re-evaluate its slope)
         logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
         integer :: alarm_kind = alarm_none       !! alarm_jump or alarm_drift
         character(len=:), allocatable :: alarm_message   !! what, where and how much
@@ -92,6 +98,12 @@ module regdae_monitor
         procedure :: sample_values => monitor_sample_values
         !> The singular intervals, (2, n_singular).
         procedure :: intervals => monitor_intervals
+        !> Make eps (eps_factor > 0) and the drift bound (drift_factor > 0) automatic,
+        !! following the scales seen at the samples (regdae_scales).
+        procedure :: automatic => monitor_automatic
+        !> Take the scales of a sample at t: max_i (GB)_ii, max_i |G_i|, max |x|, and
+        !! sigma_min(GB); true if the automatic eps was raised (the new value in scales%eps).
+        procedure :: observe_scales => monitor_observe_scales
     end type solution_monitor
 
 contains
@@ -121,10 +133,14 @@ contains
         self%work_tol = 0.0_wp
         if (present(work_tol)) self%work_tol = max(0.0_wp, work_tol)
         self%work_defect = 0.0_wp
+        self%work_floor = 0.0_wp
         self%have_work = .false.
         self%alarm = .false.
         self%alarm_kind = alarm_none
         self%alarm_message = ''
+        self%scales = running_scales()
+        self%drift_auto = .false.
+        self%model_changed = .false.
         self%have_regular = .false.
         self%sigma_peak = 0.0_wp
         if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)
@@ -142,10 +158,22 @@ contains
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
         real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
-        real(wp) :: drift, invariant, kinetic, power
-        integer :: stat, invariant_stat
+        real(wp) :: drift, invariant, kinetic, power, gb, g
+        integer :: stat, invariant_stat, i
         invariant = 0.0_wp
         invariant_stat = 0
+        if (self%scales%eps_factor > 0.0_wp .or. self%drift_auto) then
+            gb = 0.0_wp
+            g = 0.0_wp
+            do i = 1, model%m
+                gb = max(gb, abs(model%gb(i, i)))
+                g = max(g, norm2(model%gx(i, :)))
+            end do
+            if (self%observe_scales(t, gb, g, maxval(abs(z(1:model%n))), model%sigma_min_gb())) then
+                model%eps = self%scales%eps
+                self%model_changed = .true.
+            end if
+        end if
         if (self%invariant_tol > 0.0_wp) invariant = model%invariant_value(t, z, invariant_stat)
         drift = 0.0_wp
         if (self%np > 0) drift = model%position_drift(t, z, stat)
@@ -219,7 +247,7 @@ contains
         if (.not. self%have_work) then
             self%kinetic0 = kinetic
             self%work = 0.0_wp
-            self%work_scale = kinetic
+            self%work_scale = max(kinetic, self%work_floor)
             self%power_last = power
             self%t_work = t
             self%quadrature_error = 0.0_wp
@@ -322,5 +350,31 @@ contains
         allocate (intervals(2, 0))
         if (self%n_singular > 0) intervals = self%singular(:, 1:self%n_singular)
     end function monitor_intervals
+
+    subroutine monitor_automatic(self, eps_factor, eps, drift_factor, rtol, atol)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: eps_factor   !! > 0: eps automatic (eps = eps_factor s^2)
+        real(wp), intent(in) :: eps          !! eps in force at t0
+        real(wp), intent(in) :: drift_factor !! > 0: drift bound automatic
+        real(wp), intent(in) :: rtol, atol
+        self%scales%eps_factor = eps_factor
+        self%scales%eps = eps
+        self%scales%drift_factor = drift_factor
+        self%scales%rtol = rtol
+        self%scales%atol = atol
+        self%drift_auto = (drift_factor > 0.0_wp .and. self%np > 0)
+    end subroutine monitor_automatic
+
+    logical function monitor_observe_scales(self, t, gb, g, x, sigma) result(raised)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, gb, g, x, sigma
+        call self%scales%observe(gb, g, x)
+        if (self%drift_auto) self%drift_tol = self%scales%drift_bound(self%layer_eps)
+        raised = self%scales%raise_eps(t, sigma)
+        if (raised) then
+            self%layer_eps = self%scales%eps
+            self%layer_threshold = max(self%threshold, 3*sqrt(self%layer_eps))
+        end if
+    end function monitor_observe_scales
 
 end module regdae_monitor

@@ -39,12 +39,17 @@ module regdae_solver_front
     use regdae_differences, only: central_difference_step
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant, alarm_work
+    use regdae_scales, only: automatic_eps_factor
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_format, only: format_real, format_int
     implicit none
     private
 
     public :: solver_stats
+
+    !> The automatic drift bound: this many times the constraint violation that the
+    !! tolerances on x allow (regdae_scales; doc/methods.md).
+    real(wp), parameter :: drift_factor = 1.0e3_wp
 
     ! The state of one problem: the model, the backend, the options and the
     ! diagnostics; allocated once per init, so that the backend (IDA's user_data)
@@ -70,6 +75,13 @@ module regdae_solver_front
         integer :: explicit_votes = 0          ! consecutive checks that found the explicit method would do
         real(wp), allocatable :: rho_w(:)      ! power iteration's vector (the stiffness estimate)
         character(len=:), allocatable :: events   ! the log of switches
+        integer :: n_events = 0                ! entries in the log
+        integer :: back_switches = 0           ! ida -> dopri5 switches so far
+        real(wp) :: eps_factor = 0.0_wp       ! > 0: eps automatic (regdae_scales)
+        real(wp) :: drift_factor = 0.0_wp     ! > 0: drift bound automatic
+        real(wp) :: work_floor = 0.0_wp       ! the work-energy check's smallest energy scale
+        real(wp) :: t0 = 0.0_wp               ! integrator=auto: the start, kept until the first output
+        real(wp), allocatable :: z0(:)
         integer :: linear_solver = linear_solver_dense    ! resolved
         logical, allocatable :: excluded(:)   ! unknowns left out of the error test
         real(wp), allocatable :: y_work(:)    ! the multiplier at an output time
@@ -397,6 +409,8 @@ contains
         end if
         call core%monitor%reset(core%opts%singular_threshold, core%opts%eps, problem%n, core%opts%jump_tol, &
                                 core%opts%drift_tol, core%opts%invariant_tol, resolved_work_tol(core%opts))
+        call core%monitor%automatic(core%eps_factor, core%opts%eps, core%drift_factor, core%opts%rtol, core%opts%atol)
+        core%monitor%work_floor = core%work_floor
         call sample_augmented(core, t0)
         core%sampled_t = t0
         if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
@@ -416,32 +430,69 @@ contains
 
     ! integrator=auto: the explicit method found the system stiff at rk%t: IDA
     ! takes over there (created at the first switch, restarted at the others).
+    ! max_i (GB)_ii at the model's last evaluation (the scale of GB).
+    pure real(wp) function gb_scale(model) result(s)
+        type(regularized_dae), intent(in) :: model
+        integer :: i
+        s = 0.0_wp
+        do i = 1, model%m
+            s = max(s, abs(model%gb(i, i)))
+        end do
+    end function gb_scale
+
+    ! The monitor from (t0, z0) with its slope zp0 (dense formulations): the checks
+    ! and automatic scales of core%opts, the first sample.
+    subroutine start_monitor(core, t0, z0, zp0)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t0, z0(:), zp0(:)
+        ! the velocity check looks at the positions' velocities, z(nx+1:2nx), of order >= 2
+        call core%monitor%reset(core%opts%singular_threshold, core%model%eps, merge(core%nx, 0, core%second_order), &
+                                core%opts%jump_tol, core%opts%drift_tol, core%opts%invariant_tol, &
+                                merge(resolved_work_tol(core%opts), 0.0_wp, core%model%is_mechanical()))
+        call core%monitor%automatic(core%eps_factor, core%model%eps, core%drift_factor, core%opts%rtol, core%opts%atol)
+        core%monitor%work_floor = core%work_floor
+        call core%monitor%sample(t0, core%model, z0, zp0)
+        core%sampled_t = t0
+    end subroutine start_monitor
+
     subroutine switch_to_ida(core, stat, msg)
         type(solver_core), intent(inout) :: core
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: zp(core%n), y(core%m), t
-        logical :: recoverable
+        real(wp) :: zp(core%n), y(core%m), t, z(core%n)
+        logical :: recoverable, from_start
         t = core%rk%t
+        z = core%rk%z
         msg = ''
-        call core%model%slope_eliminated(t, core%rk%z, zp, y, stat, recoverable)
+        ! Stiff before the first output: IDA from t0 (nothing has been returned yet), so
+        ! that the run is the one integrator=ida gives, not one that carries the
+        ! explicit method's steps at its stability limit.
+        from_start = .not. core%started .and. core%switches == 0
+        if (from_start) then
+            t = core%t0
+            z = core%z0
+            core%model%eps = core%opts%eps
+        end if
+        call core%model%slope_eliminated(t, z, zp, y, stat, recoverable)
         if (stat /= regdae_success) then
             msg = 'switching to IDA at t = '//format_real(t)//': '//core%model%message
             return
         end if
         if (c_associated_ida(core)) then
-            call core%ida%restart(t, core%rk%z, zp, stat)
+            call core%ida%restart(t, z, zp, stat)
             if (stat /= regdae_success) msg = 'switching to IDA at t = '//format_real(t)//': FIDAReInit failed'
         else
             call core%ida%create(new_regularized_system(core%model, core%n, core%n), core%opts, linear_solver_dense, &
-                                 core%excluded(1:core%n), t, core%rk%z, zp, stat, msg)
+                                 core%excluded(1:core%n), t, z, zp, stat, msg)
         end if
         if (stat /= regdae_success) return
+        if (from_start) call start_monitor(core, t, z, zp)
         core%active = integrator_ida
         core%switches = core%switches + 1
         core%explicit_votes = 0
-        core%events = core%events//'t = '//format_real(t)//': dopri5 -> ida (the stiffness test fired: h |lambda| '// &
-                      'at the explicit method''s stability limit for 15 steps)'//new_line('a')
+        call log_event(core, 't = '//format_real(core%rk%t)//': dopri5 -> ida (the stiffness test fired: '// &
+                       'h |lambda| at the explicit method''s stability limit for 15 steps)'// &
+                       trim(merge('; IDA starts from t0', '                    ', from_start)))
     end subroutine switch_to_ida
 
     logical function c_associated_ida(core)
@@ -487,7 +538,9 @@ contains
         else
             core%explicit_votes = 0
         end if
-        yes = (core%explicit_votes >= 2)
+        ! two checks in a row; after each return to IDA twice as many (at most 64), so that
+        ! a problem at the border between the two does not switch at every check
+        yes = (core%explicit_votes >= 2*2**min(core%back_switches, 5))
     end function explicit_would_do
 
     ! integrator=auto: back to the explicit method at t, IDA's state there.
@@ -501,10 +554,24 @@ contains
         call core%rk%start(core%model, t, core%z_rk, core%ida%last_step(), stat)
         core%active = integrator_dopri5
         core%switches = core%switches + 1
+        core%back_switches = core%back_switches + 1
         core%explicit_votes = 0
-        core%events = core%events//'t = '//format_real(t)//': ida -> dopri5 (the explicit method''s stable step '// &
-                      'exceeds twice IDA''s)'//new_line('a')
+        call log_event(core, 't = '//format_real(t)//': ida -> dopri5 (the explicit method''s stable step '// &
+                       'exceeds twice IDA''s)')
     end subroutine switch_to_dopri5
+
+    ! Append a line to the events log; after max_events lines only the count grows.
+    subroutine log_event(core, text)
+        type(solver_core), intent(inout) :: core
+        character(len=*), intent(in) :: text
+        integer, parameter :: max_events = 50
+        core%n_events = core%n_events + 1
+        if (core%n_events <= max_events) then
+            core%events = core%events//text//new_line('a')
+        else if (core%n_events == max_events + 1) then
+            core%events = core%events//'(later switches are counted in the statistics only)'//new_line('a')
+        end if
+    end subroutine log_event
 
     ! The monitor's sample at the end of an accepted IDA step (IDA's state and slope there).
     subroutine sample_step(core, t)
@@ -528,7 +595,7 @@ contains
         type(solver_core), intent(inout) :: core
         real(wp), intent(in) :: t
         real(c_double), pointer :: u(:), up(:)
-        real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power
+        real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g
         integer :: dstat, istat, wstat
         u => core%ida%state()
         up => core%ida%slope()
@@ -542,7 +609,11 @@ contains
             call sys%unpack(u, up, q=q, v=v, a=a)
             drift = sys%drift(t, u, dstat)
             if (dstat /= 0) drift = huge(1.0_wp)
-            sigma = sys%sigma_min_gb(t, u, dstat)
+            sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
+            if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
+                call sys%diagonal_scales(gb, g)
+                if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
+            end if
             if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
         end select
         call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a)
@@ -700,12 +771,9 @@ contains
             return
         end if
         call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
-        ! the velocity check looks at the positions' velocities, z(nx+1:2nx), of order >= 2
-        call core%monitor%reset(core%opts%singular_threshold, core%opts%eps, merge(core%nx, 0, core%second_order), &
-                                core%opts%jump_tol, core%opts%drift_tol, core%opts%invariant_tol, &
-                                merge(resolved_work_tol(core%opts), 0.0_wp, core%model%is_mechanical()))
-        call core%monitor%sample(t0, core%model, z0, zp0)
-        core%sampled_t = t0
+        call start_monitor(core, t0, z0, zp0)
+        core%t0 = t0
+        core%z0 = z0
         if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
             call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
                       '(override `invariant` of the second-order problem; first-order problems have none)')
@@ -732,11 +800,22 @@ contains
         ! integrator=auto: dopri5 first (the eliminated formulation only), IDA created
         ! when the stiffness test hands over
         core%active = opts%integrator
+        core%events = ''
         if (opts%integrator == integrator_auto) then
             core%active = merge(integrator_dopri5, integrator_ida, core%formulation == formulation_eliminated)
+            ! Regularization layers far thinner than the automatic eps's (a user's eps below
+            ! 1/100 of it): the explicit method steps through them inaccurately, without an
+            ! alarm (doc/methods.md); IDA passes them
+            if (core%active == integrator_dopri5 .and. core%m > 0) then
+                if (core%model%eps < automatic_eps_factor(opts%rtol)*gb_scale(core%model)**2/100.0_wp) then
+                    core%active = integrator_ida
+                    call log_event(core, 't = '//format_real(t0)//': ida from the start (eps = '// &
+                                   format_real(core%model%eps)//' is below 1/100 of the automatic eps for this '// &
+                                   'rtol: layers too thin for the explicit method)')
+                end if
+            end if
             core%switching = (core%active == integrator_dopri5)
         end if
-        core%events = ''
         if (core%active == integrator_dopri5) then
             core%z_rk = z0
             call core%rk%start(core%model, t0, z0, opts%h_init, stat)
@@ -779,9 +858,9 @@ contains
         real(wp), intent(in) :: t0, z0(:)
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: scale, t_scale, rate, y(core%m), zp(size(z0))
-        integer :: i
-        logical :: recoverable
+        real(wp) :: scale, t_scale, rate, y(core%m), zp(size(z0)), zc(size(z0)), kinetic, power
+        integer :: i, wstat
+        logical :: recoverable, weights_auto, work_check
         stat = regdae_success
         msg = ''
         associate (opts => core%opts, model => core%model)
@@ -792,24 +871,42 @@ contains
                 end do
                 if (.not. (scale > 0.0_wp)) scale = maxval(sum(model%gx**2, dim=2), 1, mask=.true.)
                 if (.not. (scale > 0.0_wp)) scale = 1.0_wp
-                opts%eps = scale**2*max(1.0e-14_wp, min(1.0e-10_wp, opts%rtol**2))
+                core%eps_factor = automatic_eps_factor(opts%rtol)
+                opts%eps = core%eps_factor*scale**2
                 model%eps = opts%eps
             end if
             if (opts%drift_tol == option_auto) then
-                opts%drift_tol = 1.0e3_wp*maxval(sqrt(sum(model%gx**2, dim=2)), 1, mask=.true.)* &
+                core%drift_factor = drift_factor
+                opts%drift_tol = drift_factor*maxval(sqrt(sum(model%gx**2, dim=2)), 1, mask=.true.)* &
                                  (opts%rtol*maxval(abs(z0(1:core%nx))) + opts%atol)
                 ! off without constraints, for first-order problems, and for order >= 3, whose
                 ! Taylor weights leave a constraint error O(taylor_h^2) by design (doc/methods.md)
-                if (core%m == 0 .or. .not. core%second_order .or. model%order /= 2) opts%drift_tol = 0.0_wp
+                if (core%m == 0 .or. .not. core%second_order .or. model%order /= 2) then
+                    opts%drift_tol = 0.0_wp
+                    core%drift_factor = 0.0_wp
+                end if
             end if
-            if (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto) then
+            weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
+            work_check = (resolved_work_tol(opts) > 0.0_wp .and. model%is_mechanical())
+            if (weights_auto .or. work_check) then
                 call model%solve_multiplier(t0, y, stat)
                 if (stat /= regdae_success) then
-                    msg = 'choosing the automatic weights: the multiplier at t0 failed: '//model%message
+                    msg = 'choosing the automatic parameters: the multiplier at t0 failed: '//model%message
                     return
                 end if
                 call model%dynamics_slope(z0, y, zp)
                 t_scale = time_scale(core, t0, z0, zp)
+            end if
+            if (work_check) then
+                ! the work-energy check's floor of the energy scale: the kinetic energy of the
+                ! velocities that the accelerations at t0 reach in one time scale (a start
+                ! from rest has no energy of its own to compare the defect with)
+                zc = z0
+                zc(core%nx + 1:2*core%nx) = t_scale*zp(core%nx + 1:2*core%nx)
+                call model%work_sample(t0, zc, kinetic, power, wstat)
+                if (wstat == 0) core%work_floor = kinetic
+            end if
+            if (weights_auto) then
                 rate = 20.0_wp/t_scale
                 if (opts%gamma == option_auto) opts%gamma = rate
                 if (opts%gamma1 == option_auto) opts%gamma1 = rate
@@ -907,12 +1004,14 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), w(sys%n), g0(sys%st%constraint%nnz()), &
-                    g1(sys%st%constraint%nnz()), scale, row, d, ell, change, size_g, rate, gmax
+                    g1(sys%st%constraint%nnz()), scale, row, d, ell, change, size_g, rate, gmax, t_scale, kinetic, &
+                    power, y_zero(sys%m)
         integer :: i, k, ustat
-        logical :: recoverable
+        logical :: recoverable, weights_auto, work_check
         stat = 0
         msg = ''
         associate (opts => core%opts, mp => sys%st%mass, gp => sys%st%constraint)
+            ustat = 0
             call sys%problem%mass_values(t0, q0, mp, sys%mvals, ustat)
             if (failed('mass_values')) return
             call sys%problem%constraint_jacobian_values(t0, q0, gp, g0, ustat)
@@ -936,9 +1035,17 @@ contains
                 gmax = max(gmax, norm2(g0(gp%row_start(i):gp%row_start(i + 1) - 1)))
             end do
             if (.not. (scale > 0.0_wp)) scale = 1.0_wp
-            if (opts%eps == option_auto) opts%eps = scale**2*max(1.0e-14_wp, min(1.0e-10_wp, opts%rtol**2))
-            if (opts%drift_tol == option_auto) opts%drift_tol = 1.0e3_wp*gmax*(opts%rtol*maxval(abs(q0)) + opts%atol)
-            if (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto) then
+            if (opts%eps == option_auto) then
+                core%eps_factor = automatic_eps_factor(opts%rtol)
+                opts%eps = core%eps_factor*scale**2
+            end if
+            if (opts%drift_tol == option_auto) then
+                core%drift_factor = drift_factor
+                opts%drift_tol = drift_factor*gmax*(opts%rtol*maxval(abs(q0)) + opts%atol)
+            end if
+            weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
+            work_check = resolved_work_tol(opts) > 0.0_wp
+            if (weights_auto .or. work_check) then
                 acc = f/mdiag
                 w = acc
                 if (.not. (maxval(abs(w)) > 0.0_wp)) w = v0
@@ -959,10 +1066,17 @@ contains
                     end if
                     stat = 0
                 end if
-                rate = 20.0_wp/motion_time_scale(.true., v0, acc, ell)
+                t_scale = motion_time_scale(.true., v0, acc, ell)
+                rate = 20.0_wp/t_scale
                 if (opts%gamma == option_auto) opts%gamma = rate
                 if (opts%gamma1 == option_auto) opts%gamma1 = rate
                 if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
+                if (work_check) then   ! the floor of the work check's energy scale (as above)
+                    y_zero = 0.0_wp
+                    call kinetic_energy_and_power(sys%problem, t0, q0, t_scale*acc, y_zero, kinetic, power, &
+                                                  ustat, sys%st%mass)
+                    if (ustat == 0) core%work_floor = kinetic
+                end if
             end if
             sys%eps = opts%eps
             if (opts%index == 3) then
