@@ -30,7 +30,8 @@ program chain_driver
     use chain_peer, only: run_chain_peer
     use slider_crank_problem, only: slider_crank_reduced
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
+    use driver_support, only: resolved_line, event_lines, &
+                              format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, die_usage, read_number, read_count
     implicit none
 
@@ -137,6 +138,7 @@ contains
             engine = formulation_name(solver%formulation())//'/'//linear_solver_name(solver%linear_solver())
             k = -1
             if (stat == regdae_success) then
+                write (*, '(a)') resolved_line(solver)
                 do k = 0, nout
                     call solve_clock%start()
                     call solver%advance(times(k + 1), q, y, stat, v)
@@ -169,6 +171,7 @@ contains
             end if
             call solver%destroy()
         end if
+        write (*, '(a)', advance='no') event_lines(solver)
         write (*, '(a)') 'summary n_links='//format_int(n_links)//' slider='//trim(merge('yes', 'no ', slider))// &
             ' engine='//engine//' status='//status_text//' t_end='//num(st%t)//' max_drift='//num(max_drift)// &
             ' energy_change='//num(energy_change)//extra//stats_fields(st, seconds, output_clock%seconds())// &

@@ -49,7 +49,7 @@ module regdae_solver_front
 
     !> The automatic drift bound: this many times the constraint violation that the
     !! tolerances on x allow (regdae_scales; doc/methods.md).
-    real(wp), parameter :: drift_factor = 1.0e3_wp
+    real(wp), parameter :: drift_factor = 1.0e2_wp
 
     ! The state of one problem: the model, the backend, the options and the
     ! diagnostics; allocated once per init, so that the backend (IDA's user_data)
@@ -881,7 +881,7 @@ contains
                                  (opts%rtol*maxval(abs(z0(1:core%nx))) + opts%atol)
                 ! off without constraints, for first-order problems, and for order >= 3, whose
                 ! Taylor weights leave a constraint error O(taylor_h^2) by design (doc/methods.md)
-                if (core%m == 0 .or. .not. core%second_order .or. model%order /= 2) then
+                if (core%m == 0 .or. .not. core%second_order .or. model%order >= 3) then
                     opts%drift_tol = 0.0_wp
                     core%drift_factor = 0.0_wp
                 end if
