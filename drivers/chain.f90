@@ -48,6 +48,7 @@ contains
         type(chain) :: problem
         type(stopwatch) :: solve_clock, output_clock
         type(slider_crank_reduced) :: reduced
+        character(len=:), allocatable :: events
         character(len=:), allocatable :: key, value, status_text, engine, extra
         integer :: i, k, nout, stat, n_links
         logical :: ok, slider, peer
@@ -56,6 +57,7 @@ contains
         integer :: steps, res_evals, jac_evals
         character(len=:), allocatable :: peer_message
 
+        events = ''
         n_links = 16
         slider = .false.
         peer = .false.
@@ -169,9 +171,10 @@ contains
                 if (k == 0) max_err = maxval(abs(angle1 - ref(1, :)))
                 extra = extra//' max_err_th='//num(max_err)
             end if
+            events = event_lines(solver)
             call solver%destroy()
         end if
-        write (*, '(a)', advance='no') event_lines(solver)
+        write (*, '(a)', advance='no') events
         write (*, '(a)') 'summary n_links='//format_int(n_links)//' slider='//trim(merge('yes', 'no ', slider))// &
             ' engine='//engine//' status='//status_text//' t_end='//num(st%t)//' max_drift='//num(max_drift)// &
             ' energy_change='//num(energy_change)//extra//stats_fields(st, seconds, output_clock%seconds())// &
