@@ -8,7 +8,7 @@
 !! | lsq            | auto, normal, stacked (auto: normal, stacked where ill-conditioned) | auto |
 !! | exclusion      | suppress, weights, off                | suppress       |
 !! | gamma          | > 0, or auto (20/T, T the time scale at t0) | auto     |
-!! | eps            | >= 0, or auto (rtol^2 within [1e-14, 1e-10], times the scale of GB squared) | auto |
+!! | eps            | >= 0, or auto (rtol^2 within [1e-14, 1e-6], times the scale of GB squared) | auto |
 !! | rtol, atol     | 0 < rtol < 1, atol > 0                | 1e-5, 1e-5     |
 !! | stop_at_output | yes, no                               | no             |
 !! | max_steps      | >= 1 (per output interval)            | 100000         |

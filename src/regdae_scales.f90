@@ -3,7 +3,7 @@
 !! the largest row norm of G and the largest |x| seen at the samples so far.
 !!
 !! - eps = eps_factor s^2, s the largest (GB)_ii seen, eps_factor = rtol^2 within
-!!   [1e-14, 1e-10]. A run that starts near a singular configuration sees a small
+!!   [1e-14, 1e-6]. A run that starts near a singular configuration sees a small
 !!   s at t0 (the slider crank from th1 = 1e-3: s = 5e-6, eps = 2.5e-21, layers
 !!   too thin to be passed on the branch at rtol 1e-5); eps is raised when s has
 !!   grown 2x (eps 4x), at a sample outside any regularization layer

@@ -49,7 +49,8 @@ contains
         tests = [new_test('rules_are_scale_free', rules_are_scale_free), &
                  new_test('work_check_quiet_and_fires', work_check_quiet_and_fires), &
                  new_test('switches_halfway_and_back', switches_halfway_and_back), &
-                 new_test('explicit_off_branch_fails', explicit_off_branch_fails)]
+                 new_test('explicit_off_branch_fails', explicit_off_branch_fails), &
+                 new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented)]
     end function defaults_tests
 
     ! Example 5.2 in Cartesian coordinates (the chain of 2 links with the slider: two
@@ -195,6 +196,63 @@ contains
         call chk%true(index(solver%message(), 'stiff') > 0, 'because the system is stiff there')
         call solver%destroy()
     end subroutine switches_halfway_and_back
+
+    ! The stiff chain of 4 links (joints of mass 1e-2 on vertical springs 1e4 and
+    ! dashpots 10: eigenvalues near -500 +- 866i) on [0, 0.2], all defaults but rtol =
+    ! atol = 1e-7: the explicit method starts, its stiffness test fires, and IDA takes
+    ! over on the augmented formulation (the chain declares its structure); against the
+    ! same chain by IDA on the augmented formulation from t0 at rtol = atol = 1e-11
+    ! (eps 1e-14): the positions at t = 0.01, ..., 0.2 (the transient: after it the
+    ! chain rests on its springs) within 100 rtol (both runs solve the regularized
+    ! problem, whose regularization error is below the tolerance here: sigma_min(GB) =
+    ! 12, far from any singular configuration). The first outputs come before the
+    ! switch (near t = 0.085): it happens in the middle of the run.
+    subroutine stiff_chain_switches_to_augmented(chk)
+        type(checker), intent(inout) :: chk
+        integer, parameter :: nout = 20
+        type(chain) :: p
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        character(len=:), allocatable :: events
+        real(wp) :: q0(8), v0(8), q(8, nout, 2), y(4), err
+        integer :: stat(2), run, k
+        p = new_chain(4, .false., 9.81_wp)
+        p%joint_mass = 1.0e-2_wp
+        p%stiffness = 1.0e4_wp
+        p%damping = 10.0_wp
+        call chain_start(p, q0, v0)
+        do run = 1, 2
+            opts = solver_options()
+            if (run == 1) then
+                opts%rtol = 1.0e-7_wp
+                opts%atol = 1.0e-7_wp
+            else
+                opts%rtol = 1.0e-11_wp
+                opts%atol = 1.0e-11_wp
+                opts%eps = 1.0e-14_wp
+                opts%formulation = formulation_augmented
+            end if
+            call solver%init(p, 0.0_wp, q0, v0, opts, stat(run))
+            do k = 1, nout
+                if (stat(run) /= regdae_success) exit
+                call solver%advance(0.01_wp*k, q(:, k, run), y, stat(run))
+            end do
+            if (stat(run) /= regdae_success) write (*, '(a)') '    '//solver%message()
+            if (run == 1) then
+                st = solver%statistics()
+                events = solver%events()
+            end if
+            call solver%destroy()
+        end do
+        call chk%equal(stat(1), regdae_success, 'defaults reach t = 0.2')
+        call chk%equal(stat(2), regdae_success, 'the reference reaches t = 0.2')
+        call chk%true(st%switches == 1 .and. index(events, 'dopri5 -> ida, augmented formulation') > 0, &
+                      'one switch, to IDA on the augmented formulation')
+        err = maxval(abs(q(:, :, 1) - q(:, :, 2)))
+        call chk%true(err <= 1.0e-5_wp, 'positions within 100 rtol of the reference')
+        write (*, '(a,es10.2)') '    max |q - q_ref| at the outputs: ', err
+    end subroutine stiff_chain_switches_to_augmented
 
     ! The slider crank from th1 = 1e-2 (near the singular configuration 0, pi) at
     ! w1 = 0.5, with the explicit integrator, weights gamma1 = 20, gamma0 = 200 and
