@@ -72,6 +72,11 @@ module regdae_monitor
         real(wp) :: work_floor = 0.0_wp          !! the smallest energy scale S (set after reset)
         type(running_scales) :: scales           !! the problem's scales seen so far (automatic eps, drift bound)
         logical :: drift_auto = .false.          !! drift_tol follows scales%drift_bound()
+        real(wp) :: land_by = huge(1.0_wp)       !! sigma_min(GB) falls towards the threshold: a sample by this
+                                                 !! time lands inside the coming singular interval (the secant
+                                                 !! of the last two samples reaching threshold/2; huge: none).
+                                                 !! An explicit integrator ends its next step there at the latest,
+                                                 !! so that its steps do not jump over a singular pass.
         logical :: model_changed = .false.       !! the last sample raised the model's eps (an explicit
                                                  !! integrator must re-evaluate its slope)
         logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
@@ -85,6 +90,8 @@ module regdae_monitor
         real(wp), private :: layer_eps = 0.0_wp
         real(wp), private :: sigma_peak = 0.0_wp         ! relative threshold: the largest sigma_min(GB) so far
         real(wp), private :: t_regular = 0.0_wp
+        real(wp), private :: sigma_before = -1.0_wp, t_sigma_before = 0.0_wp   ! the sample before, for land_by
+        real(wp), private :: slope_before = 0.0_wp   ! the secant slope of sigma before that (0: none)
         real(wp), allocatable, private :: v_regular(:), a_regular(:)
     contains
         !> Forget all samples; set the threshold.
@@ -143,6 +150,9 @@ contains
         self%model_changed = .false.
         self%have_regular = .false.
         self%sigma_peak = 0.0_wp
+        self%sigma_before = -1.0_wp
+        self%slope_before = 0.0_wp
+        self%land_by = huge(1.0_wp)
         if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)
         allocate (self%v_regular(self%np), self%a_regular(self%np))
         self%sigma_last = huge(1.0_wp)
@@ -198,6 +208,7 @@ contains
         integer, intent(in) :: invariant_stat   !! the invariant routine's stat
         real(wp), intent(in) :: v(:), a(:)      !! the np velocities and their slopes
         real(wp), allocatable :: grown(:, :)
+        real(wp) :: slope, reach
         logical :: was_in_layer
         if (self%invariant_tol > 0.0_wp) call invariant_sample(self, t, invariant, invariant_stat)
         if (self%np > 0) then
@@ -231,6 +242,26 @@ contains
             self%in_singular = .true.
         else
             self%in_singular = .false.
+        end if
+        ! the secant of sigma over the last two samples: for a convex decrease (sigma_min
+        ! ~ distance^2 at a rank-one singular configuration) it reaches threshold/2 at
+        ! most halfway to the minimum, so the landing sample does not jump over it
+        self%land_by = huge(1.0_wp)
+        slope = 0.0_wp
+        if (self%sigma_before >= 0.0_wp .and. t > self%t_sigma_before .and. sigma == sigma) &
+            slope = (sigma - self%sigma_before)/(t - self%t_sigma_before)
+        if (.not. self%in_singular .and. slope < 0.0_wp) then
+            reach = (sigma - 0.5_wp*self%threshold)/(-slope)
+            ! a convex decrease (the secant slopes flatten: sigma ~ distance^2, the rank-one
+            ! singular configuration of a mechanism): the double root's Newton step, 2x the
+            ! secant's, still ends before the minimum
+            if (self%slope_before < slope .and. self%slope_before < 0.0_wp) reach = 2.0_wp*reach
+            self%land_by = t + reach
+        end if
+        self%slope_before = slope
+        if (sigma == sigma) then
+            self%sigma_before = sigma
+            self%t_sigma_before = t
         end if
         was_in_layer = self%in_layer
         self%in_layer = (self%sigma_last < self%layer_threshold)
