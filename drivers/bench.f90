@@ -84,6 +84,7 @@ program bench_driver
     do k = tol_from, tol_to
         tol = 10.0_wp**(-k)
         if (which == 'all' .or. which == 'crank') then
+            call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
             call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
             call crank('crank3', 'trust_region eps=1e-6', 3, 'trust_region', 1.0e-6_wp, tol)
             call crank('crank3', 'trust_region eps=1e-12 excluded=vy', 3, 'trust_region', 1.0e-12_wp, tol, excl='vy')
@@ -131,6 +132,7 @@ program bench_driver
             tol = 10.0_wp**(-0.5_wp*k)
             call crank('crank3', 'trust_region eps=1e-14 dopri5 gamma1=20', 3, 'trust_region', 1.0e-14_wp, tol, &
                        rk=.true., pair=.true.)
+            call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
         end do
     end if
     ! Beyond 1e-10 for the explicit integrator and the oracles: where 1e-8 is reached.
@@ -140,6 +142,7 @@ program bench_driver
             call crank('crank3', 'trust_region eps=1e-14 dopri5 gamma1=20', 3, 'trust_region', 1.0e-14_wp, tol, &
                        rk=.true., pair=.true.)
             call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
+            call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
             call oracle('dopri5', tol)
             call oracle('cvode_adams', tol)
             call oracle('ida_bdf', tol)
@@ -156,7 +159,10 @@ contains
     ! With `pair`, every repetition also times the Dormand-Prince oracle right after
     ! regdae's run, and a row 'crank_oracle "dopri5 reduced ODE, paired: CONFIG"'
     ! follows: the ratio of the two is then immune to the machine's slow drifts.
-    subroutine crank(name, config, index, method, eps, tol, excl, rk, pair, formulation)
+    ! A configuration of the slider crank (index 2 or 3) with its options by hand: IDA and
+    ! the paper's weights (gamma = 1e6; gamma1 = 2e3, gamma0 = 2e6) unless rk; or, with
+    ! `defaults`, every option at its default but rtol = atol = tol.
+    subroutine crank(name, config, index, method, eps, tol, excl, rk, pair, formulation, defaults)
         character(len=*), intent(in) :: name, config, method
         integer, intent(in) :: index
         real(wp), intent(in) :: eps, tol
@@ -164,6 +170,7 @@ contains
         logical, intent(in), optional :: rk   ! explicit integrator with gamma1 = 20, gamma0 = 200
         logical, intent(in), optional :: pair
         character(len=*), intent(in), optional :: formulation
+        logical, intent(in), optional :: defaults
         type(solver_options) :: opts
         type(regdae_solver) :: solver
         type(solver_stats) :: st
@@ -183,6 +190,9 @@ contains
         opts%atol = tol
         opts%eps = eps
         opts%gamma = 1.0e6_wp
+        opts%gamma1 = 2.0e3_wp
+        opts%gamma0 = 2.0e6_wp
+        opts%integrator = integrator_ida
         call set_option(opts, 'method', method, stat, msg)
         if (present(excl)) call set_option(opts, 'excluded', excl, stat, msg)
         if (present(formulation)) call set_option(opts, 'formulation', formulation, stat, msg)
@@ -191,6 +201,13 @@ contains
                 opts%integrator = integrator_dopri5
                 opts%gamma1 = 20.0_wp
                 opts%gamma0 = 200.0_wp
+            end if
+        end if
+        if (present(defaults)) then
+            if (defaults) then
+                opts = solver_options()
+                opts%rtol = tol
+                opts%atol = tol
             end if
         end if
         crank_problem = new_slider_crank(9.8_wp)

@@ -17,7 +17,7 @@
 !! times (sigma_min: sigma_min(GB) there, NaN for the peer),
 !! and the last line
 !!   summary n_links=... slider=... engine=... status=ok|failed t_end=... max_drift=... energy_change=...
-!!           singular_passes=... sigma_min=... [max_err_th=... (N = 2 with slider: against the slider
+!!           singular_passes=... sigma_min=... [max_err_th=... (N = 2 with slider, no springs: against the slider
 !!           crank's reduced ODE by CVODE at 1e-13)] steps=... res_evals=... jac_evals=...
 !!           err_test_fails=... conv_fails=... seconds=... output_seconds=... seconds_per_step=...
 !! (engine: formulation/linear solver, or peer/band; seconds: init and advances, not the output;
@@ -30,7 +30,8 @@ program chain_driver
     use chain_peer, only: run_chain_peer
     use slider_crank_problem, only: slider_crank_reduced
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
+    use driver_support, only: resolved_line, event_lines, &
+                              format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, die_usage, read_number, read_count
     implicit none
 
@@ -47,6 +48,7 @@ contains
         type(chain) :: problem
         type(stopwatch) :: solve_clock, output_clock
         type(slider_crank_reduced) :: reduced
+        character(len=:), allocatable :: events
         character(len=:), allocatable :: key, value, status_text, engine, extra
         integer :: i, k, nout, stat, n_links
         logical :: ok, slider, peer
@@ -55,6 +57,7 @@ contains
         integer :: steps, res_evals, jac_evals
         character(len=:), allocatable :: peer_message
 
+        events = ''
         n_links = 16
         slider = .false.
         peer = .false.
@@ -137,6 +140,7 @@ contains
             engine = formulation_name(solver%formulation())//'/'//linear_solver_name(solver%linear_solver())
             k = -1
             if (stat == regdae_success) then
+                write (*, '(a)') resolved_line(solver)
                 do k = 0, nout
                     call solve_clock%start()
                     call solver%advance(times(k + 1), q, y, stat, v)
@@ -158,7 +162,7 @@ contains
             call write_table(table, k - 1)
             call output_clock%stop()
             extra = ' singular_passes='//format_int(st%singular_passes)//' sigma_min='//num(st%sigma_min)
-            if (slider .and. n_links == 2 .and. k > nout) then
+            if (slider .and. n_links == 2 .and. k > nout .and. stiffness == 0.0_wp .and. damping == 0.0_wp) then
                 ! the slider crank of Example 5.2: joint 1 at (sin th1, -cos th1)
                 allocate (ref(2, 0:nout))
                 reduced%gravity = gravity
@@ -167,8 +171,10 @@ contains
                 if (k == 0) max_err = maxval(abs(angle1 - ref(1, :)))
                 extra = extra//' max_err_th='//num(max_err)
             end if
+            events = event_lines(solver)
             call solver%destroy()
         end if
+        write (*, '(a)', advance='no') events
         write (*, '(a)') 'summary n_links='//format_int(n_links)//' slider='//trim(merge('yes', 'no ', slider))// &
             ' engine='//engine//' status='//status_text//' t_end='//num(st%t)//' max_drift='//num(max_drift)// &
             ' energy_change='//num(energy_change)//extra//stats_fields(st, seconds, output_clock%seconds())// &

@@ -18,7 +18,8 @@
 program ex51_driver
     use regdae
     use ex51_problem, only: ex51, new_ex51, orientation_psd, orientation_paper
-    use driver_support, only: format_int, common_argument, stats_fields, argument, split_key_value, num, &
+    use driver_support, only: resolved_line, event_lines, &
+                              format_int, common_argument, stats_fields, argument, split_key_value, num, &
                               stopwatch, die_usage, read_number
     implicit none
 
@@ -72,6 +73,7 @@ program ex51_driver
     call solver%init(problem, t0, x0, opts, stat)
     call solve_clock%stop()
     if (stat == regdae_success) then
+        write (*, '(a)') resolved_line(solver)
         write (*, '(a)') '# lsq resolved to '//lsq_name(solver%lsq_method())
         write (*, '(a1,a23,4a24)') '#', 't', 'x', 'y', 'x_exact', 'y_exact'
         do k = 0, nout
@@ -103,6 +105,7 @@ program ex51_driver
         format_int(int(st%steps))//' '//format_int(int(st%res_evals))//' ('//format_int(int(st%res_evals - st%jac_res_evals))// &
         ' + '//format_int(int(st%jac_res_evals))//') '//format_int(int(st%jac_evals))//' '//format_int(int(st%lin_setups))// &
         ' '//format_int(int(st%nonlin_iters))
+    write (*, '(a)', advance='no') event_lines(solver)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text// &
         ' t_end='//num(st%t)//' max_err_x='//num(max_err_x)//stats_fields(st, seconds, output_seconds)
     call solver%destroy()

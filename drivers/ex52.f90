@@ -21,7 +21,8 @@ program ex52_driver
     use regdae
     use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
+    use driver_support, only: resolved_line, event_lines, &
+                              format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, &
                               die_usage, read_number
     implicit none
@@ -94,6 +95,7 @@ program ex52_driver
     call solver%init(crank, t0, [th1, pi - th1], [w1, -w1], opts, stat)
     call solve_clock%stop()
     if (stat == regdae_success) then
+        write (*, '(a)') resolved_line(solver)
         do k = 0, nout
             t = times(k + 1)
             call solve_clock%start()
@@ -128,6 +130,7 @@ program ex52_driver
         status_text = 'failed'
     end if
     call print_singular_intervals(solver%singular_intervals())
+    write (*, '(a)', advance='no') event_lines(solver)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' index='//format_int(opts%index)// &
         ' status='//status_text//' t_end='//num(st%t)//' max_err_th='//num(max_err)// &
         ' max_abs_g3='//num(max_g3)//' max_energy_err='//num(max_de)//' max_branch_dev='//num(max_dev)// &

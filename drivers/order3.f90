@@ -11,7 +11,8 @@
 program order3_driver
     use regdae
     use order3_problem, only: order3, new_order3, order3_exact
-    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
+    use driver_support, only: resolved_line, event_lines, &
+                              format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, die_usage
     implicit none
     character(len=*), parameter :: prog = 'order3'
@@ -43,6 +44,7 @@ program order3_driver
     call solver%init(new_order3(), t0, xs0, opts, stat)
     call solve_clock%stop()
     if (stat == regdae_success) then
+        write (*, '(a)') resolved_line(solver)
         do k = 0, nout
             t = t0 + (tf - t0)*real(k, wp)/real(nout, wp)
             call solve_clock%start()
@@ -61,6 +63,7 @@ program order3_driver
     output_seconds = output_clock%seconds()
     st = solver%statistics()
     status_text = run_status(solver, stat)
+    write (*, '(a)', advance='no') event_lines(solver)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text//' t_end='//num(st%t)// &
         ' max_err='//num(max_err)//stats_fields(st, seconds, output_seconds)
     call solver%destroy()

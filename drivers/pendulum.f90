@@ -14,7 +14,8 @@ program pendulum_driver
     use regdae
     use pendulum_problem, only: pendulum, pendulum_angle, new_pendulum
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
+    use driver_support, only: resolved_line, event_lines, &
+                              format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, &
                               die_usage, read_number
     implicit none
@@ -76,6 +77,7 @@ program pendulum_driver
     call solver%init(problem, t0, [sin(phi0), -cos(phi0)], w0*[cos(phi0), sin(phi0)], opts, stat)
     call solve_clock%stop()
     if (stat == regdae_success) then
+        write (*, '(a)') resolved_line(solver)
         do k = 0, nout
             t = times(k + 1)
             call solve_clock%start()
@@ -95,6 +97,7 @@ program pendulum_driver
     output_seconds = output_clock%seconds()
     st = solver%statistics()
     status_text = run_status(solver, stat)
+    write (*, '(a)', advance='no') event_lines(solver)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' index='//format_int(opts%index)// &
         ' curvature='//trim(merge('yes', 'no ', opts%curvature))//' status='//status_text// &
         ' t_end='//num(st%t)//' max_err_pos='//num(max_err)//' max_abs_g='//num(max_g)//stats_fields(st, seconds, output_seconds)

@@ -15,7 +15,8 @@ program redundant_driver
     use regdae
     use slider_crank_problem, only: slider_crank_reduced, new_slider_crank, new_redundant_slider_crank
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
+    use driver_support, only: resolved_line, event_lines, &
+                              format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, die_usage, read_number
     implicit none
     character(len=*), parameter :: prog = 'redundant'
@@ -66,6 +67,7 @@ program redundant_driver
     call solve_clock%stop()
     call single%init(new_slider_crank(gravity), t0, [th1, pi - th1], [w1, -w1], opts, stat1)
     if (stat == regdae_success) then
+        write (*, '(a)') resolved_line(solver)
         write (*, '(a)') '# lsq resolved to '//lsq_name(solver%lsq_method())
         write (*, '(a1,a23,5a24)') '#', 't', 'th1', 'th2', 'lambda1', 'lambda2', 'th1_single'
         do k = 0, nout
@@ -93,6 +95,7 @@ program redundant_driver
         status_text = 'failed'
     end if
     if (stat1 /= regdae_success) write (*, '(a)') '# the single-constraint comparison run failed: '//single%message()
+    write (*, '(a)', advance='no') event_lines(solver)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text//' t_end='//num(st%t)// &
         ' max_err='//num(max_err)//' max_diff_single='//num(max_diff)//' max_branch_dev='//num(max_dev)// &
         stats_fields(st, seconds, output_seconds)

@@ -19,7 +19,8 @@ program singular_mass_driver
     use massless_problem, only: massless_carrier, new_massless_carrier
     use pendulum_problem, only: pendulum_angle
     use reference_ode, only: integrate_reference
-    use driver_support, only: format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
+    use driver_support, only: resolved_line, event_lines, &
+                              format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, die_usage, read_number
     implicit none
     character(len=*), parameter :: prog = 'singular_mass'
@@ -76,6 +77,7 @@ program singular_mass_driver
                      [0.0_wp, 0.0_wp, 0.0_wp], opts, stat)
     call solve_clock%stop()
     if (stat == regdae_success) then
+        write (*, '(a)') resolved_line(solver)
         do k = 0, nout
             t = times(k + 1)
             call solve_clock%start()
@@ -103,6 +105,7 @@ program singular_mass_driver
             'with large multipliers; this is not the motion of the mechanism'
         status_text = 'failed'
     end if
+    write (*, '(a)', advance='no') event_lines(solver)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text//' t_end='//num(st%t)// &
         ' max_err='//num(max_err)//' max_abs_g='//num(max_g)//stats_fields(st, seconds, output_seconds)
     call solver%destroy()

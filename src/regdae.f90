@@ -37,12 +37,14 @@ module regdae
               regdae_err_not_psd, regdae_err_singular, regdae_err_lapack, regdae_err_sundials, &
               regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, regdae_err_mass_matrix, &
               regdae_err_branch, regdae_err_drift, regdae_err_invariant, regdae_err_structure, regdae_err_jacobian, &
+              regdae_err_work, &
               status_message
     ! regdae_options
     public :: solver_options, set_option, validate_options, method_name, formulation_name, lsq_name, &
               exclusion_name, method_baumgarte, method_trust_region, method_direct, formulation_multiplier, &
               formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, lsq_checked, exclusion_suppress, exclusion_weights, &
-              exclusion_off, excluded_y, excluded_vy, excluded_name, integrator_ida, integrator_dopri5, integrator_name, &
+              exclusion_off, excluded_y, excluded_vy, excluded_name, integrator_ida, integrator_dopri5, integrator_auto, &
+              integrator_name, &
               formulation_auto, formulation_augmented, augmented_min_n, linear_solver_auto, linear_solver_dense, &
-              linear_solver_band, linear_solver_sparse, linear_solver_name
+              linear_solver_band, linear_solver_sparse, linear_solver_name, option_auto, resolved_work_tol, option_text
 end module regdae

@@ -45,9 +45,11 @@ module regdae_augmented_system
     use regdae_differences, only: central_difference_step
     use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
     use regdae_implicit_system, only: implicit_system
-    use regdae_options, only: solver_options, method_trust_region, method_direct, excluded_vy
+    use regdae_options, only: solver_options, method_trust_region, method_direct, excluded_vy, option_auto
     implicit none
     private
+
+    public :: user_routine_failure
 
     !> The augmented residual of one mechanical problem (a copy).
     type, extends(implicit_system), public :: augmented_system
@@ -89,6 +91,9 @@ module regdae_augmented_system
         procedure :: drift => augmented_drift
         !> sigma_min(GB) at IDA's u, by inverse iteration (stat: the user routines').
         procedure :: sigma_min_gb => augmented_sigma_min
+        !> max_i (GB)_ii (with M's diagonal) and max_i |G_i| of the M and G of the last
+        !! sigma_min_gb (the automatic eps and drift bound, regdae_scales).
+        procedure :: diagonal_scales => augmented_diagonal_scales
     end type augmented_system
 
 contains
@@ -125,14 +130,14 @@ contains
             .or. .not. sizes_fit(self%st%force_q, n, n, 'force_q') .or. .not. sizes_fit(self%st%force_v, n, n, &
                                                                                           'force_v')) return
         self%method = opts%method
-        self%eps = opts%eps
+        self%eps = merge(0.0_wp, opts%eps, opts%eps == option_auto)   ! auto: set by the solver
         if (opts%index == 3) then
-            self%gamma0 = opts%gamma0
-            self%gamma1 = opts%gamma1
+            self%gamma0 = merge(1.0_wp, opts%gamma0, opts%gamma0 == option_auto)
+            self%gamma1 = merge(1.0_wp, opts%gamma1, opts%gamma1 == option_auto)
             self%curvature = opts%curvature
         else   ! the regularized velocity constraint: d/dt (G v + g_t) + gamma (G v + g_t)
             self%gamma0 = 0.0_wp
-            self%gamma1 = opts%gamma
+            self%gamma1 = merge(1.0_wp, opts%gamma, opts%gamma == option_auto)
             self%curvature = .true.
         end if
         ! the natural numbering: q, v, [u], y, [s]
@@ -391,6 +396,28 @@ contains
         end subroutine put
     end function augmented_sigma_min
 
+    subroutine augmented_diagonal_scales(self, gb, g)
+        class(augmented_system), intent(in) :: self
+        real(wp), intent(out) :: gb, g
+        real(wp) :: row, diag
+        integer :: i, k, j
+        gb = 0.0_wp
+        g = 0.0_wp
+        associate (mp => self%st%mass, gp => self%st%constraint)
+            do i = 1, self%m
+                row = 0.0_wp
+                do k = gp%row_start(i), gp%row_start(i + 1) - 1
+                    j = mp%position(gp%cols(k), gp%cols(k))
+                    diag = 1.0_wp
+                    if (j > 0) diag = self%mvals(j)
+                    if (diag > 0.0_wp) row = row + self%gvals(k)**2/diag
+                end do
+                gb = max(gb, row)
+                g = max(g, norm2(self%gvals(gp%row_start(i):gp%row_start(i + 1) - 1)))
+            end do
+        end associate
+    end subroutine augmented_diagonal_scales
+
     subroutine augmented_initial_guess(self, q0, v0, u, up, id)
         class(augmented_system), intent(in) :: self
         real(wp), intent(in) :: q0(:), v0(:)
@@ -526,16 +553,7 @@ contains
             character(len=*), intent(in) :: name
             failed = (ustat /= 0)
             if (.not. failed) return
-            recoverable = (ustat > 0)
-            if (ustat == regdae_err_mass_matrix .or. ustat == regdae_err_structure) then
-                stat = ustat
-                recoverable = .false.
-                self%message = status_message(stat)//' at t = '//format_real(t)//' (in '//name//')'
-            else
-                stat = regdae_err_user_callback
-                self%message = 'user routine '//name//' reported failure (stat = '//format_int(ustat)// &
-                               ') at t = '//format_real(t)
-            end if
+            call user_routine_failure(ustat, name, t, stat, self%message, recoverable)
         end function failed
 
         ! G(qq, tt) vv + g_t(qq, tt) with the sparse G
@@ -587,5 +605,27 @@ contains
             end do
         end do
     end subroutine csr_transpose_add
+
+    !> The status, message and recoverability of a user routine `name` of a mechanical
+    !! problem that returned ustat /= 0 at t: the library's own codes (M not positive
+    !! definite, an entry outside the declared pattern) pass through and are fatal; any
+    !! other is regdae_err_user_callback, recoverable when ustat > 0.
+    subroutine user_routine_failure(ustat, name, t, stat, message, recoverable)
+        integer, intent(in) :: ustat
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: t
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: message
+        logical, intent(out) :: recoverable
+        recoverable = (ustat > 0)
+        if (ustat == regdae_err_mass_matrix .or. ustat == regdae_err_structure) then
+            stat = ustat
+            recoverable = .false.
+            message = status_message(stat)//' at t = '//format_real(t)//' (in '//name//')'
+        else
+            stat = regdae_err_user_callback
+            message = 'user routine '//name//' reported failure (stat = '//format_int(ustat)//') at t = '//format_real(t)
+        end if
+    end subroutine user_routine_failure
 
 end module regdae_augmented_system

@@ -76,6 +76,16 @@ module regdae_ida_backend
         procedure :: calc_ic => backend_calc_ic
         !> Integrate to tout (IDA_NORMAL); tret: the time reached; ierr: IDA's flag.
         procedure :: solve => backend_solve
+        !> One internal step towards tout (IDA_ONE_STEP): u, u' at the step's end.
+        procedure :: step => backend_step
+        !> IDA's internal time (the end of its last step).
+        procedure :: current_time => backend_current_time
+        !> The step size IDA used last.
+        procedure :: last_step => backend_last_step
+        !> Restart IDA at (t, u, u') (its history forgotten).
+        procedure :: restart => backend_restart
+        !> u, u' at t within IDA's last step, from its interpolant.
+        procedure :: interpolate => backend_interpolate
         !> IDA's solution vector u and its derivative u' (at the last return).
         procedure :: state => backend_state
         procedure :: slope => backend_slope
@@ -306,6 +316,67 @@ contains
             if (flag == IDA_ILL_INPUT .or. .not. (tret >= t_before .and. tret <= tout)) tret = t_before
         end if
     end subroutine backend_solve
+
+    subroutine backend_step(self, tout, stop_at_output, tret, ierr)
+        class(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: tout
+        logical, intent(in) :: stop_at_output   !! the step does not go beyond tout
+        real(wp), intent(inout) :: tret         !! in: the current time; out: the step's end
+        integer, intent(out) :: ierr            !! IDA's return flag (< 0: failure)
+        real(c_double) :: t_reached(1)
+        integer(c_int) :: flag
+        real(wp) :: t_before
+
+        self%pending_stat = regdae_success
+        if (len(self%pending_message) > 0) self%pending_message = ''
+        t_before = tret
+        t_reached(1) = tret
+        flag = 0
+        if (stop_at_output) flag = FIDASetStopTime(self%ida_mem, tout)
+        if (flag == 0) flag = FIDASolve(self%ida_mem, tout, t_reached, self%uu, self%up, IDA_ONE_STEP)
+        ierr = int(flag)
+        tret = t_reached(1)
+        if (flag < 0) then
+            if (flag == IDA_ILL_INPUT .or. .not. (tret >= t_before)) tret = t_before
+        end if
+    end subroutine backend_step
+
+    real(wp) function backend_current_time(self) result(t)
+        class(ida_backend), intent(in) :: self
+        real(c_double) :: tcur(1)
+        integer(c_int) :: ierr
+        ierr = FIDAGetCurrentTime(self%ida_mem, tcur)
+        t = tcur(1)
+    end function backend_current_time
+
+    real(wp) function backend_last_step(self) result(h)
+        class(ida_backend), intent(in) :: self
+        real(c_double) :: hl(1)
+        integer(c_int) :: ierr
+        ierr = FIDAGetLastStep(self%ida_mem, hl)
+        h = hl(1)
+    end function backend_last_step
+
+    subroutine backend_restart(self, t, u, up, stat)
+        class(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:), up(:)
+        integer, intent(out) :: stat
+        real(c_double), pointer :: p(:)
+        p => FN_VGetArrayPointer(self%uu)
+        p = u
+        p => FN_VGetArrayPointer(self%up)
+        p = up
+        stat = int(FIDAReInit(self%ida_mem, t, self%uu, self%up))
+        if (stat /= 0) stat = regdae_err_sundials
+    end subroutine backend_restart
+
+    subroutine backend_interpolate(self, t, ierr)
+        class(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: t
+        integer, intent(out) :: ierr
+        ierr = int(FIDAGetDky(self%ida_mem, t, 0_c_int, self%uu))
+        if (ierr == 0) ierr = int(FIDAGetDky(self%ida_mem, t, 1_c_int, self%up))
+    end subroutine backend_interpolate
 
     function backend_state(self) result(u)
         class(ida_backend), intent(in) :: self

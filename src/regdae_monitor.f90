@@ -27,18 +27,33 @@
 !! Invariant: if the problem supplies an invariant I(x, v, t) (e.g. the energy
 !! of a conservative mechanism) and invariant_tol > 0, |I - I(t0)| above
 !! invariant_tol raises the alarm (`alarm_kind = alarm_invariant`).
+!!
+!! Work-energy balance (mechanical problems, regdae_work_energy): the kinetic
+!! energy T and the power P of the applied forces at each sample; the work W is
+!! the quadrature of P over the samples (the quadratic through the last three
+!! samples; trapezoidal on the first interval), and the defect
+!! D = T - T(t0) - W, relative to the energy scale of the motion
+!! S = max over the samples of (T, |W|, |T - T(t0)|), must stay below work_tol
+!! plus the quadrature's own error estimate E (the sum of
+!! |quadratic - trapezoidal| per interval: large steps do not raise false
+!! alarms) (`alarm_kind = alarm_work`). Inside a regularization layer the
+!! damped multiplier exchanges energy with the motion for a moment (a spike of
+!! lambda^T G v): D is tested at the samples outside the layers only.
 module regdae_monitor
     use regdae_kinds, only: wp
     use regdae_format, only: format_real, format_int
     use regdae_regularization, only: regularized_dae
+    use regdae_options, only: option_auto
+    use regdae_scales, only: running_scales
     implicit none
     private
 
-    integer, parameter, public :: alarm_none = 0, alarm_jump = 1, alarm_drift = 2, alarm_invariant = 3
+    integer, parameter, public :: alarm_none = 0, alarm_jump = 1, alarm_drift = 2, alarm_invariant = 3, alarm_work = 4
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
         real(wp) :: threshold = 0.05_wp          !! sigma_min(GB) below this marks a singular sample
+        logical :: relative = .false.            !! threshold = 0.05 times the running maximum of sigma_min(GB)
         real(wp) :: sigma_last = huge(1.0_wp)    !! sigma_min(GB) at the last sample
         real(wp) :: sigma_min = huge(1.0_wp)     !! smallest sigma_min(GB) over the samples
         integer :: n_singular = 0                !! singular intervals so far
@@ -52,16 +67,37 @@ module regdae_monitor
         real(wp) :: invariant_tol = 0.0_wp       !! alarm when |I - I(t0)| exceeds this (0: no check)
         real(wp) :: invariant0 = 0.0_wp          !! I(t0)
         real(wp) :: invariant_change = 0.0_wp    !! largest |I - I(t0)| so far
+        real(wp) :: work_tol = 0.0_wp            !! alarm when |D| > work_tol S (0: no check)
+        real(wp) :: work_defect = 0.0_wp         !! largest |D| / S so far
+        real(wp) :: work_floor = 0.0_wp          !! the smallest energy scale S (set after reset)
+        type(running_scales) :: scales           !! the problem's scales seen so far (automatic eps, drift bound)
+        logical :: drift_auto = .false.          !! drift_tol follows scales%drift_bound()
+        real(wp) :: land_by = huge(1.0_wp)       !! sigma_min(GB) falls towards the threshold: a sample by this
+                                                 !! time lands inside the coming singular interval (the secant
+                                                 !! of the last two samples reaching threshold/2; huge: none).
+                                                 !! An explicit integrator ends its next step there at the latest,
+                                                 !! so that its steps do not jump over a singular pass.
+        logical :: model_changed = .false.       !! the last sample raised the model's eps (an explicit
+                                                 !! integrator must re-evaluate its slope)
         logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
         integer :: alarm_kind = alarm_none       !! alarm_jump or alarm_drift
         character(len=:), allocatable :: alarm_message   !! what, where and how much
-        logical, private :: have_regular = .false., have_invariant = .false., in_layer = .false.
+        logical, private :: have_regular = .false., have_invariant = .false., in_layer = .false., have_work = .false.
+        real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
+                             t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
+        integer, private :: work_samples = 0
         real(wp), private :: layer_threshold = 0.05_wp   ! max(threshold, 3 sqrt(eps)): J's end samples lie above
+        real(wp), private :: layer_eps = 0.0_wp
+        real(wp), private :: sigma_peak = 0.0_wp         ! relative threshold: the largest sigma_min(GB) so far
         real(wp), private :: t_regular = 0.0_wp
+        real(wp), private :: sigma_before = -1.0_wp, t_sigma_before = 0.0_wp   ! the sample before, for land_by
+        real(wp), private :: slope_before = 0.0_wp   ! the secant slope of sigma before that (0: none)
         real(wp), allocatable, private :: v_regular(:), a_regular(:)
     contains
         !> Forget all samples; set the threshold.
         procedure :: reset => monitor_reset
+        !> Sample the kinetic energy and the power of the applied forces at t (work-energy balance).
+        procedure :: sample_work => monitor_sample_work
         !> Sample the model's last evaluation, made at time t on the solution.
         procedure :: sample => monitor_sample
         !> Sample given values: the drift max |g|, sigma_min(GB), the invariant
@@ -69,11 +105,17 @@ module regdae_monitor
         procedure :: sample_values => monitor_sample_values
         !> The singular intervals, (2, n_singular).
         procedure :: intervals => monitor_intervals
+        !> Make eps (eps_factor > 0) and the drift bound (drift_factor > 0) automatic,
+        !! following the scales seen at the samples (regdae_scales).
+        procedure :: automatic => monitor_automatic
+        !> Take the scales of a sample at t: max_i (GB)_ii, max_i |G_i|, max |x|, and
+        !! sigma_min(GB); true if the automatic eps was raised (the new value in scales%eps).
+        procedure :: observe_scales => monitor_observe_scales
     end type solution_monitor
 
 contains
 
-    subroutine monitor_reset(self, threshold, eps, np, jump_tol, drift_tol, invariant_tol)
+    subroutine monitor_reset(self, threshold, eps, np, jump_tol, drift_tol, invariant_tol, work_tol)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: threshold
         real(wp), intent(in) :: eps         !! the regularization parameter (its layer: sigma_min(GB)^2 < eps)
@@ -81,8 +123,11 @@ contains
         real(wp), intent(in) :: jump_tol    !! <= 0: no velocity-jump check
         real(wp), intent(in) :: drift_tol   !! <= 0: no drift check
         real(wp), intent(in) :: invariant_tol   !! <= 0: no invariant check
-        self%threshold = threshold
-        self%layer_threshold = max(threshold, 3*sqrt(eps))
+        real(wp), intent(in), optional :: work_tol   !! <= 0 or absent: no work-energy check
+        self%relative = (threshold == option_auto)
+        self%threshold = merge(0.0_wp, threshold, self%relative)
+        self%layer_eps = eps
+        self%layer_threshold = max(self%threshold, 3*sqrt(eps))
         self%in_layer = .false.
         self%invariant_tol = invariant_tol
         self%invariant_change = 0.0_wp
@@ -92,10 +137,22 @@ contains
         self%drift_tol = drift_tol
         self%jump_max = 0.0_wp
         self%drift_max = 0.0_wp
+        self%work_tol = 0.0_wp
+        if (present(work_tol)) self%work_tol = max(0.0_wp, work_tol)
+        self%work_defect = 0.0_wp
+        self%work_floor = 0.0_wp
+        self%have_work = .false.
         self%alarm = .false.
         self%alarm_kind = alarm_none
         self%alarm_message = ''
+        self%scales = running_scales()
+        self%drift_auto = .false.
+        self%model_changed = .false.
         self%have_regular = .false.
+        self%sigma_peak = 0.0_wp
+        self%sigma_before = -1.0_wp
+        self%slope_before = 0.0_wp
+        self%land_by = huge(1.0_wp)
         if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)
         allocate (self%v_regular(self%np), self%a_regular(self%np))
         self%sigma_last = huge(1.0_wp)
@@ -111,10 +168,22 @@ contains
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
         real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
-        real(wp) :: drift, invariant
-        integer :: stat, invariant_stat
+        real(wp) :: drift, invariant, kinetic, power, gb, g
+        integer :: stat, invariant_stat, i
         invariant = 0.0_wp
         invariant_stat = 0
+        if (self%scales%eps_factor > 0.0_wp .or. self%drift_auto) then
+            gb = 0.0_wp
+            g = 0.0_wp
+            do i = 1, model%m
+                gb = max(gb, abs(model%gb(i, i)))
+                g = max(g, norm2(model%gx(i, :)))
+            end do
+            if (self%observe_scales(t, gb, g, maxval(abs(z(1:model%n))), model%sigma_min_gb())) then
+                model%eps = self%scales%eps
+                self%model_changed = .true.
+            end if
+        end if
         if (self%invariant_tol > 0.0_wp) invariant = model%invariant_value(t, z, invariant_stat)
         drift = 0.0_wp
         if (self%np > 0) drift = model%position_drift(t, z, stat)
@@ -123,6 +192,10 @@ contains
                                     z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np))
         else
             call self%sample_values(t, drift, model%sigma_min_gb(), invariant, invariant_stat, z(1:0), dz(1:0))
+        end if
+        if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
+            call model%work_sample(t, z, kinetic, power, stat)
+            call self%sample_work(t, kinetic, power, stat)
         end if
     end subroutine monitor_sample
 
@@ -135,6 +208,7 @@ contains
         integer, intent(in) :: invariant_stat   !! the invariant routine's stat
         real(wp), intent(in) :: v(:), a(:)      !! the np velocities and their slopes
         real(wp), allocatable :: grown(:, :)
+        real(wp) :: slope, reach
         logical :: was_in_layer
         if (self%invariant_tol > 0.0_wp) call invariant_sample(self, t, invariant, invariant_stat)
         if (self%np > 0) then
@@ -148,6 +222,11 @@ contains
         end if
         self%sigma_last = sigma
         self%sigma_min = min(self%sigma_min, self%sigma_last)
+        if (self%relative .and. sigma == sigma) then
+            self%sigma_peak = max(self%sigma_peak, sigma)
+            self%threshold = 0.05_wp*self%sigma_peak
+            self%layer_threshold = max(self%threshold, 3*sqrt(self%layer_eps))
+        end if
         if (self%sigma_last < self%threshold) then
             if (.not. self%in_singular) then
                 if (.not. allocated(self%singular)) allocate (self%singular(2, 8))
@@ -164,11 +243,83 @@ contains
         else
             self%in_singular = .false.
         end if
+        ! the secant of sigma over the last two samples: for a convex decrease (sigma_min
+        ! ~ distance^2 at a rank-one singular configuration) it reaches threshold/2 at
+        ! most halfway to the minimum, so the landing sample does not jump over it
+        self%land_by = huge(1.0_wp)
+        slope = 0.0_wp
+        if (self%sigma_before >= 0.0_wp .and. t > self%t_sigma_before .and. sigma == sigma) &
+            slope = (sigma - self%sigma_before)/(t - self%t_sigma_before)
+        if (.not. self%in_singular .and. slope < 0.0_wp) then
+            reach = (sigma - 0.5_wp*self%threshold)/(-slope)
+            ! a convex decrease (the secant slopes flatten: sigma ~ distance^2, the rank-one
+            ! singular configuration of a mechanism): the double root's Newton step, 2x the
+            ! secant's, still ends before the minimum
+            if (self%slope_before < slope .and. self%slope_before < 0.0_wp) reach = 2.0_wp*reach
+            self%land_by = t + reach
+        end if
+        self%slope_before = slope
+        if (sigma == sigma) then
+            self%sigma_before = sigma
+            self%t_sigma_before = t
+        end if
         was_in_layer = self%in_layer
         self%in_layer = (self%sigma_last < self%layer_threshold)
         if (self%np > 0 .and. self%jump_tol > 0.0_wp .and. .not. self%in_layer) &
             call regular_sample(self, t, v, a, was_in_layer)
     end subroutine monitor_sample_values
+
+    subroutine monitor_sample_work(self, t, kinetic, power, stat)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, kinetic, power
+        integer, intent(in) :: stat   !! the user routines' status (nonzero: the sample is skipped)
+        real(wp) :: defect, h, trapezoid, quadratic, d2
+        if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
+        if (.not. self%have_work) then
+            self%kinetic0 = kinetic
+            self%work = 0.0_wp
+            self%work_scale = max(kinetic, self%work_floor)
+            self%power_last = power
+            self%t_work = t
+            self%quadrature_error = 0.0_wp
+            self%work_samples = 1
+            self%have_work = .true.
+            return
+        end if
+        h = t - self%t_work
+        if (.not. (h > 0.0_wp)) return
+        trapezoid = 0.5_wp*h*(power + self%power_last)
+        quadratic = trapezoid
+        if (self%work_samples >= 2) then   ! the quadratic through the last three samples
+            d2 = ((power - self%power_last)/h - (self%power_last - self%power_before)/(self%t_work - self%t_before))/ &
+                 (t - self%t_before)
+            quadratic = trapezoid - d2*h**3/6.0_wp
+            self%quadrature_error = self%quadrature_error + abs(quadratic - trapezoid)
+        else
+            self%quadrature_error = self%quadrature_error + 0.5_wp*h*abs(power - self%power_last)
+        end if
+        self%work = self%work + quadratic
+        self%power_before = self%power_last
+        self%t_before = self%t_work
+        self%power_last = power
+        self%t_work = t
+        self%work_samples = self%work_samples + 1
+        defect = kinetic - self%kinetic0 - self%work
+        self%work_scale = max(self%work_scale, kinetic, abs(self%work), abs(kinetic - self%kinetic0))
+        if (.not. (self%work_scale > 0.0_wp)) return
+        if (.not. (abs(defect) <= huge(1.0_wp))) defect = huge(1.0_wp)   ! NaN or Inf: a failure
+        if (self%in_layer) return   ! tested outside the layers only
+        self%work_defect = max(self%work_defect, abs(defect)/self%work_scale)
+        if (abs(defect) > self%work_tol*self%work_scale + self%quadrature_error .and. .not. self%alarm) then
+            self%alarm = .true.
+            self%alarm_kind = alarm_work
+            self%alarm_message = 'the work-energy balance failed at t = '//format_real(t)//': the kinetic energy '// &
+                                 'changed by '//format_real(kinetic - self%kinetic0)//' but the applied forces did '// &
+                                 format_real(self%work)//' of work (defect '//format_real(abs(defect)/self%work_scale)// &
+                                 ' of the energy scale '//format_real(self%work_scale)//' > work_tol = '// &
+                                 format_real(self%work_tol)//')'
+        end if
+    end subroutine monitor_sample_work
 
     ! The invariant at t: the first sample sets I(t0).
     subroutine invariant_sample(self, t, val, stat)
@@ -230,5 +381,31 @@ contains
         allocate (intervals(2, 0))
         if (self%n_singular > 0) intervals = self%singular(:, 1:self%n_singular)
     end function monitor_intervals
+
+    subroutine monitor_automatic(self, eps_factor, eps, drift_factor, rtol, atol)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: eps_factor   !! > 0: eps automatic (eps = eps_factor s^2)
+        real(wp), intent(in) :: eps          !! eps in force at t0
+        real(wp), intent(in) :: drift_factor !! > 0: drift bound automatic
+        real(wp), intent(in) :: rtol, atol
+        self%scales%eps_factor = eps_factor
+        self%scales%eps = eps
+        self%scales%drift_factor = drift_factor
+        self%scales%rtol = rtol
+        self%scales%atol = atol
+        self%drift_auto = (drift_factor > 0.0_wp .and. self%np > 0)
+    end subroutine monitor_automatic
+
+    logical function monitor_observe_scales(self, t, gb, g, x, sigma) result(raised)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, gb, g, x, sigma
+        call self%scales%observe(gb, g, x)
+        if (self%drift_auto) self%drift_tol = self%scales%drift_bound(self%layer_eps)
+        raised = self%scales%raise_eps(t, sigma)
+        if (raised) then
+            self%layer_eps = self%scales%eps
+            self%layer_threshold = max(self%threshold, 3*sqrt(self%layer_eps))
+        end if
+    end function monitor_observe_scales
 
 end module regdae_monitor

@@ -7,24 +7,25 @@
 !! | formulation    | auto, eliminated, multiplier, augmented | auto (see below) |
 !! | lsq            | auto, normal, stacked (auto: normal, stacked where ill-conditioned) | auto |
 !! | exclusion      | suppress, weights, off                | suppress       |
-!! | gamma          | > 0                                   | 1e3            |
-!! | eps            | >= 0                                  | 1e-6           |
+!! | gamma          | > 0, or auto (20/T, T the time scale at t0) | auto     |
+!! | eps            | >= 0, or auto (rtol^2 within [1e-14, 1e-6], times the scale of GB squared) | auto |
 !! | rtol, atol     | 0 < rtol < 1, atol > 0                | 1e-5, 1e-5     |
 !! | stop_at_output | yes, no                               | no             |
 !! | max_steps      | >= 1 (per output interval)            | 100000         |
 !! | h_init, h_max  | >= 0 (0: IDA's choice / no limit)     | 0, 0           |
 !! | ic_tol         | > 0                                   | 1e-8           |
 !! | index          | 2, 3 (second-order problems)          | 3              |
-!! | gamma0, gamma1 | > 0 (index 3: weights of g, G v + g_t)| 2e6, 2e3       |
+!! | gamma0, gamma1 | > 0 (index 3: weights of g, G v + g_t), or auto (gamma1 = 20/T, gamma0 = gamma1^2/2) | auto |
 !! | curvature      | yes, no (index 3: add g_xx(v,v) ...)  | yes            |
 !! | excluded       | y, vy (index 3: left out of the error test) | y        |
-!! | singular_threshold | >= 0 (sigma_min(GB) below: singular) | 0.05        |
+!! | singular_threshold | >= 0 (sigma_min(GB) below: singular), or auto (0.05 times its running maximum) | auto |
 !! | jump_tol       | >= 0 (order >= 2: velocity-jump alarm across a singular interval, 0: off) | 0.1 |
-!! | drift_tol      | >= 0 (order >= 2: alarm when max abs(g(x, t)) exceeds it, 0: off) | 1e-2 |
+!! | drift_tol      | >= 0 (order >= 2: alarm when max abs(g(x, t)) exceeds it, 0: off), or auto (from the tolerances on x) | auto |
 !! | invariant_tol  | >= 0 (order >= 2: alarm when the problem's invariant changes by more, 0: off) | 0 |
+!! | work_tol       | >= 0 or auto (mechanical: alarm when the work-energy defect exceeds this fraction of the energy scale, 0: off; auto: 0.05 (rtol/1e-3)^(1/5) within [0.02, 0.05]) | auto |
 !! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
-!! | integrator     | ida, dopri5 (explicit, eliminated formulation only) | ida |
+!! | integrator     | auto, ida, dopri5 (explicit, eliminated formulation only; auto: dopri5 while not stiff) | auto |
 !! | linear_solver  | auto, dense, band, sparse (IDA's Newton matrix; band and sparse: augmented) | auto |
 !! | check_jacobians | yes, no (at init: G against difference quotients of g; augmented: the grouped Newton matrix against the full one) | no |
 !!
@@ -46,6 +47,9 @@ module regdae_options
     integer, parameter, public :: method_trust_region = 2  !! (2.10)/(2.11)
     integer, parameter, public :: method_direct = 3        !! (2.12)/(2.13)
 
+    !> The value of a real option that regdae chooses itself (`key=auto`).
+    real(wp), parameter, public :: option_auto = -huge(1.0_wp)
+
     integer, parameter, public :: formulation_auto = 0        !! augmented for large structured mechanical problems, else eliminated
     integer, parameter, public :: formulation_multiplier = 1  !! IDA unknowns (x, y)
     integer, parameter, public :: formulation_eliminated = 2  !! IDA unknowns x; y solved in the residual
@@ -66,6 +70,7 @@ module regdae_options
     integer, parameter, public :: exclusion_weights = 2   !! zero error weights (FIDAWFtolerances)
     integer, parameter, public :: exclusion_off = 3       !! y stays in the error test
 
+    integer, parameter, public :: integrator_auto = 0    !! dopri5 while the system is not stiff, IDA where it is
     integer, parameter, public :: integrator_ida = 1     !! SUNDIALS IDA (BDF), any stiffness
     integer, parameter, public :: integrator_dopri5 = 2  !! explicit Dormand-Prince 5(4): non-stiff regularized systems
 
@@ -78,8 +83,8 @@ module regdae_options
         integer :: formulation = formulation_auto      !! what IDA integrates
         integer :: lsq = lsq_auto                      !! damped least-squares solver
         integer :: exclusion = exclusion_suppress      !! how y leaves IDA's local error test
-        real(wp) :: gamma = 1.0e3_wp                   !! Baumgarte parameter (paper: 1/h)
-        real(wp) :: eps = 1.0e-6_wp                    !! damping of trust-region / direct
+        real(wp) :: gamma = option_auto                !! Baumgarte parameter (paper: 1/h; auto: 20/T)
+        real(wp) :: eps = option_auto                  !! damping of trust-region / direct (auto: see resolve)
         real(wp) :: rtol = 1.0e-5_wp                   !! relative tolerance (IDA)
         real(wp) :: atol = 1.0e-5_wp                   !! absolute tolerance (IDA)
         logical :: stop_at_output = .false.            !! make a step end at every output time
@@ -88,24 +93,28 @@ module regdae_options
         real(wp) :: h_max = 0.0_wp                     !! largest step size (0: unlimited)
         real(wp) :: ic_tol = 1.0e-8_wp                 !! allowed max |g(x0, t0)| (and |G v0 + g_t|)
         integer :: index = 3                           !! second-order problems: 3, or 2 via G v + g_t = 0 (5.4)
-        real(wp) :: gamma0 = 2.0e6_wp                  !! index 3: weight of g (paper: 2/h^2)
-        real(wp) :: gamma1 = 2.0e3_wp                  !! index 3: weight of G v + g_t (paper: 2/h)
+        real(wp) :: gamma0 = option_auto               !! index 3: weight of g (paper: 2/h^2; auto: gamma1^2/2)
+        real(wp) :: gamma1 = option_auto               !! index 3: weight of G v + g_t (paper: 2/h; auto: 20/T)
         logical :: curvature = .true.                  !! index 3: add g_xx(v,v) + 2 g_xt v + g_tt to r
         integer :: excluded = excluded_y               !! index 3: which variables leave the error test
-        real(wp) :: singular_threshold = 0.05_wp       !! sigma_min(GB) below this at an output: singular
+        real(wp) :: singular_threshold = option_auto   !! sigma_min(GB) below this at a sample: singular (auto: 0.05 times
+                                                       !! its running maximum)
         real(wp) :: jump_tol = 0.1_wp                  !! relative velocity jump across a singular interval
                                                        !! that stops the run (regdae_err_branch); 0: no check
-        real(wp) :: drift_tol = 1.0e-2_wp              !! max |g(x, t)| that stops the run (regdae_err_drift); 0: no check
+        real(wp) :: drift_tol = option_auto            !! max |g(x, t)| that stops the run (regdae_err_drift); 0: no check
+        real(wp) :: work_tol = option_auto             !! mechanical problems: work-energy defect (fraction of the
+                                                       !! motion's energy scale) that stops the run (regdae_err_work); 0: off
         real(wp) :: invariant_tol = 0.0_wp             !! change of the problem's invariant that stops the run
                                                        !! (regdae_err_invariant); 0: no check
         real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
-        integer :: integrator = integrator_ida         !! ida, or dopri5 (explicit; eliminated formulation)
+        integer :: integrator = integrator_auto        !! auto, ida, or dopri5 (explicit; eliminated formulation)
         integer :: linear_solver = linear_solver_auto  !! IDA's linear solver
         logical :: check_jacobians = .false.           !! compare the user's G (and the grouped Newton matrix) with
                                                        !! difference quotients at init (regdae_err_jacobian)
     end type solver_options
 
+    public :: resolved_work_tol, option_text
     public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name, excluded_name, &
               integrator_name, linear_solver_name
 
@@ -143,9 +152,9 @@ contains
             call lookup(value, [character(len=12) :: 'yes', 'no'], code)
             if (code > 0) opts%stop_at_output = (code == 1)
         case ('gamma')
-            call read_real(value, opts%gamma, code)
+            call read_real_or_auto(value, opts%gamma, code)
         case ('eps')
-            call read_real(value, opts%eps, code)
+            call read_real_or_auto(value, opts%eps, code)
         case ('rtol')
             call read_real(value, opts%rtol, code)
         case ('atol')
@@ -163,9 +172,9 @@ contains
             if (code > 1) opts%index = code
             if (code == 1) code = 0
         case ('gamma0')
-            call read_real(value, opts%gamma0, code)
+            call read_real_or_auto(value, opts%gamma0, code)
         case ('gamma1')
-            call read_real(value, opts%gamma1, code)
+            call read_real_or_auto(value, opts%gamma1, code)
         case ('curvature')
             call lookup(value, [character(len=12) :: 'yes', 'no'], code)
             if (code > 0) opts%curvature = (code == 1)
@@ -173,20 +182,22 @@ contains
             call lookup(value, [character(len=12) :: 'y', 'vy'], code)
             if (code > 0) opts%excluded = code
         case ('singular_threshold')
-            call read_real(value, opts%singular_threshold, code)
+            call read_real_or_auto(value, opts%singular_threshold, code)
         case ('jump_tol')
             call read_real(value, opts%jump_tol, code)
         case ('drift_tol')
-            call read_real(value, opts%drift_tol, code)
+            call read_real_or_auto(value, opts%drift_tol, code)
         case ('invariant_tol')
             call read_real(value, opts%invariant_tol, code)
+        case ('work_tol')
+            call read_real_or_auto(value, opts%work_tol, code)
         case ('taylor_h')
             call read_real(value, opts%taylor_h, code)
         case ('mass_damping')
             call read_real(value, opts%mass_damping, code)
         case ('integrator')
-            call lookup(value, [character(len=12) :: 'ida', 'dopri5'], code)
-            if (code > 0) opts%integrator = code
+            call lookup(value, [character(len=12) :: 'ida', 'dopri5', 'auto'], code)
+            if (code > 0) opts%integrator = merge(integrator_auto, code, code == 3)
         case ('check_jacobians')
             call lookup(value, [character(len=12) :: 'yes', 'no'], code)
             if (code > 0) opts%check_jacobians = (code == 1)
@@ -214,26 +225,27 @@ contains
         character(len=:), allocatable, intent(out) :: msg
         stat = regdae_err_bad_input
         msg = ''
-        call need_positive('gamma', opts%gamma)
-        call need_nonnegative('eps', opts%eps)
+        if (opts%gamma /= option_auto) call need_positive('gamma', opts%gamma)
+        if (opts%eps /= option_auto) call need_nonnegative('eps', opts%eps)
         if (len(msg) == 0 .and. .not. (opts%rtol > 0.0_wp .and. opts%rtol < 1.0_wp)) &
             msg = 'rtol must be in (0, 1) (got '//format_real(opts%rtol)//')'
         call need_positive('atol', opts%atol)
         call need_nonnegative('h_init', opts%h_init)
         call need_nonnegative('h_max', opts%h_max)
         call need_positive('ic_tol', opts%ic_tol)
-        call need_positive('gamma0', opts%gamma0)
-        call need_positive('gamma1', opts%gamma1)
-        call need_nonnegative('singular_threshold', opts%singular_threshold)
+        if (opts%gamma0 /= option_auto) call need_positive('gamma0', opts%gamma0)
+        if (opts%gamma1 /= option_auto) call need_positive('gamma1', opts%gamma1)
+        if (opts%singular_threshold /= option_auto) call need_nonnegative('singular_threshold', opts%singular_threshold)
         call need_nonnegative('jump_tol', opts%jump_tol)
-        call need_nonnegative('drift_tol', opts%drift_tol)
+        if (opts%drift_tol /= option_auto) call need_nonnegative('drift_tol', opts%drift_tol)
         call need_nonnegative('invariant_tol', opts%invariant_tol)
+        if (opts%work_tol /= option_auto) call need_nonnegative('work_tol', opts%work_tol)
         call need_positive('taylor_h', opts%taylor_h)
         call need_nonnegative('mass_damping', opts%mass_damping)
         if (len(msg) > 0) then
             return
-        else if (opts%integrator /= integrator_ida .and. opts%integrator /= integrator_dopri5) then
-            msg = 'integrator must be ida or dopri5'
+        else if (opts%integrator < integrator_auto .or. opts%integrator > integrator_dopri5) then
+            msg = 'integrator must be auto, ida or dopri5'
         else if (opts%integrator == integrator_dopri5 .and. opts%formulation /= formulation_eliminated &
                  .and. opts%formulation /= formulation_auto) then
             msg = 'integrator=dopri5 needs formulation=eliminated'
@@ -277,6 +289,28 @@ contains
                 msg = name//' must be finite and >= 0 (got '//format_real(x)//')'
         end subroutine need_nonnegative
     end subroutine validate_options
+
+    !> work_tol=auto: the defect allowed, as a fraction of the motion's energy
+    !! scale: 0.05 at rtol >= 1e-3, falling like rtol^(1/5) to 0.02 at rtol <= 1e-5.
+    pure real(wp) function resolved_work_tol(opts) result(tol)
+        type(solver_options), intent(in) :: opts
+        tol = opts%work_tol
+        ! auto: 0.05 (rtol/1e-3)^(1/5) within [0.02, 0.05]: the defect of correct runs
+        ! shrinks with the tolerance (measured on the default-options grid: at most 4.7%
+        ! at rtol 1e-3, 1.8% at rtol <= 1e-5; doc/methods.md)
+        if (tol == option_auto) tol = min(0.05_wp, max(0.02_wp, 0.05_wp*(opts%rtol/1.0e-3_wp)**0.2_wp))
+    end function resolved_work_tol
+
+    !> A real option as text: its value, or 'auto'.
+    function option_text(x) result(text)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: text
+        if (x == option_auto) then
+            text = 'auto'
+        else
+            text = format_real(x, 4)
+        end if
+    end function option_text
 
     !> Name of a method code, as accepted by `set_option`.
     pure function method_name(code) result(name)
@@ -346,6 +380,7 @@ contains
         integer, intent(in) :: code
         character(len=:), allocatable :: name
         select case (code)
+        case (integrator_auto); name = 'auto'
         case (integrator_ida); name = 'ida'
         case (integrator_dopri5); name = 'dopri5'
         case default; name = 'unknown'
@@ -376,8 +411,10 @@ contains
         case ('stop_at_output', 'curvature', 'check_jacobians'); text = ' (yes or no)'
         case ('index'); text = ' (2 or 3)'
         case ('excluded'); text = ' (y or vy)'
-        case ('integrator'); text = ' (ida or dopri5)'
+        case ('integrator'); text = ' (auto, ida or dopri5)'
         case ('max_steps'); text = ' (an integer, e.g. 100000)'
+        case ('work_tol', 'gamma', 'gamma0', 'gamma1', 'eps', 'singular_threshold', 'drift_tol')
+            text = ' (a finite number, or auto)'
         case default; text = ' (a finite number, e.g. 1e-6, 2.5 or .5)'
         end select
     end function expected_form
@@ -403,6 +440,19 @@ contains
         call parse_real(text, x, ok)
         code = merge(1, 0, ok)
     end subroutine read_real
+
+    ! A real or `auto` (option_auto); code = 1 on success, 0 otherwise.
+    subroutine read_real_or_auto(text, x, code)
+        character(len=*), intent(in) :: text
+        real(wp), intent(inout) :: x
+        integer, intent(out) :: code
+        if (trim(adjustl(text)) == 'auto') then
+            x = option_auto
+            code = 1
+        else
+            call read_real(text, x, code)
+        end if
+    end subroutine read_real_or_auto
 
     ! Read an integer (regdae_parse's forms); code = 1 on success, 0 otherwise.
     subroutine read_integer(text, k, code)

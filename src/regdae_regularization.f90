@@ -28,8 +28,10 @@ module regdae_regularization
     use regdae_velocity_index2, only: velocity_index2_problem
     use regdae_second_order_problem, only: second_order_problem
     use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
-    use regdae_options, only: solver_options, method_baumgarte, method_trust_region, method_direct
+    use regdae_options, only: solver_options, method_baumgarte, method_trust_region, method_direct, option_auto
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
+    use regdae_mechanical_problem, only: mechanical_problem
+    use regdae_work_energy, only: kinetic_energy_and_power
     implicit none
     private
 
@@ -79,6 +81,14 @@ module regdae_regularization
         !> The second-order problem's invariant I(x, v, t) at z = (x, v, ...), NaN if
         !! it has none or the problem is of order 1.
         procedure :: invariant_value
+        !> Mechanical problems (index 3, or index 2 through the velocity constraint):
+        !! the kinetic energy and the power of the applied forces at the last
+        !! evaluated point (regdae_work_energy); stat /= 0 for other problems.
+        procedure :: work_sample
+        !> Whether the problem is a mechanical one (the work-energy check applies).
+        procedure :: is_mechanical
+        !> G = dg/dx of the user's position constraint at (t, x).
+        procedure :: position_jacobian
         !> Residual of the eliminated formulation, unknowns z.
         procedure :: residual_eliminated
         !> The eliminated formulation's right-hand side F (z' = F(z, t)).
@@ -100,7 +110,7 @@ contains
         call self%release()
         allocate (self%first, source=problem)
         self%order = 1
-        self%w = [opts%gamma]
+        self%w = [provisional(opts%gamma)]
         self%curvature = .false.
         call self%allocate_pieces(problem%n, problem%m, opts, lsq)
     end subroutine init_first_order
@@ -113,7 +123,7 @@ contains
         call self%release()
         allocate (self%second, source=problem)
         self%order = 2
-        self%w = [opts%gamma0, opts%gamma1]
+        self%w = [provisional(opts%gamma0), provisional(opts%gamma1)]
         self%curvature = opts%curvature
         call self%allocate_pieces(problem%n, problem%m, opts, lsq)
     end subroutine init_second_order
@@ -131,6 +141,14 @@ contains
         call self%allocate_pieces(problem%n, problem%m, opts, lsq)
     end subroutine init_higher_order
 
+    ! An `auto` weight is 1 until the solver resolves it (at a consistent start
+    ! the weighted terms vanish: the resolution's evaluation does not depend on it).
+    pure real(wp) function provisional(x)
+        real(wp), intent(in) :: x
+        provisional = x
+        if (x == option_auto) provisional = 1.0_wp
+    end function provisional
+
     subroutine release(self)
         class(regularized_dae), intent(inout) :: self
         if (allocated(self%first)) deallocate (self%first)
@@ -147,6 +165,7 @@ contains
         self%method = opts%method
         self%lsq = lsq
         self%eps = opts%eps
+        if (opts%eps == option_auto) self%eps = 0.0_wp   ! until the solver resolves it
         if (allocated(self%f)) deallocate (self%f, self%b, self%g, self%gx, self%gt, self%curv, self%gb, self%r, self%q)
         allocate (self%f(n), self%b(n, m), self%g(m), self%gx(m, n), self%gt(m), self%curv(m), self%gb(m, m), &
                   self%r(m), self%q(m), source=0.0_wp)
@@ -398,6 +417,75 @@ contains
             end select
         end if
     end function invariant_value
+
+    !> G of the user's position constraint at (t, x) (for a second-order problem
+    !! integrated at index 2: of its g, not of the velocity constraint).
+    subroutine position_jacobian(self, t, x, gx, stat)
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: gx(:, :)
+        integer, intent(out) :: stat
+        stat = 0
+        if (allocated(self%second)) then
+            call self%second%constraint_jacobian(t, x, gx, stat)
+        else if (allocated(self%higher)) then
+            call self%higher%constraint_jacobian(t, x, gx, stat)
+        else
+            select type (p => self%first)
+            type is (velocity_index2_problem)
+                call p%second%constraint_jacobian(t, x, gx, stat)
+            class default
+                call p%constraint_jacobian(t, x, gx, stat)
+            end select
+        end if
+    end subroutine position_jacobian
+
+    logical function is_mechanical(self)
+        class(regularized_dae), intent(in) :: self
+        is_mechanical = .false.
+        if (allocated(self%second)) then
+            select type (p => self%second)
+            class is (mechanical_problem)
+                is_mechanical = .true.
+            end select
+        else if (allocated(self%first)) then
+            select type (p => self%first)
+            type is (velocity_index2_problem)
+                select type (pp => p%second)
+                class is (mechanical_problem)
+                    is_mechanical = .true.
+                end select
+            end select
+        end if
+    end function is_mechanical
+
+    subroutine work_sample(self, t, z, kinetic, power, stat)
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)     !! the last evaluated point
+        real(wp), intent(out) :: kinetic, power
+        integer, intent(out) :: stat
+        real(wp) :: y(self%m)
+        kinetic = 0.0_wp
+        power = 0.0_wp
+        stat = -1
+        if (.not. self%is_mechanical()) return
+        call self%solve_multiplier(t, y, stat)
+        if (stat /= 0) return
+        if (allocated(self%second)) then
+            select type (p => self%second)
+            class is (mechanical_problem)
+                call kinetic_energy_and_power(p, t, z(1:p%n), z(p%n + 1:2*p%n), y, kinetic, power, stat)
+            end select
+        else
+            select type (p => self%first)
+            type is (velocity_index2_problem)
+                select type (pp => p%second)
+                class is (mechanical_problem)
+                    call kinetic_energy_and_power(pp, t, z(1:pp%n), z(pp%n + 1:2*pp%n), y, kinetic, power, stat)
+                end select
+            end select
+        end if
+    end subroutine work_sample
 
     !> sigma_min(GB) at the last evaluated point.
     function sigma_min_gb(self) result(sigma)

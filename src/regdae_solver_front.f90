@@ -35,15 +35,21 @@ module regdae_solver_front
     use regdae_explicit_rk, only: rk_integrator
     use regdae_ida_backend, only: ida_backend
     use regdae_regularized_system, only: new_regularized_system
-    use regdae_augmented_system, only: augmented_system
+    use regdae_augmented_system, only: augmented_system, user_routine_failure
     use regdae_differences, only: central_difference_step
     use regdae_solver_stats, only: solver_stats
-    use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant
+    use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant, alarm_work
+    use regdae_scales, only: automatic_eps_factor
+    use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_format, only: format_real, format_int
     implicit none
     private
 
     public :: solver_stats
+
+    !> The automatic drift bound: this many times the constraint violation that the
+    !! tolerances on x allow (regdae_scales; doc/methods.md).
+    real(wp), parameter :: drift_factor = 1.0e2_wp
 
     ! The state of one problem: the model, the backend, the options and the
     ! diagnostics; allocated once per init, so that the backend (IDA's user_data)
@@ -60,8 +66,22 @@ module regdae_solver_front
         real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
         real(wp) :: t = 0.0_wp
         logical :: started = .false.       ! the integration has gone beyond t0
+        real(wp) :: sampled_t = -huge(1.0_wp)   ! IDA: the last time the monitor sampled
         logical :: augmented = .false.     ! formulation=augmented: the state lives in IDA's vector, y too
         integer :: formulation = formulation_eliminated   ! resolved
+        integer :: active = integrator_ida     ! the integrator now in charge
+        logical :: switching = .false.         ! integrator=auto: switch between dopri5 and IDA
+        integer :: switches = 0                ! switches so far
+        integer :: explicit_votes = 0          ! consecutive checks that found the explicit method would do
+        real(wp), allocatable :: rho_w(:)      ! power iteration's vector (the stiffness estimate)
+        character(len=:), allocatable :: events   ! the log of switches
+        integer :: n_events = 0                ! entries in the log
+        integer :: back_switches = 0           ! ida -> dopri5 switches so far
+        real(wp) :: eps_factor = 0.0_wp       ! > 0: eps automatic (regdae_scales)
+        real(wp) :: drift_factor = 0.0_wp     ! > 0: drift bound automatic
+        real(wp) :: work_floor = 0.0_wp       ! the work-energy check's smallest energy scale
+        real(wp) :: t0 = 0.0_wp               ! integrator=auto: the start, kept until the first output
+        real(wp), allocatable :: z0(:)
         integer :: linear_solver = linear_solver_dense    ! resolved
         logical, allocatable :: excluded(:)   ! unknowns left out of the error test
         real(wp), allocatable :: y_work(:)    ! the multiplier at an output time
@@ -101,6 +121,10 @@ module regdae_solver_front
         !! `lsq_checked` for auto; 0 for the augmented formulation, which solves
         !! no least-squares problem).
         procedure :: lsq_method => solver_lsq_method
+        !> The log of integrator switches (integrator=auto), one line each.
+        procedure :: events => solver_events
+        !> The options in force, `auto` values resolved (the defaults before init).
+        procedure :: options => solver_options_in_force
         !> The resolved formulation and linear solver (codes of regdae_options).
         procedure :: formulation => solver_formulation
         procedure :: linear_solver => solver_linear_solver
@@ -290,15 +314,17 @@ contains
     end function check_input
 
     ! formulation=auto takes the augmented formulation for a mechanical problem
-    ! that declares its structure and is large enough, with IDA and M positive
-    ! definite; formulation=augmented always (its setup refuses what does not fit).
+    ! that declares its structure and is large enough, with M positive definite
+    ! and integrator ida or auto (which is then IDA: the explicit integrator works on
+    ! the eliminated formulation); formulation=augmented always (its setup refuses
+    ! what does not fit).
     logical function use_augmented(problem, opts)
         class(mechanical_problem), intent(in) :: problem
         type(solver_options), intent(in) :: opts
         type(mechanical_structure) :: st
         use_augmented = (opts%formulation == formulation_augmented)
         if (opts%formulation /= formulation_auto) return
-        if (opts%integrator /= integrator_ida .or. opts%mass_damping > 0.0_wp .or. problem%n < augmented_min_n) return
+        if (opts%integrator == integrator_dopri5 .or. opts%mass_damping > 0.0_wp .or. problem%n < augmented_min_n) return
         st = problem%structure()
         use_augmented = st%declared
     end function use_augmented
@@ -339,12 +365,19 @@ contains
         core%opts = opts
         core%augmented = .true.
         core%formulation = formulation_augmented
+        core%active = integrator_ida
+        core%events = ''
         core%n = 2*problem%n
         core%m = problem%m
         core%t = t0
         call sys%setup(problem, opts, stat)
         if (stat /= regdae_success) then
             call fail(stat, sys%message)
+            return
+        end if
+        call resolve_augmented_parameters(core, sys, t0, q0, v0, stat, msg)
+        if (stat /= regdae_success) then
+            call fail(stat, msg)
             return
         end if
         core%neq = sys%neq
@@ -374,9 +407,7 @@ contains
                 return
             end if
         end if
-        call core%monitor%reset(opts%singular_threshold, opts%eps, problem%n, opts%jump_tol, opts%drift_tol, &
-                                opts%invariant_tol)
-        call sample_augmented(core, t0)
+        call start_monitor_augmented(core, t0, core%opts%eps)
         if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
             call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
                       '(override `invariant` of the second-order problem)')
@@ -392,13 +423,286 @@ contains
         end subroutine fail
     end subroutine solver_start_augmented
 
+    ! integrator=auto: the explicit method found the system stiff at rk%t: IDA
+    ! takes over there (created at the first switch, restarted at the others).
+    ! max_i (GB)_ii at the model's last evaluation (the scale of GB).
+    pure real(wp) function gb_scale(model) result(s)
+        type(regularized_dae), intent(in) :: model
+        integer :: i
+        s = 0.0_wp
+        do i = 1, model%m
+            s = max(s, abs(model%gb(i, i)))
+        end do
+    end function gb_scale
+
+    ! The monitor from (t0, z0) with its slope zp0 (dense formulations): the checks
+    ! and automatic scales of core%opts, the first sample.
+    subroutine start_monitor(core, t0, z0, zp0)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t0, z0(:), zp0(:)
+        ! the velocity check looks at the positions' velocities, z(nx+1:2nx), of order >= 2
+        call core%monitor%reset(core%opts%singular_threshold, core%model%eps, merge(core%nx, 0, core%second_order), &
+                                core%opts%jump_tol, core%opts%drift_tol, core%opts%invariant_tol, &
+                                merge(resolved_work_tol(core%opts), 0.0_wp, core%model%is_mechanical()))
+        call core%monitor%automatic(core%eps_factor, core%model%eps, core%drift_factor, core%opts%rtol, core%opts%atol)
+        core%monitor%work_floor = core%work_floor
+        call core%monitor%sample(t0, core%model, z0, zp0)
+        core%sampled_t = t0
+    end subroutine start_monitor
+
+    subroutine switch_to_ida(core, stat, msg)
+        type(solver_core), intent(inout) :: core
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp) :: zp(core%n), y(core%m), t, z(core%n)
+        logical :: recoverable, from_start
+        t = core%rk%t
+        z = core%rk%z
+        msg = ''
+        ! Stiff before the first output: IDA from t0 (nothing has been returned yet), so
+        ! that the run is the one integrator=ida gives, not one that carries the
+        ! explicit method's steps at its stability limit.
+        from_start = .not. core%started .and. core%switches == 0
+        if (from_start) then
+            t = core%t0
+            z = core%z0
+            core%model%eps = core%opts%eps
+        end if
+        if (augmented_fits(core)) then
+            call switch_to_augmented(core, t, z, from_start, stat, msg)
+            if (stat == regdae_success) call now_ida(core, ', augmented formulation with KLU', from_start)
+            return
+        end if
+        call core%model%slope_eliminated(t, z, zp, y, stat, recoverable)
+        if (stat /= regdae_success) then
+            msg = 'switching to IDA at t = '//format_real(t)//': '//core%model%message
+            return
+        end if
+        if (c_associated_ida(core)) then
+            call core%ida%restart(t, z, zp, stat)
+            if (stat /= regdae_success) msg = 'switching to IDA at t = '//format_real(t)//': FIDAReInit failed'
+        else
+            call core%ida%create(new_regularized_system(core%model, core%n, core%n), core%opts, linear_solver_dense, &
+                                 core%excluded(1:core%n), t, z, zp, stat, msg)
+        end if
+        if (stat /= regdae_success) return
+        if (from_start) call start_monitor(core, t, z, zp)
+        call now_ida(core, '', from_start)
+    end subroutine switch_to_ida
+
+    ! After a switch to IDA: the counters and the event (what: the formulation, if not
+    ! the eliminated one).
+    subroutine now_ida(core, what, from_start)
+        type(solver_core), intent(inout) :: core
+        character(len=*), intent(in) :: what
+        logical, intent(in) :: from_start
+        core%active = integrator_ida
+        core%switches = core%switches + 1
+        core%explicit_votes = 0
+        call log_event(core, 't = '//format_real(core%rk%t)//': dopri5 -> ida'//what//' (the stiffness test fired: '// &
+                       'h |lambda| at the explicit method''s stability limit for 15 steps)'// &
+                       trim(merge('; IDA starts from t0', '                    ', from_start)))
+    end subroutine now_ida
+
+    ! integrator=auto, formulation=auto: IDA takes the augmented formulation for a
+    ! mechanical problem at index 3 that declares its structure (M positive definite:
+    ! no mass_damping), whatever its size (the stiff 4-link chain: 1.2-2.5x faster per
+    ! run than the eliminated formulation on IDA, doc/performance.md).
+    logical function augmented_fits(core) result(fits)
+        type(solver_core), intent(in) :: core
+        type(mechanical_structure) :: st
+        fits = .false.
+        if (core%opts%formulation /= formulation_auto .or. core%opts%mass_damping > 0.0_wp) return
+        if (.not. allocated(core%model%second)) return
+        select type (problem => core%model%second)
+        class is (mechanical_problem)
+            st = problem%structure()
+            fits = st%declared
+        end select
+    end function augmented_fits
+
+    ! IDA on the augmented formulation from (t, z = (q, v)) (a switch, or the start):
+    ! consistent u, y, s by IDACalcIC there, the monitor kept (from_start: restarted
+    ! at t). There is no switch back to dopri5 from it (explicit_would_do).
+    subroutine switch_to_augmented(core, t, z, from_start, stat, msg)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, z(:)
+        logical, intent(in) :: from_start
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        type(augmented_system) :: sys
+        type(solver_options) :: opts
+        real(wp), allocatable :: u0(:), up0(:), id(:)
+        integer :: nx
+        nx = core%nx
+        opts = core%opts
+        opts%eps = core%model%eps   ! the automatic eps in force (raised along the run)
+        select type (problem => core%model%second)
+        class is (mechanical_problem)
+            call sys%setup(problem, opts, stat)
+        end select
+        if (stat /= regdae_success) then
+            msg = 'switching to IDA at t = '//format_real(t)//' (augmented formulation): '//sys%message
+            return
+        end if
+        if (allocated(core%ida%system)) call core%ida%free()
+        allocate (u0(sys%neq), up0(sys%neq), id(sys%neq))
+        call sys%initial_guess(z(1:nx), z(nx + 1:2*nx), u0, up0, id)
+        core%neq = sys%neq
+        core%linear_solver = linear_solver_sparse
+        core%excluded = sys%excluded_unknowns(opts%excluded)
+        if (opts%exclusion == exclusion_off) core%excluded = .false.
+        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t, u0, up0, stat, msg)
+        if (stat == regdae_success) call core%ida%calc_ic(id, t + 1.0e-3_wp*max(1.0_wp, abs(t)), stat, msg)
+        if (stat /= regdae_success) then
+            msg = 'switching to IDA at t = '//format_real(t)//' (augmented formulation): '//msg
+            return
+        end if
+        core%augmented = .true.
+        core%formulation = formulation_augmented
+        if (from_start) call start_monitor_augmented(core, t, opts%eps)
+        core%active = integrator_ida
+    end subroutine switch_to_augmented
+
+    ! The monitor of the augmented formulation from t with the eps in force: the
+    ! checks and automatic scales of core%opts, the first sample (IDA's state at t).
+    subroutine start_monitor_augmented(core, t, eps)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, eps
+        call core%monitor%reset(core%opts%singular_threshold, eps, core%nx, core%opts%jump_tol, &
+                                core%opts%drift_tol, core%opts%invariant_tol, resolved_work_tol(core%opts))
+        call core%monitor%automatic(core%eps_factor, eps, core%drift_factor, core%opts%rtol, core%opts%atol)
+        core%monitor%work_floor = core%work_floor
+        call sample_augmented(core, t)
+        core%sampled_t = t
+    end subroutine start_monitor_augmented
+
+    logical function c_associated_ida(core)
+        type(solver_core), intent(in) :: core
+        c_associated_ida = allocated(core%ida%system)
+    end function c_associated_ida
+
+    ! The spectral radius of dF/dz at (t, z), F the eliminated formulation's slope:
+    ! five power iterations with difference quotients of F, from the last estimate's
+    ! vector, rho = sqrt(|J w_4| |J w_5|) (0: F failed). The model is left evaluated
+    ! at (t, z).
+    real(wp) function spectral_radius(core, t, z) result(rho)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, z(:)
+        real(wp) :: f0(core%n), f1(core%n), y(core%m), d, wn, norm_now, norm_last
+        integer :: it, stat
+        logical :: recoverable
+        rho = 0.0_wp
+        norm_now = 0.0_wp
+        call core%model%slope_eliminated(t, z, f0, y, stat, recoverable)
+        if (stat /= regdae_success) return
+        if (.not. allocated(core%rho_w)) then
+            allocate (core%rho_w(core%n))
+            core%rho_w = 1.0_wp
+        end if
+        d = sqrt(epsilon(1.0_wp))*max(1.0_wp, maxval(abs(z)))
+        do it = 1, 5
+            wn = norm2(core%rho_w)
+            if (.not. (wn > 0.0_wp)) core%rho_w = 1.0_wp
+            core%rho_w = core%rho_w/norm2(core%rho_w)
+            call core%model%slope_eliminated(t, z + d*core%rho_w, f1, y, stat, recoverable)
+            if (stat /= regdae_success) then
+                rho = 0.0_wp
+                exit
+            end if
+            core%rho_w = (f1 - f0)/d
+            norm_last = norm_now
+            norm_now = norm2(core%rho_w)
+            if (.not. (norm_now > 0.0_wp)) exit
+            ! |J^2 w| / |w| over two iterations: a dominant complex pair (the oscillation
+            ! of a second-order system) makes the single ratios alternate
+            if (it >= 2) rho = sqrt(norm_now*norm_last)
+        end do
+        call core%model%evaluate(t, z, stat, recoverable)   ! the model back at the state
+    end function spectral_radius
+
+    ! integrator=auto, IDA active: would the explicit method do here? Its stable
+    ! step 3.3/rho (rho: the spectral radius of dF/dz, by five power iterations
+    ! with F) against IDA's last step: larger than twice IDA's at two checks in a
+    ! row (20 steps apart) means that IDA's steps are set by accuracy, not stiffness.
+    ! No vote inside a singular interval.
+    logical function explicit_would_do(core, t) result(yes)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t
+        real(c_double), pointer :: u(:)
+        real(wp) :: rho
+        yes = .false.
+        if (core%augmented) return   ! no switch back from the augmented formulation
+        u => core%ida%state()
+        rho = spectral_radius(core, t, u(1:core%n))
+        ! not inside a singular interval: the damped multiplier softens the constraint
+        ! modes there for a moment (gamma sigma^2/(sigma^2 + eps) -> 0), and the explicit
+        ! method would take the pass with the steps of the regular motion (measured:
+        ! ex52 index=2 gamma=1e6 rtol=1e-6 switched back at t = 9.507 and lost 3e-2 rad)
+        if (rho > 0.0_wp .and. 3.3_wp/rho > 2.0_wp*core%ida%last_step() .and. .not. core%monitor%in_singular) then
+            core%explicit_votes = core%explicit_votes + 1
+        else
+            core%explicit_votes = 0
+        end if
+        ! two checks in a row; after each return to IDA twice as many (at most 64), so that
+        ! a problem at the border between the two does not switch at every check
+        yes = (core%explicit_votes >= 2*2**min(core%back_switches, 5))
+    end function explicit_would_do
+
+    ! integrator=auto: back to the explicit method at t, IDA's state there.
+    subroutine switch_to_dopri5(core, t)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t
+        real(c_double), pointer :: u(:)
+        integer :: stat
+        u => core%ida%state()
+        core%z_rk = u(1:core%n)
+        call core%rk%start(core%model, t, core%z_rk, core%ida%last_step(), stat)
+        core%active = integrator_dopri5
+        core%switches = core%switches + 1
+        core%back_switches = core%back_switches + 1
+        core%explicit_votes = 0
+        call log_event(core, 't = '//format_real(t)//': ida -> dopri5 (the explicit method''s stable step '// &
+                       'exceeds twice IDA''s)')
+    end subroutine switch_to_dopri5
+
+    ! Append a line to the events log; after max_events lines only the count grows.
+    subroutine log_event(core, text)
+        type(solver_core), intent(inout) :: core
+        character(len=*), intent(in) :: text
+        integer, parameter :: max_events = 50
+        core%n_events = core%n_events + 1
+        if (core%n_events <= max_events) then
+            core%events = core%events//text//new_line('a')
+        else if (core%n_events == max_events + 1) then
+            core%events = core%events//'(later switches are counted in the statistics only)'//new_line('a')
+        end if
+    end subroutine log_event
+
+    ! The monitor's sample at the end of an accepted IDA step (IDA's state and slope there).
+    subroutine sample_step(core, t)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t
+        real(c_double), pointer :: u(:), up(:)
+        integer :: stat
+        logical :: recoverable
+        if (core%augmented) then
+            call sample_augmented(core, t)
+            return
+        end if
+        u => core%ida%state()
+        up => core%ida%slope()
+        call core%model%evaluate(t, u(1:core%n), stat, recoverable)
+        if (stat == regdae_success) call core%monitor%sample(t, core%model, u(1:core%n), up(1:core%n))
+    end subroutine sample_step
+
     ! The monitor's sample of the augmented formulation at IDA's state.
     subroutine sample_augmented(core, t)
         type(solver_core), intent(inout) :: core
         real(wp), intent(in) :: t
         real(c_double), pointer :: u(:), up(:)
-        real(wp) :: q(core%nx), v(core%nx), a(core%nx), drift, invariant, sigma
-        integer :: dstat, istat
+        real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g
+        integer :: dstat, istat, wstat
         u => core%ida%state()
         up => core%ida%slope()
         drift = 0.0_wp
@@ -411,10 +715,22 @@ contains
             call sys%unpack(u, up, q=q, v=v, a=a)
             drift = sys%drift(t, u, dstat)
             if (dstat /= 0) drift = huge(1.0_wp)
-            sigma = sys%sigma_min_gb(t, u, dstat)
+            sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
+            if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
+                call sys%diagonal_scales(gb, g)
+                if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
+            end if
             if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
         end select
         call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a)
+        if (core%monitor%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
+            select type (sys => core%ida%system)
+            type is (augmented_system)
+                call sys%unpack(u, up, y=y)
+                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass)
+                call core%monitor%sample_work(t, kinetic, power, wstat)
+            end select
+        end if
     end subroutine sample_augmented
 
     ! check_jacobians: the user's G (constraint_jacobian) against central
@@ -549,6 +865,11 @@ contains
         lsq = opts%lsq
         if (lsq == lsq_auto) lsq = lsq_checked   ! by conditioning, per solve (regdae_damped_lsq)
         core%model%lsq = lsq
+        call resolve_auto_parameters(core, t0, z0, stat, msg)
+        if (stat /= regdae_success) then
+            call fail(stat, msg)
+            return
+        end if
         allocate (y0(m), zp0(n))
         call core%model%solve_multiplier(t0, y0, stat)
         if (stat /= regdae_success) then
@@ -556,10 +877,9 @@ contains
             return
         end if
         call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
-        ! the velocity check looks at the positions' velocities, z(nx+1:2nx), of order >= 2
-        call core%monitor%reset(opts%singular_threshold, opts%eps, merge(core%nx, 0, core%second_order), &
-                                opts%jump_tol, opts%drift_tol, opts%invariant_tol)
-        call core%monitor%sample(t0, core%model, z0, zp0)
+        call start_monitor(core, t0, z0, zp0)
+        core%t0 = t0
+        core%z0 = z0
         if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
             call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
                       '(override `invariant` of the second-order problem; first-order problems have none)')
@@ -583,7 +903,26 @@ contains
                 return
             end if
         end if
-        if (opts%integrator == integrator_dopri5) then
+        ! integrator=auto: dopri5 first (the eliminated formulation only), IDA created
+        ! when the stiffness test hands over
+        core%active = opts%integrator
+        core%events = ''
+        if (opts%integrator == integrator_auto) then
+            core%active = merge(integrator_dopri5, integrator_ida, core%formulation == formulation_eliminated)
+            ! Regularization layers far thinner than the automatic eps's (a user's eps below
+            ! 1/100 of it): the explicit method steps through them inaccurately, without an
+            ! alarm (doc/methods.md); IDA passes them
+            if (core%active == integrator_dopri5 .and. core%m > 0) then
+                if (core%model%eps < automatic_eps_factor(opts%rtol)*gb_scale(core%model)**2/100.0_wp) then
+                    core%active = integrator_ida
+                    call log_event(core, 't = '//format_real(t0)//': ida from the start (eps = '// &
+                                   format_real(core%model%eps)//' is below 1/100 of the automatic eps for this '// &
+                                   'rtol: layers too thin for the explicit method)')
+                end if
+            end if
+            core%switching = (core%active == integrator_dopri5)
+        end if
+        if (core%active == integrator_dopri5) then
             core%z_rk = z0
             call core%rk%start(core%model, t0, z0, opts%h_init, stat)
             if (stat /= regdae_success) then
@@ -608,6 +947,260 @@ contains
             call self%destroy()
         end subroutine fail
     end subroutine solver_start
+
+    ! The `auto` parameters of core%opts, from the problem at (t0, z0) (the model
+    ! evaluated there with provisional weights); the model gets them, and
+    ! core%opts holds them as numbers afterwards (singular_threshold stays auto:
+    ! the monitor's running rule). Each rule is in doc/methods.md.
+    !  - eps = s^2 rtol^2 within [1e-14, 1e-6] s^2, s = max_i (GB)_ii (the scale
+    !    of GB): the regularization error stays below the integration error, and
+    !    the layers stay wide enough (above 1e-14 s^2, about 45 u) to be passed on
+    !    the physical branch with moderate weights (measured: doc/methods.md).
+    !  - gamma = gamma1 = 20/T, gamma0 = gamma1^2/2, T the time scale at t0 (time_scale).
+    !  - drift_tol = 100 max_i |G_i| (rtol max|x0| + atol): 1000 times the constraint
+    !    violation that the tolerances on x allow.
+    subroutine resolve_auto_parameters(core, t0, z0, stat, msg)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t0, z0(:)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp) :: scale, t_scale, rate, y(core%m), zp(size(z0)), zc(size(z0)), kinetic, power
+        integer :: i, wstat
+        logical :: recoverable, weights_auto, work_check
+        stat = regdae_success
+        msg = ''
+        associate (opts => core%opts, model => core%model)
+            if (opts%eps == option_auto) then
+                scale = 0.0_wp
+                do i = 1, core%m
+                    scale = max(scale, abs(model%gb(i, i)))
+                end do
+                if (.not. (scale > 0.0_wp)) scale = maxval(sum(model%gx**2, dim=2), 1, mask=.true.)
+                if (.not. (scale > 0.0_wp)) scale = 1.0_wp
+                core%eps_factor = automatic_eps_factor(opts%rtol)
+                opts%eps = core%eps_factor*scale**2
+                model%eps = opts%eps
+            end if
+            if (opts%drift_tol == option_auto) then
+                core%drift_factor = drift_factor
+                opts%drift_tol = drift_factor*maxval(sqrt(sum(model%gx**2, dim=2)), 1, mask=.true.)* &
+                                 (opts%rtol*maxval(abs(z0(1:core%nx))) + opts%atol)
+                ! off without constraints, for first-order problems, and for order >= 3, whose
+                ! Taylor weights leave a constraint error O(taylor_h^2) by design (doc/methods.md)
+                if (core%m == 0 .or. .not. core%second_order .or. model%order >= 3) then
+                    opts%drift_tol = 0.0_wp
+                    core%drift_factor = 0.0_wp
+                end if
+            end if
+            weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
+            work_check = (resolved_work_tol(opts) > 0.0_wp .and. model%is_mechanical())
+            if (weights_auto .or. work_check) then
+                call model%solve_multiplier(t0, y, stat)
+                if (stat /= regdae_success) then
+                    msg = 'choosing the automatic parameters: the multiplier at t0 failed: '//model%message
+                    return
+                end if
+                call model%dynamics_slope(z0, y, zp)
+                t_scale = time_scale(core, t0, z0, zp)
+            end if
+            if (work_check) then
+                ! the work-energy check's floor of the energy scale: the kinetic energy of the
+                ! velocities that the accelerations at t0 reach in one time scale (a start
+                ! from rest has no energy of its own to compare the defect with)
+                zc = z0
+                zc(core%nx + 1:2*core%nx) = t_scale*zp(core%nx + 1:2*core%nx)
+                call model%work_sample(t0, zc, kinetic, power, wstat)
+                if (wstat == 0) core%work_floor = kinetic
+            end if
+            if (weights_auto) then
+                rate = 20.0_wp/t_scale
+                if (opts%gamma == option_auto) opts%gamma = rate
+                if (opts%gamma1 == option_auto) opts%gamma1 = rate
+                if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
+                if (model%order == 1) model%w = [opts%gamma]
+                if (model%order == 2) model%w = [opts%gamma0, opts%gamma1]
+                call model%evaluate(t0, z0, stat, recoverable)   ! r with the final weights
+            end if
+        end associate
+    end subroutine resolve_auto_parameters
+
+    ! The time scale of the motion at t0 from the state z0 and its slope zp:
+    ! T1 = rms(v)/rms(a) (problems of order 2: how long the velocity takes to
+    ! change), T2 = sqrt(l/rms(a)) (order 1: l/rms(x')), l the length over which
+    ! the constraint gradients turn, min_i |G_i| / |d G_i| along the motion (the
+    ! direction a or x' scaled to max-norm 1). T = min(T1, T2) over those defined,
+    ! 1 if none is (a problem at rest with linear constraints). Both are ratios of
+    ! lengths and times: unchanged by the length unit.
+    real(wp) function time_scale(core, t0, z0, zp) result(t_scale)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t0, z0(:), zp(:)
+        real(wp) :: x(core%nx), vel(core%nx), acc(core%nx), w(core%nx), gx0(core%m, core%nx), gx1(core%m, core%nx)
+        real(wp) :: d, ell, change, size_g
+        integer :: i, nx, stat
+        logical :: order2
+        nx = core%nx
+        order2 = core%second_order .and. size(z0) >= 2*nx
+        x = z0(1:nx)
+        if (order2) then
+            vel = z0(nx + 1:2*nx)
+            acc = zp(nx + 1:2*nx)
+            w = acc
+            if (.not. (maxval(abs(w)) > 0.0_wp)) w = vel
+        else
+            vel = zp(1:nx)
+            acc = 0.0_wp
+            w = vel
+        end if
+        ell = huge(1.0_wp)
+        if (core%m > 0 .and. maxval(abs(w)) > 0.0_wp) then
+            w = w/maxval(abs(w))
+            d = central_difference_step(maxval(abs(x)))
+            ! central differences: an even (second-order) change of G does not count
+            call core%model%position_jacobian(t0, x - d*w, gx0, stat)
+            if (stat == 0) call core%model%position_jacobian(t0, x + d*w, gx1, stat)
+            if (stat == 0) then
+                do i = 1, core%m
+                    change = norm2(gx1(i, :) - gx0(i, :))/(2.0_wp*d)
+                    size_g = 0.5_wp*norm2(gx1(i, :) + gx0(i, :))
+                    if (change*d > 1.0e3_wp*epsilon(1.0_wp)*size_g) ell = min(ell, size_g/change)
+                end do
+            end if
+        end if
+        t_scale = motion_time_scale(order2, vel, acc, ell)
+    contains
+        pure real(wp) function rms(a)
+            real(wp), intent(in) :: a(:)
+            rms = 0.0_wp
+            if (size(a) > 0) rms = norm2(a)/sqrt(real(size(a), wp))
+        end function rms
+    end function time_scale
+
+    ! T = min(T1, T2) of time_scale from the velocities, accelerations (order 2;
+    ! order 1: vel = x') and the constraint length ell (huge: none); 1 if neither.
+    pure real(wp) function motion_time_scale(order2, vel, acc, ell) result(t_scale)
+        logical, intent(in) :: order2
+        real(wp), intent(in) :: vel(:), acc(:), ell
+        real(wp) :: speed
+        t_scale = huge(1.0_wp)
+        if (order2 .and. rms(vel) > 0.0_wp .and. rms(acc) > 0.0_wp) t_scale = rms(vel)/rms(acc)
+        if (ell < huge(1.0_wp)) then
+            speed = merge(rms(acc), rms(vel), order2)
+            if (speed > 0.0_wp) then
+                if (order2) t_scale = min(t_scale, sqrt(ell/speed))
+                if (.not. order2) t_scale = min(t_scale, ell/speed)
+            end if
+        end if
+        if (.not. (t_scale < huge(1.0_wp) .and. t_scale > 0.0_wp)) t_scale = 1.0_wp
+    contains
+        pure real(wp) function rms(a)
+            real(wp), intent(in) :: a(:)
+            rms = 0.0_wp
+            if (size(a) > 0) rms = norm2(a)/sqrt(real(size(a), wp))
+        end function rms
+    end function motion_time_scale
+
+    ! The `auto` parameters for the augmented formulation (the rules of
+    ! resolve_auto_parameters with the sparse M and G): s = max_i sum_k G_ik^2 / M_kk
+    ! (the diagonal of GB with M's diagonal), the accelerations M_kk^-1 f_k of the
+    ! free motion, the constraint length from the sparse G along them.
+    subroutine resolve_augmented_parameters(core, sys, t0, q0, v0, stat, msg)
+        type(solver_core), intent(inout) :: core
+        type(augmented_system), intent(inout) :: sys
+        real(wp), intent(in) :: t0, q0(:), v0(:)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), w(sys%n), g0(sys%st%constraint%nnz()), &
+                    g1(sys%st%constraint%nnz()), scale, row, d, ell, change, size_g, rate, gmax, t_scale, kinetic, &
+                    power, y_zero(sys%m)
+        integer :: i, k, ustat
+        logical :: recoverable, weights_auto, work_check
+        stat = 0
+        msg = ''
+        associate (opts => core%opts, mp => sys%st%mass, gp => sys%st%constraint)
+            ustat = 0
+            call sys%problem%mass_values(t0, q0, mp, sys%mvals, ustat)
+            if (failed('mass_values')) return
+            call sys%problem%constraint_jacobian_values(t0, q0, gp, g0, ustat)
+            if (failed('constraint_jacobian_values')) return
+            call sys%problem%forces(t0, q0, v0, f, ustat)
+            if (failed('forces')) return
+            mdiag = 1.0_wp
+            do i = 1, sys%n
+                k = mp%position(i, i)
+                if (k > 0) mdiag(i) = sys%mvals(k)
+            end do
+            if (.not. all(mdiag > 0.0_wp)) mdiag = 1.0_wp
+            scale = 0.0_wp
+            gmax = 0.0_wp
+            do i = 1, sys%m
+                row = 0.0_wp
+                do k = gp%row_start(i), gp%row_start(i + 1) - 1
+                    row = row + g0(k)**2/mdiag(gp%cols(k))
+                end do
+                scale = max(scale, row)
+                gmax = max(gmax, norm2(g0(gp%row_start(i):gp%row_start(i + 1) - 1)))
+            end do
+            if (.not. (scale > 0.0_wp)) scale = 1.0_wp
+            if (opts%eps == option_auto) then
+                core%eps_factor = automatic_eps_factor(opts%rtol)
+                opts%eps = core%eps_factor*scale**2
+            end if
+            if (opts%drift_tol == option_auto) then
+                core%drift_factor = drift_factor
+                opts%drift_tol = drift_factor*gmax*(opts%rtol*maxval(abs(q0)) + opts%atol)
+            end if
+            weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
+            work_check = resolved_work_tol(opts) > 0.0_wp
+            if (weights_auto .or. work_check) then
+                acc = f/mdiag
+                w = acc
+                if (.not. (maxval(abs(w)) > 0.0_wp)) w = v0
+                ell = huge(1.0_wp)
+                if (sys%m > 0 .and. maxval(abs(w)) > 0.0_wp) then
+                    w = w/maxval(abs(w))
+                    d = central_difference_step(maxval(abs(q0)))
+                    call sys%problem%constraint_jacobian_values(t0, q0 - d*w, gp, g0, stat)
+                    if (stat == 0) call sys%problem%constraint_jacobian_values(t0, q0 + d*w, gp, g1, stat)
+                    if (stat == 0) then
+                        do i = 1, sys%m
+                            associate (a => gp%row_start(i), b => gp%row_start(i + 1) - 1)
+                                change = norm2(g1(a:b) - g0(a:b))/(2.0_wp*d)
+                                size_g = 0.5_wp*norm2(g1(a:b) + g0(a:b))
+                                if (change*d > 1.0e3_wp*epsilon(1.0_wp)*size_g) ell = min(ell, size_g/change)
+                            end associate
+                        end do
+                    end if
+                    stat = 0
+                end if
+                t_scale = motion_time_scale(.true., v0, acc, ell)
+                rate = 20.0_wp/t_scale
+                if (opts%gamma == option_auto) opts%gamma = rate
+                if (opts%gamma1 == option_auto) opts%gamma1 = rate
+                if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
+                if (work_check) then   ! the floor of the work check's energy scale (as above)
+                    y_zero = 0.0_wp
+                    call kinetic_energy_and_power(sys%problem, t0, q0, t_scale*acc, y_zero, kinetic, power, &
+                                                  ustat, sys%st%mass)
+                    if (ustat == 0) core%work_floor = kinetic
+                end if
+            end if
+            sys%eps = opts%eps
+            if (opts%index == 3) then
+                sys%gamma0 = opts%gamma0
+                sys%gamma1 = opts%gamma1
+            else
+                sys%gamma0 = 0.0_wp
+                sys%gamma1 = opts%gamma
+            end if
+        end associate
+    contains
+        ! A user routine returned ustat /= 0 at t0: stat and msg say which and what.
+        logical function failed(name)
+            character(len=*), intent(in) :: name
+            failed = (ustat /= 0)
+            if (failed) call user_routine_failure(ustat, name, t0, stat, msg, recoverable)
+        end function failed
+    end subroutine resolve_augmented_parameters
 
     ! Can an integrator take a first step from (t0, z0) with slope zp0? The
     ! step that keeps the local error near the tolerance is about 1/|zp0|_w,
@@ -691,9 +1284,8 @@ contains
         integer, intent(out) :: stat      !! regdae status code
         real(wp), intent(out), optional :: v(:)   !! second-order problems: v(tout), length n
         type(solver_core), pointer :: core
-        real(c_double), pointer :: u(:), up(:)
-        real(wp) :: tret
-        integer :: ierr
+        real(c_double), pointer :: u(:)
+        character(len=:), allocatable :: msg
         logical :: recoverable
         integer :: nx
 
@@ -743,43 +1335,42 @@ contains
                       ' (4 epsilon max(|t0|, |tout|), at least sqrt(tiny) = 1.5E-154)')
             return
         end if
-        if (core%opts%integrator == integrator_dopri5) then
-            u => core%z_rk
-            if (tout > core%t) then
-                call core%rk%advance(core%model, tout, core%opts%rtol, core%opts%atol, core%opts%h_max, &
-                                     core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat, core%monitor)
-                if (stat /= regdae_success) then
-                    core%t = core%rk%t
-                    call copy_state()
-                    if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
-                    call fail(stat, core%rk%message)
-                    return
+        if (tout > core%t) then
+            ! The active integrator to tout; with integrator=auto the explicit one hands
+            ! over to IDA where the system is stiff, and IDA back where it is not.
+            do
+                if (core%active == integrator_dopri5) then
+                    u => core%z_rk
+                    call core%rk%advance(core%model, tout, core%opts%rtol, core%opts%atol, core%opts%h_max, &
+                                         core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat, &
+                                         core%monitor, stop_when_stiff=core%switching)
+                    if (stat /= regdae_success) then
+                        core%t = core%rk%t
+                        call copy_state()
+                        if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
+                        call fail(stat, core%rk%message)
+                        return
+                    end if
+                    if (core%monitor%alarm) exit
+                    if (.not. core%rk%stiff_detected) exit   ! at tout
+                    call switch_to_ida(core, stat, msg)
+                    if (stat /= regdae_success) then
+                        call fail(stat, msg)
+                        return
+                    end if
+                else
+                    u => core%ida%state()
+                    if (ida_to(tout)) return
+                    if (core%active == integrator_ida) exit   ! at tout, else switched to dopri5
                 end if
-                core%t = tout
-                core%started = .true.
-            end if
+            end do
+            core%t = tout
+            core%started = .true.
+        end if
+        if (core%active == integrator_dopri5) then
+            u => core%z_rk
         else
             u => core%ida%state()
-            if (tout > core%t) then
-                tret = core%t
-                call core%ida%solve(tout, core%opts%stop_at_output, tret, ierr)
-                if (ierr < 0) then
-                    core%t = tret
-                    call copy_state()
-                    if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
-                    call fail(core%ida%failure_status(), 'IDA failed at t = '//format_real(tret)//' (flag '// &
-                              format_int(ierr)//'): '//core%ida%ida_message// &
-                              merge_text(' | last residual failure: ', core%ida%pending_message))
-                    return
-                end if
-                if (tret /= tout) then
-                    call fail(regdae_err_integration, 'IDA returned at t = '//format_real(tret)// &
-                              ' instead of the requested '//format_real(tout))
-                    return
-                end if
-                core%t = tout
-                core%started = .true.
-            end if
         end if
         self%t = core%t
         call copy_state()
@@ -789,19 +1380,15 @@ contains
                 call augmented_unpack(y=core%y_work)
                 y = core%multiplier_sign*core%y_work
             end if
-            call sample_augmented(core, tout)
-            if (branch_alarm()) return
             call self%record(regdae_success, '', stat)
             return
         end if
-        ! With dopri5 the diagnostics come from the accepted steps (rk%advance
-        ! samples them); the multiplier is then computed only when asked for.
-        if (core%opts%integrator == integrator_dopri5) then
-            if (branch_alarm()) return
-            if (.not. present(y)) then
-                call self%record(regdae_success, '', stat)
-                return
-            end if
+        ! The diagnostics come from the accepted steps (IDA's and dopri5's); the
+        ! multiplier is computed only when asked for.
+        if (branch_alarm()) return
+        if (.not. present(y)) then
+            call self%record(regdae_success, '', stat)
+            return
         end if
         ! The multiplier at an output time comes from the regularized equation, not
         ! from IDA's interpolant.
@@ -816,13 +1403,65 @@ contains
             return
         end if
         if (present(y)) y = core%multiplier_sign*core%y_work
-        if (core%opts%integrator /= integrator_dopri5) then
-            up => core%ida%slope()   ! IDA's z'(tout): the slope it integrated
-            call core%monitor%sample(tout, core%model, u(1:core%n), up(1:core%n))
-            if (branch_alarm()) return
-        end if
         call self%record(regdae_success, '', stat)
     contains
+        ! IDA one step at a time (the same steps as IDA_NORMAL) to tout, the monitor
+        ! sampling every accepted step's end and the output times, in time order;
+        ! IDA's interpolant gives the state at tout. With switching, every 20 steps
+        ! whether the explicit method would do (explicit_would_do); true: stopped
+        ! (failure or alarm, recorded).
+        logical function ida_to(t_out) result(stopped)
+            real(wp), intent(in) :: t_out
+            real(wp) :: t_now
+            integer :: ierr, taken
+            stopped = .true.
+            t_now = core%ida%current_time()
+            if (t_now > core%sampled_t .and. t_now <= t_out) then   ! a step end passed over at the last output
+                call core%ida%interpolate(t_now, ierr)
+                if (sample_or_stop(t_now)) return
+            end if
+            taken = 0
+            do while (t_now < t_out)
+                if (taken >= core%opts%max_steps) then
+                    core%t = t_now
+                    call copy_state()
+                    call fail(regdae_err_integration, 'IDA took max_steps = '//format_int(core%opts%max_steps)// &
+                              ' steps without reaching tout = '//format_real(t_out)//' (t = '//format_real(t_now)//')')
+                    return
+                end if
+                call core%ida%step(t_out, core%opts%stop_at_output, t_now, ierr)
+                if (ierr < 0) then
+                    core%t = t_now
+                    call copy_state()
+                    if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
+                    call fail(core%ida%failure_status(), 'IDA failed at t = '//format_real(t_now)//' (flag '// &
+                              format_int(ierr)//'): '//core%ida%ida_message// &
+                              merge_text(' | last residual failure: ', core%ida%pending_message))
+                    return
+                end if
+                taken = taken + 1
+                if (t_now <= t_out) then
+                    if (sample_or_stop(t_now)) return
+                end if
+                if (core%switching .and. t_now < t_out .and. mod(taken, 20) == 0) then
+                    if (explicit_would_do(core, t_now)) then
+                        call switch_to_dopri5(core, t_now)
+                        stopped = .false.
+                        return
+                    end if
+                end if
+            end do
+            if (t_now > t_out) then
+                call core%ida%interpolate(t_out, ierr)
+                if (ierr /= 0) then
+                    call fail(regdae_err_integration, 'IDA could not interpolate at t = '//format_real(t_out))
+                    return
+                end if
+                if (sample_or_stop(t_out)) return
+            end if
+            stopped = .false.
+        end function ida_to
+
         subroutine copy_state()
             if (core%augmented) then
                 call augmented_unpack(q=x)
@@ -848,6 +1487,18 @@ contains
             if (associated(core)) self%t = core%t
         end subroutine fail
 
+        ! Sample IDA's current state at t; if a check fires, stop there (true).
+        logical function sample_or_stop(t)
+            real(wp), intent(in) :: t
+            sample_or_stop = .false.
+            call sample_step(core, t)
+            core%sampled_t = t
+            if (.not. core%monitor%alarm) return
+            core%t = t
+            call copy_state()
+            sample_or_stop = branch_alarm()
+        end function sample_or_stop
+
         ! The monitor saw the velocity jump across a singular interval, or the
         ! position constraint drift: stop.
         logical function branch_alarm()
@@ -857,17 +1508,38 @@ contains
             if (core%monitor%alarm_kind == alarm_jump) then
                 call fail(regdae_err_branch, core%monitor%alarm_message// &
                           ': the solution probably changed branch there; x(tout) is returned but not trustworthy '// &
-                          '(a smaller rtol or eps, or index=3, may help)')
+                          '(a smaller rtol or eps'//trim(merge(', or index=3,', '             ', index2()))// &
+                          ' may help; jump_tol=0 turns this check off, at the risk of a run that leaves the '// &
+                          'physical branch with status ok)')
+            else if (core%monitor%alarm_kind == alarm_work) then
+                call fail(regdae_err_work, core%monitor%alarm_message// &
+                          ': x is returned but not trustworthy (the constraint forces did work: a drift, a '// &
+                          'branch change or too stiff a regularization; a smaller rtol or smaller Baumgarte '// &
+                          'weights may help; work_tol=0 turns this check off, at the risk of a wrong answer '// &
+                          'with status ok)')
             else if (core%monitor%alarm_kind == alarm_invariant) then
                 call fail(regdae_err_invariant, core%monitor%alarm_message// &
                           ': x(tout) is returned but not trustworthy (a smaller rtol, or smaller Baumgarte weights, '// &
-                          'may help)')
+                          'may help; invariant_tol=0 turns this check off)')
+            else if (.not. core%opts%curvature .and. .not. index2()) then
+                call fail(regdae_err_drift, core%monitor%alarm_message// &
+                          ': x(tout) is returned but not trustworthy (with curvature=no the constraint error '// &
+                          'has a floor of about |g_xx(v, v)|/gamma0 whatever the tolerance: curvature=yes '// &
+                          'removes it; drift_tol=0 turns this check off, at the risk of positions that violate '// &
+                          'the constraint with status ok)')
             else
                 call fail(regdae_err_drift, core%monitor%alarm_message// &
-                          ': x(tout) is returned but not trustworthy (index=3, a larger gamma or a smaller rtol '// &
-                          'may help)')
+                          ': x(tout) is returned but not trustworthy (a smaller rtol'// &
+                          trim(merge(', index=3,', '          ', index2()))//' or a larger gamma may help; '// &
+                          'drift_tol=0 turns this check off, at the risk of positions that violate the '// &
+                          'constraint with status ok)')
             end if
         end function branch_alarm
+
+        ! The problem is integrated at index 2 (the constraint on velocities only).
+        logical function index2()
+            index2 = core%second_order .and. core%opts%index == 2
+        end function index2
     end subroutine solver_advance
 
     function solver_statistics(self) result(st)
@@ -876,7 +1548,22 @@ contains
 
         st%t = self%t
         if (.not. associated(self%core)) return
-        if (self%core%opts%integrator == integrator_dopri5) then
+        st%switches = self%core%switches
+        if (self%core%switching .or. self%core%switches > 0) then   ! integrator=auto: both integrators' counts
+            call self%core%ida%get_statistics(st)
+            st%steps = st%steps + self%core%rk%steps
+            st%res_evals = st%res_evals + self%core%rk%evals
+            st%err_test_fails = st%err_test_fails + self%core%rk%rejects
+            if (self%core%active == integrator_dopri5) st%h_last = self%core%rk%h_last
+            st%singular_passes = self%core%monitor%n_singular
+            st%sigma_min = self%core%monitor%sigma_min
+            st%velocity_jump = self%core%monitor%jump_max
+            st%max_drift = self%core%monitor%drift_max
+            st%invariant_change = self%core%monitor%invariant_change
+            st%work_defect = self%core%monitor%work_defect
+            return
+        end if
+        if (self%core%active == integrator_dopri5) then
             st%steps = self%core%rk%steps
             st%res_evals = self%core%rk%evals
             st%err_test_fails = self%core%rk%rejects
@@ -886,6 +1573,7 @@ contains
             st%velocity_jump = self%core%monitor%jump_max
             st%max_drift = self%core%monitor%drift_max
             st%invariant_change = self%core%monitor%invariant_change
+            st%work_defect = self%core%monitor%work_defect
             return
         end if
         call self%core%ida%get_statistics(st)
@@ -894,6 +1582,7 @@ contains
         st%velocity_jump = self%core%monitor%jump_max
         st%max_drift = self%core%monitor%drift_max
         st%invariant_change = self%core%monitor%invariant_change
+        st%work_defect = self%core%monitor%work_defect
     end function solver_statistics
 
     function solver_message(self) result(msg)
@@ -905,6 +1594,21 @@ contains
             msg = status_message(self%last_stat)
         end if
     end function solver_message
+
+    function solver_events(self) result(text)
+        class(regdae_solver), intent(in) :: self
+        character(len=:), allocatable :: text
+        text = ''
+        if (associated(self%core)) then
+            if (allocated(self%core%events)) text = self%core%events
+        end if
+    end function solver_events
+
+    function solver_options_in_force(self) result(opts)
+        class(regdae_solver), intent(in) :: self
+        type(solver_options) :: opts
+        if (associated(self%core)) opts = self%core%opts
+    end function solver_options_in_force
 
     integer function solver_formulation(self)
         class(regdae_solver), intent(in) :: self

@@ -26,6 +26,7 @@ module regdae_status
     integer, parameter, public :: regdae_err_invariant = -114        !! the problem's invariant changed beyond invariant_tol
     integer, parameter, public :: regdae_err_structure = -115        !! a matrix has an entry outside its declared pattern
     integer, parameter, public :: regdae_err_jacobian = -116         !! a Jacobian disagrees with difference quotients
+    integer, parameter, public :: regdae_err_work = -117             !! the work-energy balance of a mechanical problem failed
 
     public :: status_message
 
@@ -71,6 +72,8 @@ contains
             msg = 'the invariant of the problem changed beyond invariant_tol'
         case (regdae_err_structure)
             msg = 'a matrix has a nonzero entry outside the sparsity pattern the problem declared'
+        case (regdae_err_work)
+            msg = 'the work-energy balance failed: the constraint forces did work (energy gained or lost)'
         case (regdae_err_jacobian)
             msg = 'a Jacobian (user G, or the Newton matrix from the declared patterns) disagrees with difference quotients'
         case default

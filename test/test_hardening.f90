@@ -79,7 +79,7 @@ contains
         call set_option(opts, 'eps', '1-3', stat, msg)
         call chk%equal(stat, regdae_err_bad_input, 'eps=1-3 refused')
         call chk%true(index(msg, '"eps"') > 0 .and. index(msg, '1-3') > 0, 'message names the key and the value')
-        call chk%true(opts%eps == 1.0e-6_wp, 'eps unchanged (its default)')
+        call chk%true(opts%eps == option_auto, 'eps unchanged (its default, auto)')
         call set_option(opts, 'max_steps', '1e5', stat, msg)
         call chk%equal(stat, regdae_err_bad_input, 'max_steps=1e5 refused (an integer)')
         call set_option(opts, 'max_steps', '99999999999', stat, msg)
@@ -145,7 +145,7 @@ contains
                 call chk%true(st%steps < 1000 .and. st%res_evals < 5000, 'stops early'//what)
                 call chk%close(st%t, -0.5_wp, 1.0e-6_wp, 'stuck at t = -0.5'//what)
                 if (integrator == integrator_ida) &
-                    call chk%true(index(solver%message(), 'cannot get past t = -5.0') > 0, 'message says where'//what)
+                    call chk%true(index(solver%message(), 't = -5.0') > 0, 'message says where'//what)
             end do
         end do
         call solver%destroy()

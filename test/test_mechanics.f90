@@ -299,6 +299,9 @@ contains
         opts%index = 2
         opts%gamma = 10.0_wp
         opts%eps = 1.0e-2_wp
+        opts%jump_tol = 0.0_wp   ! only the drift check: the jump and work checks would fire first
+        opts%work_tol = 0.0_wp
+        opts%drift_tol = 1.0e-2_wp
         call run_crank(opts, stat, dev, solver)
         call chk%equal(stat, regdae_err_drift, 'index 2 drift stopped')
         call chk%true(index(solver%message(), 'drift_tol') > 0, 'message names drift_tol')

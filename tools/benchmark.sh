@@ -1,8 +1,10 @@
 #!/bin/sh
-# Issue 5's benchmark and stability grid and issue 10's chain: build (Release), run drivers/bench,
-# drivers/stability and drivers/report/chain_bench.sh (the chain driver from 2 to 1024 links, its
-# slider variant, the stiff chain against the plain IDA peer), and regenerate doc/performance.md
-# with its PNGs (doc/figures/perf_*.png). About 5 minutes on a 2-core machine.
+# Issue 5's benchmark and stability grid, issue 10's chain and issue 11's defaults: build (Release),
+# run drivers/bench, drivers/stability (the tuned grid, the default-options grid, the starts near
+# the singular configuration, the chain with sliders) and drivers/report/chain_bench.sh (the chain
+# driver from 2 to 1024 links, its slider variant, the stiff chain against the plain IDA peer, the
+# small stiff chain's automatic switch), and regenerate doc/performance.md with its PNGs
+# (doc/figures/perf_*.png). About 6 minutes on a 2-core machine.
 # Usage: tools/benchmark.sh [--reuse]   (--reuse: redraw from the raw outputs of the last run,
 #        kept in build/benchmark/)
 set -eu
@@ -18,6 +20,13 @@ mkdir -p "$raw"
 if [ "${1:-}" != "--reuse" ]; then
     build/bin/bench reps=5 >"$raw/bench.txt.new" && mv "$raw/bench.txt.new" "$raw/bench.txt"
     build/bin/stability >"$raw/stability.txt.new" && mv "$raw/stability.txt.new" "$raw/stability.txt"
+    # issue 11: the same grid with every other option at its default, and the extended grid
+    build/bin/stability defaults=yes >"$raw/stability_defaults.txt.new" &&
+        mv "$raw/stability_defaults.txt.new" "$raw/stability_defaults.txt"
+    {
+        build/bin/stability problem=crank_near
+        build/bin/stability problem=chain_slider
+    } >"$raw/stability_extended.txt.new" && mv "$raw/stability_extended.txt.new" "$raw/stability_extended.txt"
     # The same crank cells without regdae's checks (jump, drift, invariant): what they catch.
     # (Index 3 at rtol 1e-3 and 1e-5 only: the tighter tolerances are the grid's slow part.)
     {
@@ -27,7 +36,8 @@ if [ "${1:-}" != "--reuse" ]; then
     } | grep -v -e '^#' -e '^summary' >"$raw/unchecked.txt.new" && mv "$raw/unchecked.txt.new" "$raw/unchecked.txt"
     sh drivers/report/chain_bench.sh run build/bin "$raw"   # chain.txt, chain_slider.txt, chain_stiff.txt
 fi
-cp "$raw/bench.txt" "$raw/stability.txt" "$raw/unchecked.txt" "$tmp/"
+cp "$raw/bench.txt" "$raw/stability.txt" "$raw/unchecked.txt" "$raw/stability_defaults.txt" \
+    "$raw/stability_extended.txt" "$tmp/"
 # Issue 10's sections (perf_chain_*.png, perf_stiff_chain.png, the target rows in chain_targets.md).
 sh drivers/report/chain_bench.sh report "$raw" "$tmp" >"$tmp/chain_sections.md"
 
@@ -62,51 +72,51 @@ plot_wp singular_mass "Singular mass matrix (4.11), 501 outputs: work-precision"
 plot_wp linear "Linear family (section 3), trust region, eliminated: work-precision" 'trust_region eliminated' 'linear_.*'
 
 # Stability heat maps: class per (gamma, eps) cell, one panel per rtol.
-heat() {   # heat PROBLEM
+heat() {   # heat PROBLEM FILE NAME TITLE: doc/figures/perf_NAME.png from the grid's rows of PROBLEM in FILE
     for r in 1.0000E-03 1.0000E-05 1.0000E-07 1.0000E-10; do
         awk -v p="$1" -v r="$r" '$1 == p && $4 == r {
-            e = ($3 + 0 == 0) ? -16 : log($3) / log(10); c = ($6 == "ok") ? 0 : (($6 == "failed") ? 1 : 2)
-            print log($2) / log(10), e, c }' "$tmp/stability.txt" >"$tmp/heat_$1_$r.dat"
+            e = ($3 + 0 == 0) ? -16 : log($3) / log(10)
+            c = ($6 == "ok") ? 0 : (($6 == "failed") ? 1 : (($6 == "silent") ? 2 : 3))
+            print log($2) / log(10), e, c }' "$2" >"$tmp/heat_$3_$r.dat"
     done
     gnuplot <<GP
 set terminal png noenhanced size 1000,300
-set output '$tmp/perf_stability_$1.png'
-set multiplot layout 1,4 title "$1 (trust region): ok (green), failed (orange), silent (red); eps = 0 drawn at -16"
-set palette defined (0 '#2ca02c', 1 '#ff7f0e', 2 '#d62728'); set cbrange [0:2]; unset colorbox
+set output '$tmp/perf_$3.png'
+set multiplot layout 1,4 title "$4: ok (green), failed (orange), silent (red), false alarm (blue); eps = 0 drawn at -16"
+set palette defined (0 '#2ca02c', 1 '#ff7f0e', 2 '#d62728', 3 '#1f77b4'); set cbrange [0:3]; unset colorbox
 set xlabel 'log10 gamma'; set ylabel 'log10 eps'; set xrange [0.5:8.5]; set yrange [-17:-1]
 do for [r in "1.0000E-03 1.0000E-05 1.0000E-07 1.0000E-10"] {
     set title 'rtol = '.r
-    plot sprintf('$tmp/heat_$1_%s.dat', r) using 1:2:3 with points pt 5 ps 2.5 palette notitle
+    plot sprintf('$tmp/heat_$3_%s.dat', r) using 1:2:3 with points pt 5 ps 2.5 palette notitle
 }
 unset multiplot
 GP
 }
-for p in ex51 crank2 crank3; do heat $p; done
+for p in ex51 crank2 crank3; do
+    heat $p "$tmp/stability.txt" "stability_$p" "$p (trust region, tuned options)"
+    heat $p "$tmp/stability_defaults.txt" "stability_defaults_$p" "$p (trust region, default options)"
+done
 
 # Seconds at matched accuracy (log-log interpolation of seconds against error on both
 # curves), regdae's crank3 CONFIG over the oracle ORACLE.
-ratio_rows() {   # ratio_rows CONFIG ORACLE: lines 'k regdae_seconds oracle_seconds' (-1: not reached)
+ratio_rows() {   # ratio_rows CONFIG ORACLE [FROM TO]: lines 'k regdae_seconds oracle_seconds' (-1: not reached)
     # rows 'rtol err seconds' of each curve, in decreasing rtol (the bench appends finer tolerances later)
     awk -F'"' -v c="$1" '$2 == c && $1 ~ /^crank3 / { split($3, a, " "); if (a[7] == "ok") print a[1], a[2], a[3] }' \
         "$tmp/bench.txt" | sort -g -r >"$tmp/ratio_a.txt"
     awk -F'"' -v c="$2" '$2 == c && $1 ~ /^crank_oracle / { split($3, a, " "); print a[1], a[2], a[3] }' \
         "$tmp/bench.txt" | sort -g -r >"$tmp/ratio_b.txt"
-    awk -v from=2 -v to=8 -f "$matched" \
+    awk -v from="${3:-2}" -v to="${4:-8}" -f "$matched" \
         "$tmp/ratio_a.txt" "$tmp/ratio_b.txt"
 }
 ratio_table() {   # ratio_table CONFIG ORACLE LABEL
-    echo "| accuracy | regdae \`$1\` (s) | $3 (s) | ratio |"
-    echo "|---|---|---|---|"
-    ratio_rows "$1" "$2" | awk '{
-        if ($2 > 0 && $3 > 0) printf "| 1e-%d | %.2e | %.2e | %.1f |\n", $1, $2, $3, $2 / $3
-        else printf "| 1e-%d | %s | %s | - |\n", $1, ($2 > 0 ? sprintf("%.2e", $2) : "not reached"), ($3 > 0 ? sprintf("%.2e", $3) : "not reached") }'
+    ratio_rows "$1" "$2" | awk -v left="regdae \`$1\` (s)" -v right="$3 (s)" -v fmt=%.1f -f tools/matched_table.awk
 }
 best_rk="trust_region eps=1e-14 dopri5 gamma1=20"
 best_ida="trust_region eps=1e-12"
 ratio4=$(ratio_rows "$best_rk" "dopri5 reduced ODE, paired: $best_rk" | awk '$1 == 4 && $2 > 0 && $3 > 0 { printf "%.1f", $2 / $3 }')
 best_err=$(awk -F'"' '$1 ~ /^crank3 / { split($3, a, " "); if (a[7] == "ok") print a[2] }' "$tmp/bench.txt" | sort -g | head -n 1)
 best_row=$(awk -F'"' -v e="$best_err" '$1 ~ /^crank3 / { split($3, a, " "); if (a[7] == "ok" && a[2] == e) { print "`" $2 "` at rtol " a[1]; exit } }' "$tmp/bench.txt")
-silent=$(tail -n 1 "$tmp/stability.txt" | sed 's/.*silent=//')
+silent=$(tail -n 1 "$tmp/stability.txt" | sed 's/.*silent=\([0-9]*\).*/\1/')
 unchecked_silent=$(awk '$6 == "silent"' "$tmp/unchecked.txt" | wc -l | tr -d ' ')
 unchecked_cells=$(wc -l <"$tmp/unchecked.txt" | tr -d ' ')
 verdict() {   # verdict CONDITION: met / not met
@@ -160,6 +170,38 @@ path_ratio() {   # path_ratio REGDAE_CONFIG ORACLE_CONFIG
 ida_path_steps=$(path_ratio "$best_ida" "ida_bdf reduced ODE")
 rk_path_steps=$(path_ratio "$best_rk" "dopri5 reduced ODE")
 
+# Issue 11: the default-options grid, the extended grid, the slider crank with the defaults.
+classes() {   # classes FILE [PROBLEM]: 'cells ok failed silent false_alarm'
+    awk -v p="${2:-}" '$1 !~ /^(#|summary)/ && (p == "" || $1 == p) { t++; n[$6]++ }
+        END { printf "%d %d %d %d %d\n", t, n["ok"], n["failed"], n["silent"], n["false_alarm"] }' "$1"
+}
+# shellcheck disable=SC2046
+set -- $(classes "$tmp/stability_defaults.txt")
+d_cells=$1 d_ok=$2 d_failed=$3 d_silent=$4 d_fa=$5
+d_fa_pct=$(awk -v a="$d_fa" -v b="$d_ok" 'BEGIN { if (a + b > 0) printf "%.1f", 100 * a / (a + b); else print "?" }')
+v_dgrid=$(awk -v s="$d_silent" -v p="$d_fa_pct" 'BEGIN { print (s == 0 && p != "?" && p + 0 <= 5) ? 1 : 0 }')
+# shellcheck disable=SC2046
+set -- $(classes "$tmp/stability_extended.txt" crank_near)
+n_cells=$1 n_ok=$2 n_failed=$3 n_silent=$4 n_fa=$5
+# shellcheck disable=SC2046
+set -- $(classes "$tmp/stability_extended.txt" chain_slider)
+c_cells=$1 c_ok=$2 c_failed=$3 c_silent=$4 c_fa=$5
+v_ext=$([ "$n_silent" = 0 ] && [ "$n_fa" = 0 ] && [ "$c_silent" = 0 ] && [ "$c_fa" = 0 ] && echo 1 || echo 0)
+# the defaults row and its paired oracle at the decades 1e-4 ... 1e-10: 'rtol err seconds status oracle_err oracle_seconds'
+awk -F'"' '
+    $2 == "defaults" && $1 ~ /^crank3 / { split($3, a, " "); e[a[1]] = a[2]; s[a[1]] = a[3]; st[a[1]] = a[7] }
+    $2 == "dopri5 reduced ODE, paired: defaults" && $1 ~ /^crank_oracle / { split($3, a, " "); oe[a[1]] = a[2]; os[a[1]] = a[3] }
+    END { for (k = 4; k <= 10; k++) { r = sprintf("%.4E", 10 ^ (-k)); if (r in e) print r, e[r], s[r], st[r], oe[r], os[r] } }' \
+    "$tmp/bench.txt" >"$tmp/defaults_rows.txt"
+err_ratio_max=$(awk '$4 == "ok" && $5 > 0 { r = $2 / $5; if (r > m) m = r; n++ } END { if (n) printf "%.1f", m; else print "?" }' "$tmp/defaults_rows.txt")
+defaults_bad=$(awk '$4 != "ok"' "$tmp/defaults_rows.txt" | wc -l | tr -d ' ')
+defaults_n=$(wc -l <"$tmp/defaults_rows.txt" | tr -d ' ')
+ratio_rows "defaults" "dopri5 reduced ODE, paired: defaults" 2 10 >"$tmp/defaults_time.txt"
+time_ratio_max=$(awk '$2 > 0 && $3 > 0 { r = $2 / $3; if (r > m) m = r; n++ } END { if (n) printf "%.1f", m; else print "?" }' "$tmp/defaults_time.txt")
+time_ratio_range=$(awk '$2 > 0 && $3 > 0 { l = l (l == "" ? "" : ", ") "1e-" $1 ": " sprintf("%.1f", $2 / $3) } END { print l }' "$tmp/defaults_time.txt")
+v_derr=$(awk -v r="$err_ratio_max" -v b="$defaults_bad" -v n="$defaults_n" 'BEGIN { print (r != "?" && r + 0 <= 3 && b == 0 && n == 7) ? 1 : 0 }')
+v_dtime=$(awk -v r="$time_ratio_max" 'BEGIN { print (r != "?" && r + 0 <= 10) ? 1 : 0 }')
+
 {
 cat <<TXT
 # Performance: error against run time, and the stability grid
@@ -187,6 +229,17 @@ $(cat "$tmp/chain_targets.md")
 | slider crank, index 3, regdae's IDA path: max theta error 1e-4 at most 10x the explicit oracle's time | ${ida4:-not reached}x (\`$best_ida\`, paired runs) | $(verdict "$v_ida4") |
 | the same at 1e-6: at most 20x | ${ida6:-not reached}x | $(verdict "$v_ida6") |
 | the same: 1e-8 reachable | ${ida_err} (rtol ${ida_err_rtol}) | $(verdict "$v_ida8") |
+
+Issue 11's targets, from this run (every option at its default unless stated; section
+[Right by default](#right-by-default-the-default-options-grid)):
+
+| target | measured | |
+|---|---|---|
+| stability grid with its gamma, eps and rtol and every other option at its default (no invariant): 0 silent cells, false alarms at most 5% of the cells within the bound | ${d_silent} silent, ${d_fa} false alarms of the $((d_ok + d_fa)) cells within the bound (${d_fa_pct}%); ${d_cells} cells: ${d_ok} ok, ${d_failed} failed | $(verdict "$v_dgrid") |
+| the grid extended by starts near the singular configuration with initial speed and by the chain with sliders (N = 2 ... 128): 0 silent, 0 false alarms | starts near (0, pi): ${n_cells} cells, ${n_ok} ok, ${n_failed} failed, ${n_silent} silent, ${n_fa} false alarms; chain with sliders: ${c_cells} cells, ${c_ok} ok, ${c_failed} failed, ${c_silent} silent, ${c_fa} false alarms | $(verdict "$v_ext") |
+| slider crank, defaults but rtol = atol, rtol 1e-4 ... 1e-10: max theta error at most 3x the explicit oracle's at the same rtol | at most ${err_ratio_max}x ($((defaults_n - defaults_bad)) of ${defaults_n} rtols status ok) | $(verdict "$v_derr") |
+| the same: run time at most 10x the oracle's at the same accuracy | at most ${time_ratio_max}x (${time_ratio_range}) | $(verdict "$v_dtime") |
+$(cat "$tmp/switch_targets.md")
 
 ## Work-precision
 
@@ -318,7 +371,13 @@ larger factors at the tight end), its explicit path ${rk_path_steps}x those of D
 step count is mostly BDF's, not the regularization's: a variable-order multistep method of order
 at most 5 with its error constants, against a one-step method of order 5. What each step costs on top is the second factor in the
 IDA path's ratio to the oracle (the issue-10 rows above: ${ida4:-?}x at 1e-4, ${ida6:-?}x at 1e-6):
-a Newton iteration on the regularized system and, now and then, a Jacobian.
+a Newton iteration on the regularized system and, now and then, a Jacobian. Since issue 11 also
+the monitor's sample at the end of every IDA step (one evaluation of the problem's functions, GB
+and sigma_min(GB), for the singular passes and the checks; IDA runs one step at a time for it):
+`ex52 integrator=ida gamma1=2e3 gamma0=2e6 eps=1e-12 rtol=1e-6 atol=1e-6 stop_at_output=no`
+takes 5.1 ms against 3.3 ms before (the same 687 steps; 4.3 ms with `jump_tol=0 drift_tol=0
+work_tol=0`; medians of 9 by hand on 2026-11-29), which is most of the change of this ratio from
+the issue-10 run (63x at 1e-4, 84x at 1e-6). The default path is the explicit one.
 
 **Proposal** (not implemented; what these numbers support): a Radau IIA integrator of order 5
 (three stages, the method of Hairer and Wanner's RADAU5) as regdae's way to small stiff mechanisms.
@@ -344,10 +403,13 @@ physical branch or above the bound). Bounds: Example 5.1, max|x - (t+1)| <= 3 ep
 (the layer estimate 1.311 eps^(1/4) of doc/ex51.md with margin, plus the integration error); slider
 crank, on the branch (max |th1 + th2 - pi| <= 0.1) and max theta error <=
 max(0.1, 6 * 1.311 eps^(1/4) + 300 rtol) (six passes, each a regularization layer; the oracle,
-which knows the branch, has errors up to 250 rtol on this problem). The crank runs use regdae's
-checks with their defaults (velocity jump, `jump_tol` = 0.1; position drift, `drift_tol` = 1e-2) and
-the energy as the problem's invariant (`invariant_tol` = 1 J, 1.7% of the range of the potential
-energy), see [methods.md](methods.md#branch-drift-and-invariant-checks).
+which knows the branch, has errors up to 250 rtol on this problem). This is the tuned grid
+(`stability`, `defaults=no`): the crank runs use `integrator=ida`, regdae's checks with the values
+set before issue 11 (velocity jump, `jump_tol` = 0.1; position drift, `drift_tol` = 1e-2;
+`singular_threshold` = 0.05; no work-energy check) and the energy as the problem's invariant
+(`invariant_tol` = 1 J, 1.7% of the range of the potential energy), see
+[methods.md](methods.md#branch-drift-and-invariant-checks). The same grid with the defaults:
+[below](#right-by-default-the-default-options-grid).
 
 ![Example 5.1](figures/perf_stability_ex51.png)
 
@@ -384,6 +446,79 @@ gamma >= 1e6 at loose tolerances that gain energy while staying on the branch (i
 checks also stop some runs whose answer was within the bound (the difference between the `ok`
 columns): a false alarm is a failure with a message, not a wrong answer.
 
+## Right by default: the default-options grid
+
+`stability defaults=yes`: the same cells (gamma, eps, rtol = atol as above; at index 3
+gamma1 = gamma, gamma0 = gamma^2/2), every other option at its default: `integrator=auto`, the
+automatic singular threshold and drift bound, the work-energy check, no invariant, outputs
+interpolated. A `false_alarm` (blue) is a cell stopped by one of regdae's checks although the
+same run without the checks ends within the bound. The rules behind the defaults:
+[methods.md](methods.md#automatic-parameters).
+
+![Example 5.1, default options](figures/perf_stability_defaults_ex51.png)
+
+![slider crank, index 2, default options](figures/perf_stability_defaults_crank2.png)
+
+![slider crank, index 3, default options](figures/perf_stability_defaults_crank3.png)
+
+TXT
+echo "Cells: $(tail -n 1 "$tmp/stability_defaults.txt" | sed 's/^summary //')."
+echo
+echo "| problem | ok | failed | silent | false alarm | stopped by: branch (-112) | drift (-113) | work (-117) | integration (-108) | other |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for p in ex51 crank2 crank3; do
+    awk -v p="$p" '$1 == p { n[$6]++; if ($6 == "failed" || $6 == "false_alarm") c[$9]++; t++ }
+        END { o = n["failed"] + n["false_alarm"] - c["-112"] - c["-113"] - c["-117"] - c["-108"]
+              printf "| %s | %d | %d | %d | %d | %d | %d | %d | %d | %d |\n", p, n["ok"], n["failed"], n["silent"],
+              n["false_alarm"], c["-112"], c["-113"], c["-117"], c["-108"], o }' "$tmp/stability_defaults.txt"
+done
+echo
+echo "The false alarms (problem, gamma, eps, rtol, the error without the checks is within the bound):"
+echo
+echo "| problem | gamma | eps | rtol | stopped by | at t | velocity_jump | max_drift | work_defect |"
+echo "|---|---|---|---|---|---|---|---|---|"
+awk '$6 == "false_alarm" { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $9, $8, $10, $11, $13 }' \
+    "$tmp/stability_defaults.txt"
+cat <<'TXT'
+
+**Starts near the singular configuration** (`stability problem=crank_near`): the slider crank from
+th1 = 1e-3, 1e-2, 0.1 (th2 = pi - th1) with w1 = 0.5, 2, 5 rad/s on [0, 10], all defaults but
+rtol = atol; error against the reduced ODE from the same start by CVODE at 1e-13, bound
+max(0.1, 300 rtol, 3 times the Dormand-Prince oracle's error at the same rtol, that term capped
+at 1 rad). Failed cells: the status and the time reached.
+
+| th1 | w1 | rtol | class | max theta error | status | t_end | work_defect | switches |
+|---|---|---|---|---|---|---|---|---|
+TXT
+awk '$1 == "crank_near" { printf "| %s | %s | %s | %s | %.2e | %s | %s | %s | %s |\n", $2, $3, $4, $6, $7, $9, $8, $13, $14 }' \
+    "$tmp/stability_extended.txt"
+cat <<'TXT'
+
+**The chain with sliders** (`stability problem=chain_slider`): N = 2 ... 128 links with every other
+joint on the slider line, t in [0, 3], all defaults but rtol = atol, against the same run at
+rtol = 1e-11 (N = 2: the reduced ODE); bound max(0.1, 300 rtol max|x|).
+
+| N | rtol | class | max position error | status | work_defect |
+|---|---|---|---|---|---|
+TXT
+awk '$1 == "chain_slider" { printf "| %s | %s | %s | %.2e | %s | %s |\n", $2, $4, $6, $7, $9, $13 }' "$tmp/stability_extended.txt"
+cat <<'TXT'
+
+**The slider crank with the defaults** (`bench`, row `defaults`: every option at its default but
+rtol = atol, 1001 interpolated outputs), paired with the Dormand-Prince oracle on the reduced ODE
+(the same rtol, timed right after each repetition):
+
+| rtol | max theta error | seconds | status | oracle error | oracle seconds | error ratio | seconds ratio |
+|---|---|---|---|---|---|---|---|
+TXT
+awk '{ printf "| %s | %.2e | %.2e | %s | %.2e | %.2e | %.1f | %.1f |\n", $1, $2, $3, $4, $5, $6, $2 / $5, $3 / $6 }' \
+    "$tmp/defaults_rows.txt"
+echo
+echo "Seconds at matched accuracy (log-log interpolation, as above):"
+echo
+awk -v left="regdae defaults (s)" -v right="oracle (s)" -v fmt=%.1f -f tools/matched_table.awk "$tmp/defaults_time.txt"
+cat <<'TXT'
+
 ## Extreme cases
 
 Slider crank (`ex52`, trust region, index 3 unless stated, rtol = atol = 1e-5) and Example 5.1
@@ -419,10 +554,12 @@ cat "$tmp/chain_sections.md"
 cat <<'TXT'
 ## Machine and commands
 
-`sh tools/benchmark.sh` (5 minutes on 2 cores, measured on 2026-11-29: the bench under 1, the
-stability grid about 2, most of it index 3 with gamma >= 1e7 at tight tolerances, the chain
-sections about 2.5, of which 40 s are the two runs stopped at 20 s). Single runs: `build/bin/bench
+`sh tools/benchmark.sh` (about 6 minutes on 2 cores, measured on 2026-11-29: the bench under 1,
+the tuned stability grid about 2, most of it index 3 with gamma >= 1e7 at tight tolerances, the
+default-options grid and the extended grid under 1, the chain sections about 2.5, of which 40 s
+are the two runs stopped at 20 s). Single runs: `build/bin/bench
 problem=crank tol_from=4 tol_to=6`, `build/bin/stability problem=crank2 rtol=1e-5 checks=off`,
+`build/bin/stability defaults=yes problem=crank3`, `build/bin/stability problem=crank_near`,
 `build/bin/ex52 integrator=dopri5 gamma1=20 gamma0=200 eps=1e-14 stop_at_output=no`,
 `build/bin/chain n_links=128 tf=1 nout=10 rtol=1e-6 atol=1e-6` (add `peer=yes` for the peer),
 `sh drivers/report/chain_bench.sh run build/bin build/benchmark` (the chain sections' runs alone).

@@ -3,12 +3,12 @@
 module driver_support
     use, intrinsic :: iso_fortran_env, only: int64, error_unit
     use regdae, only: wp, format_real, format_int, solver_options, solver_stats, set_option, regdae_success, &
-                      regdae_solver, parse_real, parse_integer
+                      regdae_solver, parse_real, parse_integer, option_auto, integrator_name, formulation_name
     implicit none
     private
 
     public :: format_int
-    public :: read_number, read_count, common_argument, stats_fields, run_status
+    public :: read_number, read_count, common_argument, stats_fields, run_status, resolved_line, event_lines
 
     !> The largest `nout` the drivers accept: their tables hold nout + 1 rows.
     integer, parameter, public :: max_nout = 1000000
@@ -59,8 +59,41 @@ contains
     function num(x) result(s)
         real(wp), intent(in) :: x
         character(len=:), allocatable :: s
-        s = format_real(x, 4)
+        if (x == option_auto) then
+            s = 'auto'
+        else
+            s = format_real(x, 4)
+        end if
     end function num
+
+    !> The '# resolved:' line of a solver after init: the values its automatic
+    !! options took (the weights, eps, the drift bound at t0, work_tol) and the
+    !! formulation and integrator in force.
+    function resolved_line(solver) result(text)
+        type(regdae_solver), intent(in) :: solver
+        character(len=:), allocatable :: text
+        type(solver_options) :: o
+        o = solver%options()
+        text = '# resolved: formulation='//formulation_name(solver%formulation())//' integrator='// &
+               integrator_name(o%integrator)//' gamma='//num(o%gamma)//' gamma0='//num(o%gamma0)//' gamma1='// &
+               num(o%gamma1)//' eps='//num(o%eps)//' drift_tol='//num(o%drift_tol)//' (at t0)'
+    end function resolved_line
+
+    !> The solver's events (integrator switches), one '# event: ' line each; empty if none.
+    function event_lines(solver) result(text)
+        type(regdae_solver), intent(in) :: solver
+        character(len=:), allocatable :: text, log
+        integer :: a, b
+        log = solver%events()
+        text = ''
+        a = 1
+        do while (a <= len(log))
+            b = index(log(a:), new_line('a'))
+            if (b == 0) b = len(log) - a + 2
+            text = text//'# event: '//log(a:a + b - 2)//new_line('a')
+            a = a + b
+        end do
+    end function event_lines
 
     !> Start a wall-clock measurement.
     function clock_start() result(count)
@@ -148,7 +181,8 @@ contains
         character(len=:), allocatable :: text
         text = ' steps='//format_int(int(st%steps))//' res_evals='//format_int(int(st%res_evals))// &
                ' jac_evals='//format_int(int(st%jac_evals))//' err_test_fails='//format_int(int(st%err_test_fails))// &
-               ' conv_fails='//format_int(int(st%conv_fails))//' seconds='//num(seconds)
+               ' conv_fails='//format_int(int(st%conv_fails))//' switches='//format_int(st%switches)// &
+               ' work_defect='//num(st%work_defect)//' seconds='//num(seconds)
         if (present(output_seconds)) text = text//' output_seconds='//num(output_seconds)
     end function stats_fields
 

@@ -1,0 +1,396 @@
+!> The automatic defaults (issue 11): each automatic rule is scale-free (the
+!! same trajectory in metres, millimetres, kilograms and grams, seconds and
+!! milliseconds), the work-energy check is quiet on a correct rheonomic run and
+!! fires on one that gains energy, integrator=auto switches to IDA where a
+!! problem becomes stiff and back where it stops being stiff, and a run of the
+!! explicit integrator that leaves the physical branch ends with a status.
+module test_defaults
+    use regdae
+    use chain_problem, only: chain, new_chain, chain_start
+    use slider_crank_problem, only: new_slider_crank
+    use regdae_testing, only: checker, test_case, new_test
+    implicit none
+    private
+    public :: defaults_tests
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+    real(wp), parameter :: omega = 50.0_wp   !! stiff_middle's frequency
+
+    !> A point mass on a string whose length L(t) = 1 + 0.2 sin(2t) is driven
+    !! (rheonomic: g = x^2 + y^2 - L(t)^2), under gravity; with `forget_gt` the
+    !! problem reports g_t = 0, as a user who forgets the moving constraint would.
+    type, extends(mechanical_problem) :: growing_pendulum
+        logical :: forget_gt = .false.
+    contains
+        procedure :: mass_matrix => growing_mass
+        procedure :: forces => growing_forces
+        procedure :: constraint => growing_g
+        procedure :: constraint_jacobian => growing_gx
+        procedure :: constraint_dt => growing_gt
+    end type growing_pendulum
+
+    !> x1' = -lambda(t) (x1 - sin wt) + w cos wt, x2' = 1 - y, 0 = x2 - t (B = (0, 1)^T),
+    !! w = 50: exact x = (sin wt, t), y = 0; lambda = 1 + 1e5 on t in [1, 2] (smoothly), 1
+    !! elsewhere. Outside [1, 2] the steps are set by accuracy (the oscillation), inside by
+    !! stability.
+    type, extends(dae_problem) :: stiff_middle
+    contains
+        procedure :: rhs => middle_rhs
+        procedure :: matrix_b => middle_b
+        procedure :: constraint => middle_g
+        procedure :: constraint_jacobian => middle_gx
+        procedure :: constraint_dt => middle_gt
+    end type stiff_middle
+
+contains
+
+    function defaults_tests() result(tests)
+        type(test_case), allocatable :: tests(:)
+        tests = [new_test('rules_are_scale_free', rules_are_scale_free), &
+                 new_test('work_check_quiet_and_fires', work_check_quiet_and_fires), &
+                 new_test('switches_halfway_and_back', switches_halfway_and_back), &
+                 new_test('explicit_off_branch_fails', explicit_off_branch_fails), &
+                 new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented)]
+    end function defaults_tests
+
+    ! Example 5.2 in Cartesian coordinates (the chain of 2 links with the slider: two
+    ! singular passes on [0, 2]) with every option at its default but the tolerances,
+    ! in (m, kg, s) and in (mm, g, ms): the automatic eps, weights and drift bound
+    ! scale with the units (eps like (GB)^2: 1e-6; gamma like 1/time: 1e-3; the drift
+    ! bound like length: 1e3), so both runs solve the same regularized problem; their
+    ! step sequences differ (difference-quotient increments are not scale-free), and
+    ! the positions differ by the integration error (measured 1.7e-5 at rtol 1e-6,
+    ! through two singular passes); 100 rtol bounds it.
+    subroutine rules_are_scale_free(chk)
+        type(checker), intent(inout) :: chk
+        integer, parameter :: nout = 20
+        real(wp) :: q(4, 0:nout, 2), scale_length(2), scale_time(2), scale_mass(2), diff
+        type(solver_options) :: resolved(2)
+        integer :: stat(2), u, k
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts
+        type(chain) :: p
+        real(wp) :: q0(4), v0(4), v(4), y(3)
+        scale_length = [1.0_wp, 1.0e3_wp]   ! m, mm
+        scale_time = [1.0_wp, 1.0e3_wp]     ! s, ms
+        scale_mass = [1.0_wp, 1.0e3_wp]     ! kg, g
+        do u = 1, 2
+            p = new_chain(2, .true., 9.81_wp*scale_length(u)/scale_time(u)**2)
+            p%length = scale_length(u)
+            p%joint_mass = scale_mass(u)
+            call chain_start(p, q0, v0)
+            opts = solver_options()
+            opts%rtol = 1.0e-6_wp
+            opts%atol = 1.0e-6_wp*scale_length(u)
+            call solver%init(p, 0.0_wp, q0, v0, opts, stat(u))
+            if (stat(u) /= regdae_success) write (*, '(a)') '    '//solver%message()
+            resolved(u) = solver%options()
+            q(:, 0, u) = q0/scale_length(u)
+            do k = 1, nout
+                if (stat(u) /= regdae_success) exit
+                call solver%advance(0.1_wp*k*scale_time(u), q(:, k, u), y, stat(u), v)
+                if (stat(u) /= regdae_success) write (*, '(a)') '    '//solver%message()
+                q(:, k, u) = q(:, k, u)/scale_length(u)
+            end do
+            call solver%destroy()
+        end do
+        call chk%equal(stat(1), regdae_success, 'the run in m, kg, s')
+        call chk%equal(stat(2), regdae_success, 'the run in mm, g, ms')
+        call chk%close_rel([resolved(2)%eps], [resolved(1)%eps*1.0e-6_wp], 1.0e-10_wp, 'eps scales like (GB)^2')
+        call chk%close_rel([resolved(2)%gamma1], [resolved(1)%gamma1*1.0e-3_wp], 1.0e-10_wp, 'gamma1 scales like 1/time')
+        call chk%close_rel([resolved(2)%gamma0], [resolved(1)%gamma0*1.0e-6_wp], 1.0e-10_wp, &
+                           'gamma0 scales like 1/time^2')
+        call chk%close_rel([resolved(2)%drift_tol], [resolved(1)%drift_tol*1.0e3_wp], 1.0e-10_wp, &
+                           'the drift bound scales like length')
+        diff = maxval(abs(q(:, :, 2) - q(:, :, 1)))
+        call chk%true(diff <= 1.0e-4_wp, 'the same positions in both unit systems')
+        write (*, '(a,es10.2)') '    max |x(mm, g, ms) / 1000 - x(m, kg, s)|: ', diff
+    end subroutine rules_are_scale_free
+
+    ! The growing pendulum on [0, 5]: with g_t the constraint force's work is the
+    ! moving string's, y^T g_t, and the work-energy balance holds (measured defect
+    ! 1e-7 of the energy scale at rtol 1e-6); without it the string still moves (the
+    ! stabilization follows g(x, t)), its work is missing from the balance, and the
+    ! check stops the run (the drift and jump checks off, so that this one is tested).
+    subroutine work_check_quiet_and_fires(chk)
+        type(checker), intent(inout) :: chk
+        type(growing_pendulum) :: p
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        real(wp) :: x(2), y(1)
+        ! radial at the speed L'(0) = 0.4 of the string: G v + g_t = 0 at t0
+        real(wp), parameter :: v0(2) = 0.4_wp*[0.6_wp, -0.8_wp]
+        integer :: stat, k
+        p%n = 2
+        p%m = 1
+        opts%rtol = 1.0e-6_wp
+        opts%atol = 1.0e-6_wp
+        call solver%init(p, 0.0_wp, [0.6_wp, -0.8_wp], v0, opts, stat)
+        do k = 1, 50
+            if (stat /= regdae_success) exit
+            call solver%advance(0.1_wp*k, x, y, stat)
+        end do
+        st = solver%statistics()
+        call chk%equal(stat, regdae_success, 'the rheonomic run with g_t ends ok')
+        call chk%true(st%work_defect < 1.0e-3_wp, 'its work-energy defect is small')
+        write (*, '(a,es10.2)') '    work_defect with g_t: ', st%work_defect
+        call solver%destroy()
+        p%forget_gt = .true.
+        opts%drift_tol = 0.0_wp
+        opts%jump_tol = 0.0_wp
+        call solver%init(p, 0.0_wp, [0.6_wp, -0.8_wp], [0.0_wp, 0.0_wp], opts, stat)   ! at rest: g_t = 0
+        do k = 1, 50
+            if (stat /= regdae_success) exit
+            call solver%advance(0.1_wp*k, x, y, stat)
+        end do
+        call chk%equal(stat, regdae_err_work, 'without g_t the work-energy check stops the run')
+        call chk%true(index(solver%message(), 'work-energy balance failed') > 0 .and. &
+                      index(solver%message(), 'work_tol=0 turns this check off') > 0, &
+                      'the message says what failed and which option turns the check off')
+        call solver%destroy()
+    end subroutine work_check_quiet_and_fires
+
+    ! stiff_middle on [0, 6], rtol 1e-6, all defaults: the explicit method until the
+    ! stiffness test fires near t = 1, IDA through the stiff stretch, the explicit
+    ! method again after t = 2. The exact x1 = sin t: error bound 100 rtol. The explicit
+    ! integrator alone stops with the stiffness message. The exact x1 = sin wt.
+    subroutine switches_halfway_and_back(chk)
+        type(checker), intent(inout) :: chk
+        type(stiff_middle) :: p
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        character(len=:), allocatable :: events
+        real(wp) :: x(2), err, t
+        integer :: stat, k, to_ida, to_dopri5
+        p%n = 2
+        p%m = 1
+        opts%rtol = 1.0e-6_wp
+        opts%atol = 1.0e-6_wp
+        call solver%init(p, 0.0_wp, [0.0_wp, 0.0_wp], opts, stat)
+        err = 0.0_wp
+        do k = 1, 120
+            if (stat /= regdae_success) exit
+            t = 0.05_wp*k
+            call solver%advance(t, x, stat=stat)
+            err = max(err, abs(x(1) - sin(omega*t)), abs(x(2) - t))
+        end do
+        st = solver%statistics()
+        events = solver%events()
+        call chk%equal(stat, regdae_success, 'integrator=auto reaches t = 6')
+        call chk%true(st%switches >= 2, 'it switches at least twice')
+        to_ida = index(events, 'dopri5 -> ida')
+        to_dopri5 = index(events, 'ida -> dopri5')
+        call chk%true(to_ida > 0 .and. to_dopri5 > to_ida, 'to IDA first, then back to the explicit method')
+        call chk%true(err <= 1.0e-4_wp, 'x = (sin wt, t) within 100 rtol')
+        write (*, '(a,i0,a,es10.2)') '    switches: ', st%switches, ', max error: ', err
+        call solver%destroy()
+        opts%integrator = integrator_dopri5
+        call solver%init(p, 0.0_wp, [0.0_wp, 0.0_wp], opts, stat)
+        do k = 1, 60
+            if (stat /= regdae_success) exit
+            call solver%advance(0.05_wp*k, x, stat=stat)
+        end do
+        call chk%equal(stat, regdae_err_integration, 'integrator=dopri5 alone stops')
+        call chk%true(index(solver%message(), 'stiff') > 0, 'because the system is stiff there')
+        call solver%destroy()
+    end subroutine switches_halfway_and_back
+
+    ! The stiff chain of 4 links (joints of mass 1e-2 on vertical springs 1e4 and
+    ! dashpots 10: eigenvalues near -500 +- 866i) on [0, 0.2], all defaults but rtol =
+    ! atol = 1e-7: the explicit method starts, its stiffness test fires, and IDA takes
+    ! over on the augmented formulation (the chain declares its structure); against the
+    ! same chain by IDA on the augmented formulation from t0 at rtol = atol = 1e-11
+    ! (eps 1e-14): the positions at t = 0.01, ..., 0.2 (the transient: after it the
+    ! chain rests on its springs) within 100 rtol (both runs solve the regularized
+    ! problem, whose regularization error is below the tolerance here: sigma_min(GB) =
+    ! 12, far from any singular configuration). The first outputs come before the
+    ! switch (near t = 0.085): it happens in the middle of the run.
+    subroutine stiff_chain_switches_to_augmented(chk)
+        type(checker), intent(inout) :: chk
+        integer, parameter :: nout = 20
+        type(chain) :: p
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        character(len=:), allocatable :: events
+        real(wp) :: q0(8), v0(8), q(8, nout, 2), y(4), err
+        integer :: stat(2), run, k
+        p = new_chain(4, .false., 9.81_wp)
+        p%joint_mass = 1.0e-2_wp
+        p%stiffness = 1.0e4_wp
+        p%damping = 10.0_wp
+        call chain_start(p, q0, v0)
+        do run = 1, 2
+            opts = solver_options()
+            if (run == 1) then
+                opts%rtol = 1.0e-7_wp
+                opts%atol = 1.0e-7_wp
+            else
+                opts%rtol = 1.0e-11_wp
+                opts%atol = 1.0e-11_wp
+                opts%eps = 1.0e-14_wp
+                opts%formulation = formulation_augmented
+            end if
+            call solver%init(p, 0.0_wp, q0, v0, opts, stat(run))
+            do k = 1, nout
+                if (stat(run) /= regdae_success) exit
+                call solver%advance(0.01_wp*k, q(:, k, run), y, stat(run))
+            end do
+            if (stat(run) /= regdae_success) write (*, '(a)') '    '//solver%message()
+            if (run == 1) then
+                st = solver%statistics()
+                events = solver%events()
+            end if
+            call solver%destroy()
+        end do
+        call chk%equal(stat(1), regdae_success, 'defaults reach t = 0.2')
+        call chk%equal(stat(2), regdae_success, 'the reference reaches t = 0.2')
+        call chk%true(st%switches == 1 .and. index(events, 'dopri5 -> ida, augmented formulation') > 0, &
+                      'one switch, to IDA on the augmented formulation')
+        err = maxval(abs(q(:, :, 1) - q(:, :, 2)))
+        call chk%true(err <= 1.0e-5_wp, 'positions within 100 rtol of the reference')
+        write (*, '(a,es10.2)') '    max |q - q_ref| at the outputs: ', err
+    end subroutine stiff_chain_switches_to_augmented
+
+    ! The slider crank from th1 = 1e-2 (near the singular configuration 0, pi) at
+    ! w1 = 0.5, with the explicit integrator, weights gamma1 = 20, gamma0 = 200 and
+    ! eps = 1e-14, rtol = 1e-4: the branch check (velocity jump) stops the run; with
+    ! the checks off the same run ends with status ok off the physical branch
+    ! (max |th1 + th2 - pi| > 0.1: measured 0.6).
+    subroutine explicit_off_branch_fails(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        real(wp) :: dev
+        integer :: stat
+        opts%integrator = integrator_dopri5
+        opts%gamma1 = 20.0_wp
+        opts%gamma0 = 200.0_wp
+        opts%eps = 1.0e-14_wp
+        opts%rtol = 1.0e-4_wp
+        opts%atol = 1.0e-4_wp
+        call run_crank(opts, stat, dev)
+        call chk%equal(stat, regdae_err_branch, 'the explicit run that leaves the branch stops with a status')
+        opts%jump_tol = 0.0_wp
+        opts%work_tol = 0.0_wp
+        opts%drift_tol = 0.0_wp
+        call run_crank(opts, stat, dev)
+        call chk%true(stat == regdae_success .and. dev > 0.1_wp, 'without the checks it ends ok, off the branch')
+        write (*, '(a,es10.2)') '    without the checks, max |th1 + th2 - pi|: ', dev
+    contains
+        subroutine run_crank(opts, stat, dev)
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+            real(wp), intent(out) :: dev
+            type(regdae_solver) :: solver
+            real(wp) :: th(2)
+            integer :: k
+            dev = 0.0_wp
+            call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [1.0e-2_wp, pi - 1.0e-2_wp], [0.5_wp, -0.5_wp], opts, stat)
+            do k = 1, 500
+                if (stat /= regdae_success) exit
+                call solver%advance(0.02_wp*k, th, stat=stat)
+                dev = max(dev, abs(modulo(th(1) + th(2), 2*pi) - pi))
+            end do
+            call solver%destroy()
+        end subroutine run_crank
+    end subroutine explicit_off_branch_fails
+
+    ! --- the growing pendulum ---
+
+    pure real(wp) function string_length(t)
+        real(wp), intent(in) :: t
+        string_length = 1.0_wp + 0.2_wp*sin(2.0_wp*t)
+    end function string_length
+
+    subroutine growing_mass(self, t, q, mass, stat)
+        class(growing_pendulum), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        real(wp), intent(out) :: mass(:, :)
+        integer, intent(inout) :: stat
+        mass = reshape([1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2])
+    end subroutine growing_mass
+
+    subroutine growing_forces(self, t, q, qd, f, stat)
+        class(growing_pendulum), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:), qd(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(inout) :: stat
+        f = [0.0_wp, -9.81_wp]
+    end subroutine growing_forces
+
+    subroutine growing_g(self, t, x, val, stat)
+        class(growing_pendulum), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        val(1) = x(1)**2 + x(2)**2 - string_length(t)**2
+    end subroutine growing_g
+
+    subroutine growing_gx(self, t, x, a, stat)
+        class(growing_pendulum), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
+        a(1, :) = 2.0_wp*x
+    end subroutine growing_gx
+
+    subroutine growing_gt(self, t, x, val, stat)
+        class(growing_pendulum), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        val(1) = -2.0_wp*string_length(t)*0.4_wp*cos(2.0_wp*t)
+        if (self%forget_gt) val(1) = 0.0_wp
+    end subroutine growing_gt
+
+    ! --- stiff_middle ---
+
+    pure real(wp) function middle_lambda(t)
+        real(wp), intent(in) :: t
+        middle_lambda = 1.0_wp + 1.0e5_wp*0.5_wp*(tanh(20.0_wp*(t - 1.0_wp)) - tanh(20.0_wp*(t - 2.0_wp)))
+    end function middle_lambda
+
+    subroutine middle_rhs(self, t, x, v, stat)
+        class(stiff_middle), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: v(:)
+        integer, intent(inout) :: stat
+        v(1) = -middle_lambda(t)*(x(1) - sin(omega*t)) + omega*cos(omega*t)
+        v(2) = 1.0_wp
+    end subroutine middle_rhs
+
+    subroutine middle_b(self, t, x, a, stat)
+        class(stiff_middle), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
+        a(:, 1) = [0.0_wp, 1.0_wp]
+    end subroutine middle_b
+
+    subroutine middle_g(self, t, x, v, stat)
+        class(stiff_middle), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: v(:)
+        integer, intent(inout) :: stat
+        v(1) = x(2) - t
+    end subroutine middle_g
+
+    subroutine middle_gx(self, t, x, a, stat)
+        class(stiff_middle), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: a(:, :)
+        integer, intent(inout) :: stat
+        a(1, :) = [0.0_wp, 1.0_wp]
+    end subroutine middle_gx
+
+    subroutine middle_gt(self, t, x, v, stat)
+        class(stiff_middle), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        real(wp), intent(out) :: v(:)
+        integer, intent(inout) :: stat
+        v(1) = -1.0_wp
+    end subroutine middle_gt
+
+end module test_defaults
