@@ -43,6 +43,13 @@ TXT
   verdict on Baumgarte, stronger: its outcome is not reproducible. The trust region (Figs. 5.8,
   5.11) passes every time. regdae reports a branch switch (or the impulse that causes it) instead
   of returning it as a solution. The paper does not state its interval or initial values either.
+- **Fig. 5.8 and regdae's work-energy check**: the figures run as the paper's did, on a BDF code
+  (`integrator=ida`) with the paper's weights, and the slider crank without the work-energy check
+  of issue 11 (`work_tol=0`), which the paper's code did not have. With the check (the default)
+  Fig. 5.8's run stops at t = 9.57 with `regdae_err_work`: the index-2 drift has fed energy into
+  the crank (theta error 1.5e-2 there; without the check the run ends with status ok and a theta
+  error of 9.7e-2 at t = 10). The paper's verdict "does a good job" holds at the scale of its
+  plot, not at the tolerance's.
 - **Figs. 5.12 and 5.13 (Baumgarte and direct, index 3)**: the paper's runs "converge to
   incorrect solutions", which it attributes to the loose error control of index-3 codes. With the
   paper's choice (v and y out of the error test, no curvature term, rtol = 1e-5) ours stay on the
