@@ -425,7 +425,7 @@ contains
         type(solver_stats), intent(in) :: st
         integer, intent(in) :: stat
         write (*, '(a)') name//' "'//config//'" '//num(tol)//' '//num(err)//' '//num(seconds)//' '// &
-            format_int(int(st%steps))//' '//format_int(int(st%res_evals))//' '//format_int(int(st%jac_evals))//' '// &
+            format_int(st%steps)//' '//format_int(st%res_evals)//' '//format_int(st%jac_evals)//' '// &
             trim(status_word(stat))
         if (stat == regdae_success) then
             row_counts(1) = row_counts(1) + 1

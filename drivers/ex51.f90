@@ -102,9 +102,9 @@ program ex51_driver
         status_text = 'ok'
     end if
     write (*, '(a)') '# steps, residual evaluations (IDA + Jacobian), Jacobians, linear setups, Newton iterations: '// &
-        format_int(int(st%steps))//' '//format_int(int(st%res_evals))//' ('//format_int(int(st%res_evals - st%jac_res_evals))// &
-        ' + '//format_int(int(st%jac_res_evals))//') '//format_int(int(st%jac_evals))//' '//format_int(int(st%lin_setups))// &
-        ' '//format_int(int(st%nonlin_iters))
+        format_int(st%steps)//' '//format_int(st%res_evals)//' ('//format_int(st%res_evals - st%jac_res_evals)// &
+        ' + '//format_int(st%jac_res_evals)//') '//format_int(st%jac_evals)//' '//format_int(st%lin_setups)// &
+        ' '//format_int(st%nonlin_iters)
     write (*, '(a)', advance='no') event_lines(solver)
     write (*, '(a)') 'summary method='//method_name(opts%method)//' status='//status_text// &
         ' t_end='//num(st%t)//' max_err_x='//num(max_err_x)//stats_fields(st, seconds, output_seconds)

@@ -8,8 +8,9 @@ module regdae
     use regdae_kinds, only: wp
     use regdae_format, only: format_real, format_int
     use regdae_status
-    use regdae_problem, only: dae_problem, constraint_dt_difference
-    use regdae_second_order_problem, only: second_order_problem, velocity_constraint, curvature_difference
+    use regdae_problem, only: dae_problem, first_order_dt_difference => constraint_dt_difference
+    use regdae_second_order_problem, only: second_order_problem, velocity_constraint, curvature_difference, &
+                                           second_order_constraint_dt_difference
     use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
     use regdae_sparsity, only: sparsity_pattern, dense_pattern, empty_pattern, diagonal_pattern, band_pattern, &
                                pattern_from_entries, pattern_union
@@ -22,6 +23,14 @@ module regdae
     use regdae_solver_front, only: regdae_solver, solver_stats
     implicit none
     private
+
+    !> g_t by a central difference in t, the default `constraint_dt` of a
+    !! `dae_problem` and of a `second_order_problem` (and so of a
+    !! `mechanical_problem`), callable from an override of it:
+    !! `call constraint_dt_difference(self, t, x, val, stat)`.
+    interface constraint_dt_difference
+        procedure :: first_order_dt_difference, second_order_constraint_dt_difference
+    end interface constraint_dt_difference
 
     public :: wp, format_real, format_int, dae_problem, constraint_dt_difference, regdae_solver, solver_stats
     public :: second_order_problem, velocity_constraint, curvature_difference, mechanical_problem, &

@@ -83,6 +83,9 @@ module regdae_augmented_system
         !> IDA's u(t0), u'(t0) guess from q0, v0 (algebraic parts 0) and the id
         !! vector (1: differential, 0: algebraic).
         procedure :: initial_guess => augmented_initial_guess
+        !> IDA's absolute tolerances (IDA's order, length neq): atol_q on q, atol_v on v,
+        !! atol_other on the rest (u, y, s, which leave the error test by default).
+        procedure :: tolerance_vector => augmented_tolerance_vector
         !> The unknowns left out of the error test (u, y, s; and v with excluded=vy).
         procedure :: excluded_unknowns
         !> q, v, y, and v' (the accelerations) from IDA's u and u'.
@@ -434,6 +437,17 @@ contains
         up = upn(self%perm)
         id = idn(self%perm)
     end subroutine augmented_initial_guess
+
+    function augmented_tolerance_vector(self, atol_q, atol_v, atol_other) result(atol_u)
+        class(augmented_system), intent(in) :: self
+        real(wp), intent(in) :: atol_q(:), atol_v(:), atol_other
+        real(wp) :: atol_u(self%neq)
+        real(wp) :: natural(self%neq)
+        natural = atol_other
+        natural(self%iq + 1:self%iq + self%n) = atol_q
+        natural(self%iv + 1:self%iv + self%n) = atol_v
+        atol_u = natural(self%perm)
+    end function augmented_tolerance_vector
 
     function excluded_unknowns(self, excluded) result(mask)
         class(augmented_system), intent(in) :: self

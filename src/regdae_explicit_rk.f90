@@ -101,7 +101,8 @@ contains
                           stop_when_stiff)
         class(rk_integrator), intent(inout) :: self
         type(regularized_dae), intent(inout) :: model
-        real(wp), intent(in) :: tout, rtol, atol, h_max
+        real(wp), intent(in) :: tout, rtol, h_max
+        real(wp), intent(in) :: atol(:)   !! absolute tolerance per component of z
         integer, intent(in) :: max_steps
         logical, intent(in) :: land_on_tout
         real(wp), intent(out) :: zout(:)

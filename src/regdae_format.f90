@@ -1,10 +1,17 @@
 !> Numbers as text for messages and output lines.
 module regdae_format
     use regdae_kinds, only: wp
+    use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
 
     public :: format_real, format_int
+
+    !> An integer without blanks: default kind or 64-bit (the solver's counters,
+    !! `solver_stats`, print without conversion).
+    interface format_int
+        module procedure format_int_default, format_int_64
+    end interface format_int
 
 contains
 
@@ -29,13 +36,18 @@ contains
         end if
     end function format_real
 
-    !> An integer without blanks.
-    pure function format_int(k) result(s)
+    pure function format_int_default(k) result(s)
         integer, intent(in) :: k
+        character(len=:), allocatable :: s
+        s = format_int_64(int(k, int64))
+    end function format_int_default
+
+    pure function format_int_64(k) result(s)
+        integer(int64), intent(in) :: k
         character(len=:), allocatable :: s
         character(len=24) :: buf
         write (buf, '(i0)') k
         s = trim(buf)
-    end function format_int
+    end function format_int_64
 
 end module regdae_format

@@ -60,6 +60,7 @@ module regdae_ida_backend
         type(SUNMatrix), pointer :: jmat => null()
         type(SUNLinearSolver), pointer :: ls => null()
         real(wp), allocatable :: u_pert(:), up_pert(:), r_pert(:)
+        real(wp), allocatable :: atol_u(:)   ! the absolute tolerance of each unknown
         integer(c_long) :: jac_res_evals = 0
         integer :: pending_stat = regdae_success        !! last failure seen in a callback
         logical :: pending_recoverable = .true.
@@ -104,7 +105,7 @@ module regdae_ida_backend
 
 contains
 
-    subroutine backend_create(self, system, opts, linear_solver, excluded, t0, u0, up0, stat, msg)
+    subroutine backend_create(self, system, opts, linear_solver, excluded, t0, u0, up0, stat, msg, atol_u)
         class(ida_backend), target, intent(inout) :: self
         class(implicit_system), intent(in) :: system     !! copied into the backend
         type(solver_options), intent(in) :: opts
@@ -113,7 +114,9 @@ contains
         real(wp), intent(in) :: t0, u0(:), up0(:)
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
+        real(wp), intent(in), optional :: atol_u(:)      !! absolute tolerance per unknown (default: opts%atol)
         integer(c_long) :: neq
+        type(N_Vector), pointer :: atol_nv
         integer(c_int) :: ierr
         real(c_double), pointer :: p(:)
         type(c_ptr) :: user_data
@@ -129,6 +132,11 @@ contains
         self%linear_solver = linear_solver
         if (self%system%structured) call prepare_groups(self)
         self%excluded = excluded
+        if (present(atol_u)) then
+            self%atol_u = atol_u
+        else
+            self%atol_u = spread(opts%atol, 1, self%neq)
+        end if
         self%pending_message = ''
         self%ida_message = ''
         allocate (self%u_pert(self%neq), self%up_pert(self%neq), self%r_pert(self%neq))
@@ -166,6 +174,13 @@ contains
         ! Tolerances and the exclusion of y (and v) from the local error test.
         if (any(self%excluded) .and. opts%exclusion == exclusion_weights) then
             ierr = FIDAWFtolerances(self%ida_mem, c_funloc(ida_error_weights))
+        else if (present(atol_u)) then
+            atol_nv => FN_VMake_Serial(neq, self%atol_u, self%sunctx)
+            ierr = -1
+            if (associated(atol_nv)) then
+                ierr = FIDASVtolerances(self%ida_mem, opts%rtol, atol_nv)   ! IDA keeps a copy
+                call FN_VDestroy(atol_nv)
+            end if
         else
             ierr = FIDASStolerances(self%ida_mem, opts%rtol, opts%atol)
         end if
@@ -703,7 +718,7 @@ contains
         ierr = 0
     end function ida_jacobian_grouped
 
-    ! Error weights 1/(rtol |u_i| + atol), 0 for the unknowns left out (y, and v if asked).
+    ! Error weights 1/(rtol |u_i| + atol_i), 0 for the unknowns left out (y, and v if asked).
     integer(c_int) function ida_error_weights(nv_u, nv_ewt, user_data) result(ierr) bind(C)
         type(N_Vector) :: nv_u, nv_ewt
         type(c_ptr), value :: user_data
@@ -713,7 +728,7 @@ contains
         call c_f_pointer(user_data, self)
         u => FN_VGetArrayPointer(nv_u)
         ewt => FN_VGetArrayPointer(nv_ewt)
-        ewt(1:self%neq) = merge(0.0_wp, 1.0_wp/(self%opts%rtol*abs(u(1:self%neq)) + self%opts%atol), self%excluded)
+        ewt(1:self%neq) = merge(0.0_wp, 1.0_wp/(self%opts%rtol*abs(u(1:self%neq)) + self%atol_u), self%excluded)
         ierr = 0
     end function ida_error_weights
 

@@ -10,6 +10,7 @@
 !! | gamma          | > 0, or auto (20/T, T the time scale at t0) | auto     |
 !! | eps            | >= 0, or auto (rtol^2 within [1e-14, 1e-6], times the scale of GB squared) | auto |
 !! | rtol, atol     | 0 < rtol < 1, atol > 0                | 1e-5, 1e-5     |
+!! | atol_v         | > 0, or auto (= atol): second order, the velocities' atol | auto |
 !! | stop_at_output | yes, no                               | no             |
 !! | max_steps      | >= 1 (per output interval)            | 100000         |
 !! | h_init, h_max  | >= 0 (0: IDA's choice / no limit)     | 0, 0           |
@@ -86,7 +87,9 @@ module regdae_options
         real(wp) :: gamma = option_auto                !! Baumgarte parameter (paper: 1/h; auto: 20/T)
         real(wp) :: eps = option_auto                  !! damping of trust-region / direct (auto: see resolve)
         real(wp) :: rtol = 1.0e-5_wp                   !! relative tolerance (IDA)
-        real(wp) :: atol = 1.0e-5_wp                   !! absolute tolerance (IDA)
+        real(wp) :: atol = 1.0e-5_wp                   !! absolute tolerance (on x; second order: on the positions)
+        real(wp) :: atol_v = option_auto               !! second order: absolute tolerance on the velocities (auto: atol);
+                                                       !! per component: the argument atol_vector of init
         logical :: stop_at_output = .false.            !! make a step end at every output time
         integer :: max_steps = 100000                  !! IDA steps allowed per call of `advance`
         real(wp) :: h_init = 0.0_wp                    !! first step size (0: IDA estimates it)
@@ -159,6 +162,8 @@ contains
             call read_real(value, opts%rtol, code)
         case ('atol')
             call read_real(value, opts%atol, code)
+        case ('atol_v')
+            call read_real_or_auto(value, opts%atol_v, code)
         case ('h_init')
             call read_real(value, opts%h_init, code)
         case ('h_max')
@@ -230,6 +235,8 @@ contains
         if (len(msg) == 0 .and. .not. (opts%rtol > 0.0_wp .and. opts%rtol < 1.0_wp)) &
             msg = 'rtol must be in (0, 1) (got '//format_real(opts%rtol)//')'
         call need_positive('atol', opts%atol)
+        if (opts%atol_v /= option_auto) call need_positive('atol_v', opts%atol_v)
+
         call need_nonnegative('h_init', opts%h_init)
         call need_nonnegative('h_max', opts%h_max)
         call need_positive('ic_tol', opts%ic_tol)

@@ -34,7 +34,7 @@ module regdae_second_order_problem
         !! from it instead of evaluating G again.
         procedure :: matrix_b_from_jacobian => default_matrix_b_from_jacobian
         !> dg/dt (x, t), length m; default: central difference quotient in t.
-        procedure :: constraint_dt => default_constraint_dt
+        procedure :: constraint_dt => second_order_constraint_dt_difference
         !> c = g_xx(v, v) + 2 g_xt v + g_tt, length m; default: difference quotient.
         procedure :: constraint_curvature => default_constraint_curvature
         !> An invariant I(x, v, t) of the motion (e.g. the energy of a conservative
@@ -80,7 +80,7 @@ module regdae_second_order_problem
         end subroutine position_matrix
     end interface
 
-    public :: velocity_constraint, curvature_difference
+    public :: velocity_constraint, curvature_difference, second_order_constraint_dt_difference
 
 contains
 
@@ -93,8 +93,10 @@ contains
         call self%matrix_b(t, x, v, a, stat)
     end subroutine default_matrix_b_from_jacobian
 
-    !> g_t by the central difference in t (as for `dae_problem`).
-    subroutine default_constraint_dt(self, t, x, val, stat)
+    !> g_t by the central difference in t (as for `dae_problem`): the default
+    !! `constraint_dt`, callable from an override (through the generic
+    !! `constraint_dt_difference` of module regdae).
+    subroutine second_order_constraint_dt_difference(self, t, x, val, stat)
         class(second_order_problem), intent(inout) :: self
         real(wp), intent(in) :: t, x(:)
         real(wp), intent(out) :: val(:)
@@ -110,7 +112,7 @@ contains
         call self%constraint(tm, x, gm, stat)
         if (stat /= 0) return
         val = (val - gm)/(tp - tm)
-    end subroutine default_constraint_dt
+    end subroutine second_order_constraint_dt_difference
 
     !> The velocity constraint dg/dt = G(x, t) v + g_t(x, t), length m.
     subroutine velocity_constraint(problem, t, x, v, val, stat)

@@ -85,6 +85,8 @@ module regdae_solver_front
         integer :: linear_solver = linear_solver_dense    ! resolved
         logical, allocatable :: excluded(:)   ! unknowns left out of the error test
         real(wp), allocatable :: y_work(:)    ! the multiplier at an output time
+        real(wp), allocatable :: zp_work(:)   ! the slope z' at an output time (the acceleration on request)
+        real(wp), allocatable :: atol_z(:)    ! the absolute tolerance of each component of the state z
         ! diagnostics, sampled at the output times (IDA) or the accepted steps (dopri5)
         type(solution_monitor) :: monitor
     end type solver_core
@@ -103,6 +105,7 @@ module regdae_solver_front
         !! `dae_problem`; `init(problem, t0, x0, v0, opts, stat)` for a
         !! `second_order_problem` or `mechanical_problem` (index from `opts%index`);
         !! `init(problem, t0, xs0, opts, stat)` for a `higher_order_problem`, xs0(n, order).
+        !! Optional last argument `atol_vector`: the absolute tolerance per component.
         generic :: init => init_first_order, init_second_order, init_higher_order
         procedure, private :: init_first_order => solver_init_first
         procedure, private :: init_second_order => solver_init_second
@@ -146,17 +149,21 @@ module regdae_solver_front
 
 contains
 
-    subroutine solver_init_first(self, problem, t0, x0, opts, stat)
+    subroutine solver_init_first(self, problem, t0, x0, opts, stat, atol_vector)
         class(regdae_solver), intent(inout) :: self
         class(dae_problem), intent(in) :: problem   !! the index-2 DAE (copied)
         real(wp), intent(in) :: t0                  !! initial time
         real(wp), intent(in) :: x0(:)               !! x(t0), length n; must satisfy g(x0, t0) = 0
         type(solver_options), intent(in) :: opts    !! options (validated here)
         integer, intent(out) :: stat                !! regdae status code
+        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                          !! (replaces atol, atol_v; second order: positions,
+                                                          !! then velocities; order m: x, ..., x^(m-1))
 
         if (.not. self%check_input(t0, x0, x0, problem%n, problem%m, opts, stat)) return
         if (.not. formulation_fits(self, opts, stat)) return
         call new_core(self%core)
+        if (present(atol_vector)) self%core%atol_z = atol_vector
         self%core%nx = problem%n
         select type (problem)
         class is (linear_dae_problem)
@@ -166,7 +173,7 @@ contains
         call self%start(t0, x0, opts, stat)
     end subroutine solver_init_first
 
-    subroutine solver_init_second(self, problem, t0, x0, v0, opts, stat)
+    subroutine solver_init_second(self, problem, t0, x0, v0, opts, stat, atol_vector)
         class(regdae_solver), intent(inout) :: self
         class(second_order_problem), intent(in) :: problem   !! the order-2 DAE or mechanical system (copied)
         real(wp), intent(in) :: t0                  !! initial time
@@ -174,6 +181,9 @@ contains
         real(wp), intent(in) :: v0(:)               !! x'(t0), length n; G v0 + g_t = 0
         type(solver_options), intent(in) :: opts    !! options (validated here; `index` chooses 2 or 3)
         integer, intent(out) :: stat
+        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                          !! (replaces atol, atol_v; second order: positions,
+                                                          !! then velocities; order m: x, ..., x^(m-1))
         class(second_order_problem), allocatable :: copy
         real(wp) :: gval(problem%m), gnorm
         integer :: ustat
@@ -215,6 +225,7 @@ contains
             if (.not. formulation_fits(self, opts, stat)) return
         end if
         call new_core(self%core)
+        if (present(atol_vector)) self%core%atol_z = atol_vector
         self%core%nx = problem%n
         self%core%second_order = .true.
         select type (copy)
@@ -234,13 +245,16 @@ contains
         call self%start(t0, [x0, v0], opts, stat)
     end subroutine solver_init_second
 
-    subroutine solver_init_higher(self, problem, t0, xs0, opts, stat)
+    subroutine solver_init_higher(self, problem, t0, xs0, opts, stat, atol_vector)
         class(regdae_solver), intent(inout) :: self
         class(higher_order_problem), intent(in) :: problem   !! the order-m DAE (copied)
         real(wp), intent(in) :: t0                   !! initial time
         real(wp), intent(in) :: xs0(:, :)            !! (n, order): x, x', ..., x^(m-1) at t0
         type(solver_options), intent(in) :: opts
         integer, intent(out) :: stat
+        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                          !! (replaces atol, atol_v; second order: positions,
+                                                          !! then velocities; order m: x, ..., x^(m-1))
         class(higher_order_problem), allocatable :: copy
         real(wp) :: gval(problem%m), gx(problem%m, problem%n), gt(problem%m), gnorm
         integer :: ustat
@@ -275,6 +289,7 @@ contains
             return
         end if
         call new_core(self%core)
+        if (present(atol_vector)) self%core%atol_z = atol_vector
         self%core%nx = problem%n
         self%core%second_order = .true.
         call self%core%model%init_higher_order(copy, opts, lsq_normal)
@@ -370,6 +385,11 @@ contains
         core%n = 2*problem%n
         core%m = problem%m
         core%t = t0
+        call set_state_tolerances(core, stat, msg)
+        if (stat /= regdae_success) then
+            call fail(stat, msg)
+            return
+        end if
         call sys%setup(problem, opts, stat)
         if (stat /= regdae_success) then
             call fail(stat, sys%message)
@@ -389,7 +409,8 @@ contains
         call sys%initial_guess(q0, v0, u0, up0, id)
         core%excluded = sys%excluded_unknowns(opts%excluded)
         if (opts%exclusion == exclusion_off) core%excluded = .false.
-        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg)
+        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
+                             sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
         if (stat /= regdae_success) then
             call fail(stat, msg)
             return
@@ -444,7 +465,8 @@ contains
         call core%monitor%reset(core%opts%singular_threshold, core%model%eps, merge(core%nx, 0, core%second_order), &
                                 core%opts%jump_tol, core%opts%drift_tol, core%opts%invariant_tol, &
                                 merge(resolved_work_tol(core%opts), 0.0_wp, core%model%is_mechanical()))
-        call core%monitor%automatic(core%eps_factor, core%model%eps, core%drift_factor, core%opts%rtol, core%opts%atol)
+        call core%monitor%automatic(core%eps_factor, core%model%eps, core%drift_factor, core%opts%rtol, &
+                                    maxval(core%atol_z(1:core%nx)))
         core%monitor%work_floor = core%work_floor
         call core%monitor%sample(t0, core%model, z0, zp0)
         core%sampled_t = t0
@@ -483,7 +505,7 @@ contains
             if (stat /= regdae_success) msg = 'switching to IDA at t = '//format_real(t)//': FIDAReInit failed'
         else
             call core%ida%create(new_regularized_system(core%model, core%n, core%n), core%opts, linear_solver_dense, &
-                                 core%excluded(1:core%n), t, z, zp, stat, msg)
+                                 core%excluded(1:core%n), t, z, zp, stat, msg, core%atol_z)
         end if
         if (stat /= regdae_success) return
         if (from_start) call start_monitor(core, t, z, zp)
@@ -552,7 +574,8 @@ contains
         core%linear_solver = linear_solver_sparse
         core%excluded = sys%excluded_unknowns(opts%excluded)
         if (opts%exclusion == exclusion_off) core%excluded = .false.
-        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t, u0, up0, stat, msg)
+        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t, u0, up0, stat, msg, &
+                             sys%tolerance_vector(core%atol_z(1:nx), core%atol_z(nx + 1:), opts%atol))
         if (stat == regdae_success) call core%ida%calc_ic(id, t + 1.0e-3_wp*max(1.0_wp, abs(t)), stat, msg)
         if (stat /= regdae_success) then
             msg = 'switching to IDA at t = '//format_real(t)//' (augmented formulation): '//msg
@@ -571,7 +594,8 @@ contains
         real(wp), intent(in) :: t, eps
         call core%monitor%reset(core%opts%singular_threshold, eps, core%nx, core%opts%jump_tol, &
                                 core%opts%drift_tol, core%opts%invariant_tol, resolved_work_tol(core%opts))
-        call core%monitor%automatic(core%eps_factor, eps, core%drift_factor, core%opts%rtol, core%opts%atol)
+        call core%monitor%automatic(core%eps_factor, eps, core%drift_factor, core%opts%rtol, &
+                                    maxval(core%atol_z(1:core%nx)))
         core%monitor%work_floor = core%work_floor
         call sample_augmented(core, t)
         core%sampled_t = t
@@ -865,6 +889,11 @@ contains
         lsq = opts%lsq
         if (lsq == lsq_auto) lsq = lsq_checked   ! by conditioning, per solve (regdae_damped_lsq)
         core%model%lsq = lsq
+        call set_state_tolerances(core, stat, msg)
+        if (stat /= regdae_success) then
+            call fail(stat, msg)
+            return
+        end if
         call resolve_auto_parameters(core, t0, z0, stat, msg)
         if (stat /= regdae_success) then
             call fail(stat, msg)
@@ -895,7 +924,7 @@ contains
             core%excluded(n + 1:) = .true.
             if (core%model%order >= 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:n) = .true.
         end if
-        allocate (core%y_work(m))
+        allocate (core%y_work(m), core%zp_work(n))
         if (opts%h_init == 0.0_wp) then
             call check_first_step(core, t0, z0, zp0, stat, msg)
             if (stat /= regdae_success) then
@@ -933,7 +962,8 @@ contains
             return
         end if
         call core%ida%create(new_regularized_system(core%model, n, core%neq), opts, linear_solver_dense, core%excluded, t0, &
-                             [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg)
+                             [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg, &
+                             [core%atol_z, spread(opts%atol, 1, core%neq - n)])
         if (stat /= regdae_success) then
             call fail(stat, msg)
             return
@@ -947,6 +977,34 @@ contains
             call self%destroy()
         end subroutine fail
     end subroutine solver_start
+
+    ! The absolute tolerance of each component of the state z (length core%n):
+    ! init's atol_vector (in core%atol_z already), or atol, with atol_v on a
+    ! second-order problem's velocities.
+    subroutine set_state_tolerances(core, stat, msg)
+        type(solver_core), intent(inout) :: core
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        stat = regdae_err_bad_input
+        msg = ''
+        if (core%opts%atol_v /= option_auto .and. .not. (core%second_order .and. core%n == 2*core%nx)) then
+            msg = 'atol_v is the velocities'' tolerance of a second-order problem; this problem has none '// &
+                  '(use atol, or atol_vector per component)'
+        else if (allocated(core%atol_z)) then   ! init's atol_vector
+            if (size(core%atol_z) /= core%n) then
+                msg = 'atol_vector has '//format_int(size(core%atol_z))//' entries; it needs one per '// &
+                      'component of the state: '//format_int(core%n)// &
+                      trim(merge(' (the positions, then the velocities)', '                                     ', &
+                                 core%second_order .and. core%n == 2*core%nx))
+            else if (.not. all(core%atol_z > 0.0_wp .and. core%atol_z <= huge(1.0_wp))) then
+                msg = 'atol_vector: every entry must be finite and > 0'
+            end if
+        else
+            core%atol_z = spread(core%opts%atol, 1, core%n)
+            if (core%opts%atol_v /= option_auto) core%atol_z(core%nx + 1:2*core%nx) = core%opts%atol_v
+        end if
+        if (len(msg) == 0) stat = regdae_success
+    end subroutine set_state_tolerances
 
     ! The `auto` parameters of core%opts, from the problem at (t0, z0) (the model
     ! evaluated there with provisional weights); the model gets them, and
@@ -984,7 +1042,7 @@ contains
             if (opts%drift_tol == option_auto) then
                 core%drift_factor = drift_factor
                 opts%drift_tol = drift_factor*maxval(sqrt(sum(model%gx**2, dim=2)), 1, mask=.true.)* &
-                                 (opts%rtol*maxval(abs(z0(1:core%nx))) + opts%atol)
+                                 (opts%rtol*maxval(abs(z0(1:core%nx))) + maxval(core%atol_z(1:core%nx)))
                 ! off without constraints, for first-order problems, and for order >= 3, whose
                 ! Taylor weights leave a constraint error O(taylor_h^2) by design (doc/methods.md)
                 if (core%m == 0 .or. .not. core%second_order .or. model%order >= 3) then
@@ -1147,7 +1205,7 @@ contains
             end if
             if (opts%drift_tol == option_auto) then
                 core%drift_factor = drift_factor
-                opts%drift_tol = drift_factor*gmax*(opts%rtol*maxval(abs(q0)) + opts%atol)
+                opts%drift_tol = drift_factor*gmax*(opts%rtol*maxval(abs(q0)) + maxval(core%atol_z(1:size(q0))))
             end if
             weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
             work_check = resolved_work_tol(opts) > 0.0_wp
@@ -1224,7 +1282,7 @@ contains
         worst = 0
         do i = 1, size(z0)
             if (core%excluded(i) .and. core%opts%integrator /= integrator_dopri5) cycle
-            w = 1.0_wp/(core%opts%rtol*abs(z0(i)) + core%opts%atol)
+            w = 1.0_wp/(core%opts%rtol*abs(z0(i)) + core%atol_z(i))
             scaled = abs(zp0(i))*w
             if (.not. (scaled <= biggest)) then
                 biggest = scaled
@@ -1237,20 +1295,20 @@ contains
             sumsq = 0.0_wp
             do i = 1, size(z0)
                 if (core%excluded(i) .and. core%opts%integrator /= integrator_dopri5) cycle
-                w = 1.0_wp/(core%opts%rtol*abs(z0(i)) + core%opts%atol)
+                w = 1.0_wp/(core%opts%rtol*abs(z0(i)) + core%atol_z(i))
                 sumsq = sumsq + (zp0(i)*w/biggest)**2
             end do
             norm = biggest*sqrt(sumsq/size(z0))
             if (0.5_wp/norm >= time_resolution(t0, t0)) return
         end if
         stat = regdae_err_bad_input
-        w = 1.0_wp/(core%opts%rtol*abs(z0(worst)) + core%opts%atol)
+        w = 1.0_wp/(core%opts%rtol*abs(z0(worst)) + core%atol_z(worst))
         msg = 'no first step possible at t0 = '//format_real(t0)//': the step that keeps the local error at the '// &
               'tolerance, about 1/|z''(t0)|_w with the error weights w = 1/(rtol |z| + atol), is below the time '// &
               'resolution (component '//format_int(worst)//': |z''| = '//format_real(abs(zp0(worst)))// &
               ', w = '//format_real(w)//'): '
         if (w > abs(zp0(worst))) then
-            msg = msg//'atol = '//format_real(core%opts%atol)//' is too small (the weighted norms square the '// &
+            msg = msg//'atol = '//format_real(core%atol_z(worst))//' is too small (the weighted norms square the '// &
                   'weights, up to 1/atol, which overflow for atol below about 1e-150)'
         else
             msg = msg//'the initial slope is huge; '//weights_text(core)//' magnifies the rounding error of '// &
@@ -1273,7 +1331,7 @@ contains
         end if
     end function weights_text
 
-    subroutine solver_advance(self, tout, x, y, stat, v)
+    subroutine solver_advance(self, tout, x, y, stat, v, a)
         class(regdae_solver), intent(inout) :: self
         real(wp), intent(in) :: tout      !! output time (beyond the current time, or equal to it)
         real(wp), intent(out) :: x(:)     !! x(tout), length n
@@ -1283,6 +1341,9 @@ contains
                                           !! with integrator=dopri5)
         integer, intent(out) :: stat      !! regdae status code
         real(wp), intent(out), optional :: v(:)   !! second-order problems: v(tout), length n
+        real(wp), intent(out), optional :: a(:)   !! second-order problems: the acceleration x''(tout), length
+                                          !! n: f - B y from the regularized equation at the state
+                                          !! (augmented formulation: IDA's interpolated v')
         type(solver_core), pointer :: core
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
@@ -1316,6 +1377,12 @@ contains
                 return
             end if
         end if
+        if (present(a)) then
+            if (.not. core%second_order .or. size(a) /= nx) then
+                call fail(regdae_err_bad_input, 'advance: a is for second-order problems, length '//format_int(nx))
+                return
+            end if
+        end if
         if (.not. ieee_is_finite(tout)) then
             call fail(regdae_err_bad_input, 'advance: tout is NaN or Inf')
             return
@@ -1341,7 +1408,7 @@ contains
             do
                 if (core%active == integrator_dopri5) then
                     u => core%z_rk
-                    call core%rk%advance(core%model, tout, core%opts%rtol, core%opts%atol, core%opts%h_max, &
+                    call core%rk%advance(core%model, tout, core%opts%rtol, core%atol_z, core%opts%h_max, &
                                          core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat, &
                                          core%monitor, stop_when_stiff=core%switching)
                     if (stat /= regdae_success) then
@@ -1380,29 +1447,40 @@ contains
                 call augmented_unpack(y=core%y_work)
                 y = core%multiplier_sign*core%y_work
             end if
+            if (present(a)) then
+                select type (sys => core%ida%system)
+                type is (augmented_system)
+                    call sys%unpack(u, core%ida%slope(), a=a)
+                end select
+            end if
             call self%record(regdae_success, '', stat)
             return
         end if
         ! The diagnostics come from the accepted steps (IDA's and dopri5's); the
         ! multiplier is computed only when asked for.
         if (branch_alarm()) return
-        if (.not. present(y)) then
+        if (.not. (present(y) .or. present(a))) then
             call self%record(regdae_success, '', stat)
             return
         end if
-        ! The multiplier at an output time comes from the regularized equation, not
-        ! from IDA's interpolant.
+        ! The multiplier (and the acceleration) at an output time come from the
+        ! regularized equation, not from IDA's interpolant.
         call core%model%evaluate(tout, u(1:core%n), stat, recoverable)
         if (stat == regdae_success) call core%model%solve_multiplier(tout, core%y_work, stat)
         if (stat /= regdae_success) then
             ! The state at tout is valid; only the multiplier equation is singular here
             ! (Baumgarte where GB is singular, or eps = 0 with the normal equations).
             if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
+            if (present(a)) a = ieee_value(1.0_wp, ieee_quiet_nan)
             call self%record(regdae_warn_multiplier_undefined, 'the multiplier at t = '//format_real(tout)// &
                              ' is undefined: '//core%model%message, stat)
             return
         end if
         if (present(y)) y = core%multiplier_sign*core%y_work
+        if (present(a)) then
+            call core%model%dynamics_slope(u(1:core%n), core%y_work, core%zp_work)
+            a = core%zp_work(nx + 1:2*nx)
+        end if
         call self%record(regdae_success, '', stat)
     contains
         ! IDA one step at a time (the same steps as IDA_NORMAL) to tout, the monitor

@@ -19,7 +19,7 @@ module test_defaults
     !> A point mass on a string whose length L(t) = 1 + 0.2 sin(2t) is driven
     !! (rheonomic: g = x^2 + y^2 - L(t)^2), under gravity; with `forget_gt` the
     !! problem reports g_t = 0, as a user who forgets the moving constraint would.
-    type, extends(mechanical_problem) :: growing_pendulum
+    type, extends(mechanical_problem), public :: growing_pendulum
         logical :: forget_gt = .false.
     contains
         procedure :: mass_matrix => growing_mass

@@ -12,6 +12,7 @@ program regdae_tester
     use test_fuzz, only: fuzz_tests
     use test_structure, only: structure_tests
     use test_defaults, only: defaults_tests
+    use test_api, only: api_tests
     implicit none
     character(len=64) :: suite
     integer :: nfailed, ntotal
@@ -32,9 +33,10 @@ program regdae_tester
     call maybe_run('fuzz', fuzz_tests())
     call maybe_run('structure', structure_tests())
     call maybe_run('defaults', defaults_tests())
+    call maybe_run('api', api_tests())
     if (.not. known) then
         write (*, '(a)') 'regdae_tester: unknown suite "'//trim(suite)// &
-            '" (lsq, residuals, solver, mechanics, theory, hardening, fuzz, structure, defaults)'
+            '" (lsq, residuals, solver, mechanics, theory, hardening, fuzz, structure, defaults, api)'
         stop 2
     end if
     write (*, '(i0,a,i0,a)') ntotal - nfailed, ' passed, ', nfailed, ' failed'

@@ -179,9 +179,9 @@ contains
         real(wp), intent(in) :: seconds
         real(wp), intent(in), optional :: output_seconds
         character(len=:), allocatable :: text
-        text = ' steps='//format_int(int(st%steps))//' res_evals='//format_int(int(st%res_evals))// &
-               ' jac_evals='//format_int(int(st%jac_evals))//' err_test_fails='//format_int(int(st%err_test_fails))// &
-               ' conv_fails='//format_int(int(st%conv_fails))//' switches='//format_int(st%switches)// &
+        text = ' steps='//format_int(st%steps)//' res_evals='//format_int(st%res_evals)// &
+               ' jac_evals='//format_int(st%jac_evals)//' err_test_fails='//format_int(st%err_test_fails)// &
+               ' conv_fails='//format_int(st%conv_fails)//' switches='//format_int(st%switches)// &
                ' work_defect='//num(st%work_defect)//' seconds='//num(seconds)
         if (present(output_seconds)) text = text//' output_seconds='//num(output_seconds)
     end function stats_fields
