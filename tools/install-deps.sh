@@ -2,12 +2,13 @@
 # Install the Debian packages regdae needs, if any is missing.
 # Usage: tools/install-deps.sh [--figures] [--tests]
 #   --figures adds gnuplot-nox (the report's figures); --tests adds valgrind (memcheck tests)
+#   and pkg-config (builds against the installed regdae.pc)
 set -eu
 packages="gfortran cmake make liblapack-dev libsundials-dev libsundials-fortran-dev"
 for arg in "$@"; do
     case $arg in
     --figures) packages="$packages gnuplot-nox" ;;
-    --tests) packages="$packages valgrind" ;;
+    --tests) packages="$packages valgrind pkg-config" ;;
     *) echo "usage: tools/install-deps.sh [--figures] [--tests]" >&2; exit 2 ;;
     esac
 done
