@@ -81,6 +81,9 @@ module regdae_second_order_problem
     end interface
 
     public :: velocity_constraint, curvature_difference
+    ! The default g_t, for the problems of the C and FORTRAN 77 interfaces that have no
+    ! g_t routine (not re-exported by `regdae`).
+    public :: default_constraint_dt
 
 contains
 
