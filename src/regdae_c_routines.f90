@@ -13,9 +13,7 @@ module regdae_c_routines
                                            c_associated, c_f_procpointer
     use regdae_kinds, only: wp
     use regdae_format, only: format_int, format_real
-    use regdae_foreign_problems, only: foreign_routines, n_routines, routine_f, routine_b, routine_g, routine_gx, &
-                                       routine_gt, routine_curvature, routine_invariant, routine_mass, routine_forces, &
-                                       routine_mass_values, routine_gx_values
+    use regdae_foreign_problems, only: foreign_routines, n_routines, routine_name
     implicit none
     private
 
@@ -50,8 +48,6 @@ module regdae_c_routines
         procedure :: evaluate => c_evaluate
     end type c_routines
 
-    public :: c_routine_name
-
 contains
 
     logical function c_has(self, which)
@@ -77,28 +73,8 @@ contains
             call c_f_procpointer(self%callbacks(which), point)
             stat = int(point(t, x, val, self%user_data))
         end if
-        if (stat /= 0) self%failure = 'the callback '//c_routine_name(which)//' returned '//format_int(stat)// &
+        if (stat /= 0) self%failure = 'the callback '//routine_name(which)//' returned '//format_int(stat)// &
                                       ' at t = '//format_real(t)
     end subroutine c_evaluate
-
-    !> The name of a routine in `include/regdae.h`'s terms (the argument that set it).
-    pure function c_routine_name(which) result(name)
-        integer, intent(in) :: which   !! a routine code
-        character(len=:), allocatable :: name
-        select case (which)
-        case (routine_f); name = 'f'
-        case (routine_b); name = 'b'
-        case (routine_g); name = 'g'
-        case (routine_gx); name = 'gx'
-        case (routine_gt); name = 'gt'
-        case (routine_curvature); name = 'curvature'
-        case (routine_invariant); name = 'invariant'
-        case (routine_mass); name = 'mass'
-        case (routine_forces); name = 'forces'
-        case (routine_mass_values); name = 'mass_values'
-        case (routine_gx_values); name = 'gx_values'
-        case default; name = '?'
-        end select
-    end function c_routine_name
 
 end module regdae_c_routines
