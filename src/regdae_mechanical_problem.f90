@@ -96,6 +96,11 @@ module regdae_mechanical_problem
         end subroutine forces_iface
     end interface
 
+    ! The default `mass_values` and `constraint_jacobian_values`, for the problems of the C
+    ! interface that declare patterns without giving the values routines (not re-exported
+    ! by `regdae`).
+    public :: default_mass_values, default_constraint_jacobian_values
+
 contains
 
     function default_structure(self) result(st)

@@ -1,18 +1,24 @@
 #!/bin/sh
-# The complete example in doc/api.md must be drivers/example_circle.f90, which
-# ctest compiles and runs: the documentation cannot drift from working code.
-# Usage: check_doc_example.sh SOURCE_DIR
-src=${1:?usage: check_doc_example.sh SOURCE_DIR}
+# A complete program in doc/api.md must be the file that ctest compiles and
+# runs: the documentation cannot drift from working code. The program stands
+# between <!-- begin NAME --> and <!-- end NAME --> (NAME: the file's base name),
+# inside a code fence.
+# Usage: check_doc_example.sh SOURCE_DIR [FILE]   (FILE relative to SOURCE_DIR;
+#        default drivers/example_circle.f90)
+src=${1:?usage: check_doc_example.sh SOURCE_DIR [FILE]}
+file=${2:-drivers/example_circle.f90}
+name=$(basename "$file")
 tmp=$(mktemp) || exit 1
 trap 'rm -f "$tmp"' EXIT
-awk '/<!-- begin example_circle.f90 -->/ { grab = 1; next }
-     /<!-- end example_circle.f90 -->/ { grab = 0 }
+awk -v begin="<!-- begin $name -->" -v end="<!-- end $name -->" '
+     $0 == begin { grab = 1; next }
+     $0 == end { grab = 0 }
      grab && !/^```/ { print }' "$src/doc/api.md" >"$tmp"
-if cmp -s "$tmp" "$src/drivers/example_circle.f90"; then
+if [ -s "$tmp" ] && cmp -s "$tmp" "$src/$file"; then
     echo "1 passed, 0 failed"
 else
-    echo "doc/api.md's example differs from drivers/example_circle.f90:"
-    diff "$tmp" "$src/drivers/example_circle.f90" | head -20
+    echo "doc/api.md's $name differs from $file (or is missing):"
+    diff "$tmp" "$src/$file" | head -20
     echo "0 passed, 1 failed"
     exit 1
 fi

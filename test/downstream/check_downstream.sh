@@ -23,8 +23,8 @@ fi
 tool=${1:?}; linkage=${2:?}; prefix=$(cd "${3:?}" && pwd)
 source=$(cd "$(dirname "${4:?}")" && pwd)/$(basename "$4")
 case $source in
-*.f90) compiler=${FC:-gfortran} ;;
-*.c) compiler=${CC:-cc} ;;
+*.f90) compiler=${FC:-gfortran}; own_libs="" ;;
+*.c) compiler=${CC:-cc}; own_libs=-lm ;;   # the C example's own fmax, sqrt
 *) echo "check_downstream.sh: unknown language: $source" >&2; exit 2 ;;
 esac
 case $linkage in
@@ -55,7 +55,7 @@ pkg-config)
     if [ "$linkage" = static ]; then
         flags=$(pkg-config --cflags --static --libs regdae)
     else
-        flags="$(pkg-config --cflags --libs regdae) -Wl,-rpath,$(pkg-config --variable=libdir regdae)"
+        flags="$(pkg-config --cflags --libs regdae) $own_libs -Wl,-rpath,$(pkg-config --variable=libdir regdae)"
     fi
     echo "$compiler $static_flag $source $flags"
     # shellcheck disable=SC2086

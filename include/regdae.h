@@ -1,0 +1,457 @@
+/*
+ * regdae.h: the C interface of regdae, regularized higher-index DAEs with
+ * rank-deficient or singular constraints (Petzold, Ren & Maly, SIAM J. Sci.
+ * Comput. 18(3), 1997) on SUNDIALS IDA.
+ *
+ * C99. A thin layer over the Fortran API (doc/api.md): the same problems,
+ * options, statuses and messages. Implemented in Fortran (src/regdae_c_api.f90);
+ * link with the regdae library and its Fortran, SUNDIALS and LAPACK libraries
+ * (CMake: target_link_libraries(prog PRIVATE regdae::regdae)).
+ *
+ * Use:
+ *   regdae_solver *s = regdae_create();
+ *   regdae_set_first_order(s, n, m, f, b, g, gx, NULL, &my_data);
+ *   regdae_set_rtol(s, 1e-8);                 (or regdae_set_option(s, "rtol", "1e-8"))
+ *   regdae_init(s, t0, x0, n, NULL, 0);
+ *   regdae_advance(s, tout, x, n, y, m, NULL, 0);
+ *   regdae_destroy(&s);
+ *
+ * Conventions:
+ * - Every function that can fail returns a status: REGDAE_SUCCESS (0), a
+ *   warning (> 0: the result is usable) or an error (< 0); regdae_message(s)
+ *   then says what and where. Status codes are those of src/regdae_status.f90.
+ * - NULL pointers, lengths that do not match the problem and unknown option keys
+ *   give REGDAE_ERR_BAD_INPUT and a message naming the argument; a NULL handle
+ *   gives REGDAE_ERR_BAD_INPUT alone (there is nowhere to keep a message).
+ * - Every array comes with its length; a length must equal the problem's size.
+ * - Matrices are stored column by column (Fortran and LAPACK order): entry
+ *   (i, j), 0-based, of an r x c matrix a is a[i + j*r].
+ * - All state lives in the handle: any number of handles can be used side by
+ *   side, one handle by one thread at a time.
+ * - Callbacks return 0 on success, > 0 for a recoverable failure (the integrator
+ *   retries with a smaller step: e.g. x left the domain of f) and < 0 to stop the
+ *   integration (REGDAE_ERR_USER_CALLBACK; the message names the callback, the
+ *   value it returned and the time). user_data is passed through untouched.
+ */
+#pragma once
+#ifndef REGDAE_H
+#define REGDAE_H
+
+#include <float.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Status codes (src/regdae_status.f90; doc/api.md section 4) ------------ */
+
+/** Success. */
+#define REGDAE_SUCCESS 0
+/** Warning: x(tout) is valid, but the multiplier is undefined at tout (y = NaN). */
+#define REGDAE_WARN_MULTIPLIER_UNDEFINED 1
+/** Invalid argument or option: NULL pointer, wrong length, unknown key, bad value. */
+#define REGDAE_ERR_BAD_INPUT -101
+/** x0 (and v0) violate g(x0, t0) = 0 (G v0 + g_t = 0) beyond ic_tol. */
+#define REGDAE_ERR_INCONSISTENT_IC -102
+/** A callback returned < 0 (or > 0 at the initial point). */
+#define REGDAE_ERR_USER_CALLBACK -103
+/** method direct: GB + eps I is not symmetric positive definite. */
+#define REGDAE_ERR_NOT_PSD -104
+/** A matrix that must be invertible is singular (Baumgarte's GB at t0). */
+#define REGDAE_ERR_SINGULAR -105
+/** LAPACK reported an illegal argument (a bug). */
+#define REGDAE_ERR_LAPACK -106
+/** Creating or setting up an IDA object failed. */
+#define REGDAE_ERR_SUNDIALS -107
+/** The integrator failed (error test or convergence failures, max_steps, ...). */
+#define REGDAE_ERR_INTEGRATION -108
+/** regdae_advance without a successful regdae_init. */
+#define REGDAE_ERR_NOT_INITIALIZED -109
+/** NaN or Inf in a computed quantity. */
+#define REGDAE_ERR_NONFINITE -110
+/** A mechanical problem's M(q) is not symmetric positive definite. */
+#define REGDAE_ERR_MASS_MATRIX -111
+/** The velocity jumped across a singular configuration (probably a branch change). */
+#define REGDAE_ERR_BRANCH -112
+/** max |g(x, t)| exceeded drift_tol. */
+#define REGDAE_ERR_DRIFT -113
+/** The invariant changed by more than invariant_tol. */
+#define REGDAE_ERR_INVARIANT -114
+/** A matrix has a nonzero outside the declared pattern. */
+#define REGDAE_ERR_STRUCTURE -115
+/** check_jacobians: G or the Newton matrix disagrees with difference quotients. */
+#define REGDAE_ERR_JACOBIAN -116
+/** The work-energy balance of a mechanical problem failed. */
+#define REGDAE_ERR_WORK -117
+
+/* ---- Option codes (src/regdae_options.f90; doc/api.md section 2) ----------- */
+
+/** The value of a real option that regdae chooses itself (the text "auto"). */
+#define REGDAE_AUTO (-DBL_MAX)
+
+/** method: the regularization (default trust_region). */
+#define REGDAE_METHOD_BAUMGARTE 1
+#define REGDAE_METHOD_TRUST_REGION 2
+#define REGDAE_METHOD_DIRECT 3
+
+/** formulation: what IDA integrates (default auto). */
+#define REGDAE_FORMULATION_AUTO 0
+#define REGDAE_FORMULATION_MULTIPLIER 1
+#define REGDAE_FORMULATION_ELIMINATED 2
+#define REGDAE_FORMULATION_AUGMENTED 3
+
+/** linear_solver: IDA's linear solver (default auto). */
+#define REGDAE_LINEAR_SOLVER_AUTO 0
+#define REGDAE_LINEAR_SOLVER_DENSE 1
+#define REGDAE_LINEAR_SOLVER_BAND 2
+#define REGDAE_LINEAR_SOLVER_SPARSE 3
+
+/** lsq: the damped least-squares solver (default auto; CHECKED is what auto resolves to). */
+#define REGDAE_LSQ_AUTO 0
+#define REGDAE_LSQ_NORMAL 1
+#define REGDAE_LSQ_STACKED 2
+#define REGDAE_LSQ_CHECKED 3
+
+/** exclusion: how y leaves IDA's error test (default suppress). */
+#define REGDAE_EXCLUSION_SUPPRESS 1
+#define REGDAE_EXCLUSION_WEIGHTS 2
+#define REGDAE_EXCLUSION_OFF 3
+
+/** integrator (default auto). */
+#define REGDAE_INTEGRATOR_AUTO 0
+#define REGDAE_INTEGRATOR_IDA 1
+#define REGDAE_INTEGRATOR_DOPRI5 2
+
+/** excluded: index 3, what leaves the error test (default y). */
+#define REGDAE_EXCLUDED_Y 1
+#define REGDAE_EXCLUDED_VY 2
+
+/** The patterns a mechanical problem may declare (regdae_set_pattern). */
+#define REGDAE_PATTERN_MASS 1       /* M, n x n */
+#define REGDAE_PATTERN_CONSTRAINT 2 /* G, m x n */
+#define REGDAE_PATTERN_FORCE_Q 3    /* d(f - M(q) a)/dq for any a, n x n */
+#define REGDAE_PATTERN_FORCE_V 4    /* df/dq', n x n */
+
+/* ---- Types ------------------------------------------------------------------ */
+
+/** A solver: opaque; create with regdae_create, free with regdae_destroy. */
+typedef struct regdae_solver regdae_solver;
+
+/**
+ * A routine of (t, x): writes out and returns 0 (ok), > 0 (recoverable) or < 0 (stop).
+ * x has length n; out has the length of the value (f: n; g, g_t: m; B: n x m;
+ * G: m x n; M: n x n; a pattern's values: its number of entries), column-major.
+ */
+typedef int (*regdae_point_fn)(double t, const double *x, double *out, void *user_data);
+
+/**
+ * A routine of (t, x, v) (x and v of length n): the f and B of a second-order
+ * problem, the forces of a mechanical one, the curvature (length m), the
+ * invariant (one value). Same return convention.
+ */
+typedef int (*regdae_motion_fn)(double t, const double *x, const double *v, double *out, void *user_data);
+
+/** The options (solver_options of the Fortran API, field for field; doc/api.md section 2). */
+typedef struct regdae_options {
+    int method;                /**< REGDAE_METHOD_* */
+    int formulation;           /**< REGDAE_FORMULATION_* */
+    int lsq;                   /**< REGDAE_LSQ_* */
+    int exclusion;             /**< REGDAE_EXCLUSION_* */
+    double gamma;              /**< Baumgarte weight, or REGDAE_AUTO */
+    double eps;                /**< damping of trust_region and direct, or REGDAE_AUTO */
+    double rtol;               /**< relative tolerance */
+    double atol;               /**< absolute tolerance (on x; at index 3 on (x, v)) */
+    int stop_at_output;        /**< 1: steps end at every output time */
+    int max_steps;             /**< steps per regdae_advance */
+    double h_init;             /**< first step (0: the integrator's choice) */
+    double h_max;              /**< largest step (0: unlimited) */
+    double ic_tol;             /**< allowed max |g(x0, t0)| (and |G v0 + g_t|) */
+    int index;                 /**< second-order problems: 3 or 2 */
+    double gamma0;             /**< index 3: weight of g, or REGDAE_AUTO */
+    double gamma1;             /**< index 3: weight of G v + g_t, or REGDAE_AUTO */
+    int curvature;             /**< index 3: 1 adds the curvature term */
+    int excluded;              /**< REGDAE_EXCLUDED_* */
+    double singular_threshold; /**< sigma_min(GB) below it: singular, or REGDAE_AUTO */
+    double jump_tol;           /**< velocity-jump alarm (0: off) */
+    double drift_tol;          /**< drift alarm (0: off), or REGDAE_AUTO */
+    double work_tol;           /**< work-energy alarm (0: off), or REGDAE_AUTO */
+    double invariant_tol;      /**< invariant alarm (0: off) */
+    double taylor_h;           /**< order >= 3: h of the Taylor weights */
+    double mass_damping;       /**< mechanical: mu of (4.11) */
+    int integrator;            /**< REGDAE_INTEGRATOR_* */
+    int linear_solver;         /**< REGDAE_LINEAR_SOLVER_* */
+    int check_jacobians;       /**< 1: check G (and the Newton matrix) at init */
+} regdae_options;
+
+/** The statistics (solver_stats of the Fortran API, field for field; doc/api.md section 3). */
+typedef struct regdae_stats {
+    int64_t steps;            /**< steps taken */
+    int64_t res_evals;        /**< all residual evaluations (IDA's and the Jacobian's) */
+    int64_t jac_res_evals;    /**< residual evaluations in difference-quotient Jacobians */
+    int64_t jac_evals;        /**< Jacobian evaluations */
+    int64_t lin_setups;       /**< linear solver setups */
+    int64_t nonlin_iters;     /**< Newton iterations */
+    int64_t err_test_fails;   /**< local error test failures */
+    int64_t conv_fails;       /**< nonlinear convergence failures */
+    double t;                 /**< time reached */
+    double h_last;            /**< last step size */
+    int singular_passes;      /**< runs of samples with sigma_min(GB) below singular_threshold */
+    double sigma_min;         /**< smallest sigma_min(GB) at the samples */
+    double velocity_jump;     /**< largest relative velocity jump across a singular interval */
+    double max_drift;         /**< largest max |g(x, t)| at the samples (order >= 2) */
+    double invariant_change;  /**< largest change of the invariant (invariant_tol > 0) */
+    int switches;             /**< integrator auto: switches between dopri5 and IDA */
+    double work_defect;       /**< mechanical: largest work-energy defect, relative */
+} regdae_stats;
+
+/* ---- Handles and messages --------------------------------------------------- */
+
+/**
+ * A new solver with the default options and no problem.
+ * Returns NULL only if memory is exhausted.
+ */
+regdae_solver *regdae_create(void);
+
+/**
+ * Free a solver (its IDA memory too) and set *solver to NULL.
+ * solver == NULL or *solver == NULL: nothing happens.
+ */
+void regdae_destroy(regdae_solver **solver);
+
+/**
+ * The message of the last call on this solver: what went wrong, with the time
+ * and the quantity; "" after success. Owned by the solver, valid until its next
+ * call. NULL for a NULL solver.
+ */
+const char *regdae_message(const regdae_solver *solver);
+
+/* ---- The problem -------------------------------------------------------------
+ * One of regdae_set_first_order, regdae_set_second_order, regdae_set_mechanical
+ * defines the problem (and forgets a previous one, its optional callbacks and
+ * patterns); the optional callbacks and patterns come after it. All are read by
+ * regdae_init.
+ */
+
+/**
+ * A semi-explicit index-2 problem (paper, eq. 2.1):
+ *   x' = f(x, t) - B(x, t) y,   0 = g(x, t),   x in R^n, y in R^m, 1 <= n, 0 <= m <= n.
+ * f (length n), b (B, n x m), g (length m), gx (G = dg/dx, m x n) are required;
+ * gt (dg/dt, length m) may be NULL: a central difference quotient (error ~ 4e-11).
+ * Sign convention: B multiplies y with a minus sign (a section-3 linear DAE
+ * x' = A x + C^T y + q has B = -C^T).
+ * Returns REGDAE_SUCCESS, or REGDAE_ERR_BAD_INPUT (sizes, a NULL required callback).
+ */
+int regdae_set_first_order(regdae_solver *solver, int n, int m, regdae_point_fn f, regdae_point_fn b,
+                           regdae_point_fn g, regdae_point_fn gx, regdae_point_fn gt, void *user_data);
+
+/**
+ * A second-order (index-3) problem (paper, eq. 4.1):
+ *   x'' = f(x, x', t) - B(x, x', t) y,   0 = g(x, t).
+ * f (length n) and b (n x m) are functions of (t, x, v); g, gx and gt (NULL: a
+ * difference quotient) of (t, x). The index (3, or 2 through G v + g_t = 0) is
+ * the option "index". Optional: regdae_set_curvature, regdae_set_invariant.
+ */
+int regdae_set_second_order(regdae_solver *solver, int n, int m, regdae_motion_fn f, regdae_motion_fn b,
+                            regdae_point_fn g, regdae_point_fn gx, regdae_point_fn gt, void *user_data);
+
+/**
+ * A constrained mechanical system (paper, eq. 1.2):
+ *   M(q) q'' = f(q, q', t) + G^T lambda,   0 = g(q, t).
+ * mass (M, n x n, symmetric positive definite), forces (f, length n, of (t, q, v)),
+ * g, gx and gt (NULL: a difference quotient). regdae_advance returns lambda as y.
+ * Optional: regdae_set_curvature, regdae_set_invariant, and the structure
+ * (regdae_set_pattern, regdae_set_pattern_values).
+ */
+int regdae_set_mechanical(regdae_solver *solver, int n, int m, regdae_point_fn mass, regdae_motion_fn forces,
+                          regdae_point_fn g, regdae_point_fn gx, regdae_point_fn gt, void *user_data);
+
+/**
+ * Second-order and mechanical problems: c = g_xx(v, v) + 2 g_xt v + g_tt (length m),
+ * used by the curvature-corrected regularization (option curvature=yes).
+ * NULL restores the default (a difference quotient of G v + g_t).
+ */
+int regdae_set_curvature(regdae_solver *solver, regdae_motion_fn curvature);
+
+/**
+ * Second-order and mechanical problems: an invariant I(x, v, t) of the motion
+ * (one value, e.g. the energy), checked when the option invariant_tol > 0.
+ * NULL: none.
+ */
+int regdae_set_invariant(regdae_solver *solver, regdae_motion_fn invariant);
+
+/**
+ * Mechanical problems: declare which entries of a matrix may be nonzero
+ * (doc/api.md, "Large mechanisms"). which: REGDAE_PATTERN_*; rows[k], cols[k]
+ * (0-based, k < nnz) in any order, duplicates count once. Declaring any pattern
+ * declares the structure; a pattern not declared is dense. With at least 16
+ * coordinates (or formulation=augmented) the augmented formulation then uses the
+ * patterns. Values in "pattern order": row by row, columns increasing
+ * (regdae_pattern_position gives the index of an entry).
+ * Returns REGDAE_ERR_BAD_INPUT for an entry outside the matrix.
+ */
+int regdae_set_pattern(regdae_solver *solver, int which, int nnz, const int *rows, const int *cols);
+
+/**
+ * The 0-based index of entry (i, j) (0-based) in the values of the declared
+ * pattern which (pattern order); -1 if the entry is not in it, the pattern is not
+ * declared, or which is not a REGDAE_PATTERN_* code.
+ */
+int regdae_pattern_position(const regdae_solver *solver, int which, int i, int j);
+
+/**
+ * Mechanical problems with a declared pattern of M (which = REGDAE_PATTERN_MASS)
+ * or G (REGDAE_PATTERN_CONSTRAINT): the routine that gives its entries at
+ * (t, q) in pattern order (out has the pattern's number of entries), without
+ * forming the dense matrix. NULL (the default): taken from the mass or gx
+ * callback (dense, O(n^2)), refusing a nonzero outside the pattern
+ * (REGDAE_ERR_STRUCTURE).
+ */
+int regdae_set_pattern_values(regdae_solver *solver, int which, regdae_point_fn values);
+
+/* ---- Options ------------------------------------------------------------------
+ * Read by regdae_init (changing one later affects the next regdae_init).
+ */
+
+/**
+ * Set an option from its key and value as text, through the same parser as the
+ * drivers' key=value arguments (doc/api.md section 2: method, formulation, lsq,
+ * exclusion, gamma, eps, rtol, atol, stop_at_output, max_steps, h_init, h_max,
+ * ic_tol, index, gamma0, gamma1, curvature, excluded, singular_threshold,
+ * jump_tol, drift_tol, invariant_tol, work_tol, taylor_h, mass_damping,
+ * integrator, linear_solver, check_jacobians). Numbers are read strictly
+ * ("1e-3", ".5"; not "1-3"). An unknown key or a bad value gives
+ * REGDAE_ERR_BAD_INPUT, a message naming it, and leaves the options unchanged.
+ */
+int regdae_set_option(regdae_solver *solver, const char *key, const char *value);
+
+/**
+ * The absolute tolerance per component of the state for the next regdae_init
+ * (replaces the atol option): n entries, the state's length (first order: n;
+ * second-order and mechanical problems: 2n, the positions then the velocities;
+ * regdae_init refuses another length or an entry <= 0). atol NULL and n 0 clear
+ * it. The array is copied.
+ */
+int regdae_set_atol_vector(regdae_solver *solver, const double *atol, int n);
+
+/**
+ * Set a real option by its key (gamma, eps, rtol, atol, h_init, h_max, ic_tol,
+ * gamma0, gamma1, singular_threshold, jump_tol, drift_tol, invariant_tol,
+ * work_tol, taylor_h, mass_damping); REGDAE_AUTO is "auto". The value goes
+ * through the same parser and checks as regdae_set_option, exactly.
+ */
+int regdae_set_real_option(regdae_solver *solver, const char *key, double value);
+
+/**
+ * Set an integer option by its key: a number (index, max_steps), a code
+ * (method: REGDAE_METHOD_*, formulation, lsq, exclusion, excluded, integrator,
+ * linear_solver) or a switch, 0 or 1 (stop_at_output, curvature,
+ * check_jacobians). A value that is no code of the key: REGDAE_ERR_BAD_INPUT.
+ */
+int regdae_set_int_option(regdae_solver *solver, const char *key, int value);
+
+/* Typed setters for the common options (regdae_set_real_option and
+   regdae_set_int_option with the key spelled out). */
+
+/** rtol, 0 < rtol < 1 (default 1e-5). */
+static inline int regdae_set_rtol(regdae_solver *solver, double rtol)
+{
+    return regdae_set_real_option(solver, "rtol", rtol);
+}
+/** atol > 0 (default 1e-5). */
+static inline int regdae_set_atol(regdae_solver *solver, double atol)
+{
+    return regdae_set_real_option(solver, "atol", atol);
+}
+/** eps >= 0, or REGDAE_AUTO (the default). */
+static inline int regdae_set_eps(regdae_solver *solver, double eps)
+{
+    return regdae_set_real_option(solver, "eps", eps);
+}
+/** Baumgarte's gamma > 0, or REGDAE_AUTO (the default). */
+static inline int regdae_set_gamma(regdae_solver *solver, double gamma)
+{
+    return regdae_set_real_option(solver, "gamma", gamma);
+}
+/** Index 3: gamma0 > 0, or REGDAE_AUTO (the default). */
+static inline int regdae_set_gamma0(regdae_solver *solver, double gamma0)
+{
+    return regdae_set_real_option(solver, "gamma0", gamma0);
+}
+/** Index 3: gamma1 > 0, or REGDAE_AUTO (the default). */
+static inline int regdae_set_gamma1(regdae_solver *solver, double gamma1)
+{
+    return regdae_set_real_option(solver, "gamma1", gamma1);
+}
+/** First step size, >= 0 (0: the integrator's estimate, the default). */
+static inline int regdae_set_h_init(regdae_solver *solver, double h_init)
+{
+    return regdae_set_real_option(solver, "h_init", h_init);
+}
+/** Largest step size, >= 0 (0: unlimited, the default). */
+static inline int regdae_set_h_max(regdae_solver *solver, double h_max)
+{
+    return regdae_set_real_option(solver, "h_max", h_max);
+}
+/** REGDAE_METHOD_* (default REGDAE_METHOD_TRUST_REGION). */
+static inline int regdae_set_method(regdae_solver *solver, int method)
+{
+    return regdae_set_int_option(solver, "method", method);
+}
+/** Second-order and mechanical problems: 3 (the default) or 2. */
+static inline int regdae_set_index(regdae_solver *solver, int index)
+{
+    return regdae_set_int_option(solver, "index", index);
+}
+/** REGDAE_INTEGRATOR_* (default REGDAE_INTEGRATOR_AUTO). */
+static inline int regdae_set_integrator(regdae_solver *solver, int integrator)
+{
+    return regdae_set_int_option(solver, "integrator", integrator);
+}
+/** REGDAE_FORMULATION_* (default REGDAE_FORMULATION_AUTO). */
+static inline int regdae_set_formulation(regdae_solver *solver, int formulation)
+{
+    return regdae_set_int_option(solver, "formulation", formulation);
+}
+/** Steps allowed per regdae_advance, >= 1 (default 100000). */
+static inline int regdae_set_max_steps(regdae_solver *solver, int max_steps)
+{
+    return regdae_set_int_option(solver, "max_steps", max_steps);
+}
+
+/**
+ * The options: after a successful regdae_init those in force, every REGDAE_AUTO
+ * resolved to the value at t0 (formulation, linear_solver and lsq to the choice
+ * made; singular_threshold stays REGDAE_AUTO, a rule); before, those set so far.
+ */
+int regdae_get_options(const regdae_solver *solver, regdae_options *options);
+
+/* ---- Integration -------------------------------------------------------------- */
+
+/**
+ * Start the problem at t0: check the input (sizes, NaN/Inf, options), check
+ * |g(x0, t0)| <= ic_tol, compute y(t0) and x'(t0), create the integrator.
+ * x0 has length nx0 = n; v0 (length nv0 = n) is the initial velocity of a
+ * second-order or mechanical problem (G v0 + g_t = 0), NULL and 0 for a
+ * first-order one. May be called again to restart.
+ */
+int regdae_init(regdae_solver *solver, double t0, const double *x0, int nx0, const double *v0, int nv0);
+
+/**
+ * Integrate to tout (>= the time reached) and return x(tout) (length nx = n),
+ * and on request y(tout) (length ny = m; lambda for a mechanical problem,
+ * recomputed from the state at tout) and v(tout) (length nv = n, second-order
+ * and mechanical problems). Pass NULL and 0 for what is not wanted (no y: no
+ * multiplier is computed at tout). REGDAE_WARN_MULTIPLIER_UNDEFINED: x (and v)
+ * valid, y NaN; the solver can go on.
+ */
+int regdae_advance(regdae_solver *solver, double tout, double *x, int nx, double *y, int ny, double *v, int nv);
+
+/** The statistics of the integration so far (stats->t: the time reached). */
+int regdae_get_statistics(const regdae_solver *solver, regdae_stats *stats);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* REGDAE_H */

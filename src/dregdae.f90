@@ -1,0 +1,101 @@
+!> DREGDAE, DREGDAEM, DREGDAEMSG, DREGDAEFREE: the entry points for FORTRAN 77
+!! codes, in the manner of DASSL (Petzold, SAND82-8637, 1982). External
+!! subroutines (no module needed: a FORTRAN 77 program calls them with implicit
+!! interfaces) over `regdae_dassl`, where the work is done. The full description
+!! (INFO, RWORK, IWORK, IDID) is doc/api.md, "FORTRAN 77 interface (DREGDAE)".
+!!
+!!     CALL DREGDAE (F, B, G, GX, GT, N, M, T, X, Y, TOUT, INFO, RTOL, ATOL,
+!!    *              IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR)
+!!     CALL DREGDAEM (MASS, FORCES, G, GX, GT, N, M, T, Q, V, LAMBDA, TOUT,
+!!    *               INFO, RTOL, ATOL, IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR)
+!!     CALL DREGDAEMSG (IWORK, LIW, MSG)
+!!     CALL DREGDAEFREE (IWORK, LIW)
+!!
+!! Problems: DREGDAE solves x' = f(x, t) - B(x, t) y, 0 = g(x, t) (paper, eq. 2.1);
+!! DREGDAEM solves M(q) q'' = f(q, q', t) + G^T lambda, 0 = g(q, t) (eq. 1.2).
+!! User routines (declared EXTERNAL by the caller; IRES = 0 on entry, -1: try a
+!! smaller step, other nonzero values: stop with IDID = -11):
+!!     SUBROUTINE F(T, X, FX, IRES, RPAR, IPAR)       FX(N)     = f(x, t)
+!!     SUBROUTINE B(T, X, BX, IRES, RPAR, IPAR)       BX(N, M)  = B(x, t)
+!!     SUBROUTINE G(T, X, GV, IRES, RPAR, IPAR)       GV(M)     = g(x, t)
+!!     SUBROUTINE GX(T, X, GM, IRES, RPAR, IPAR)      GM(M, N)  = dg/dx
+!!     SUBROUTINE GT(T, X, GTV, IRES, RPAR, IPAR)     GTV(M)    = dg/dt (INFO(17) = 1)
+!!     SUBROUTINE MASS(T, Q, AM, IRES, RPAR, IPAR)    AM(N, N)  = M(q, t)
+!!     SUBROUTINE FORCES(T, Q, V, FV, IRES, RPAR, IPAR)  FV(N)  = f(q, q', t)
+
+!> Integrate x' = f(x, t) - B(x, t) y, 0 = g(x, t) from T to TOUT.
+subroutine dregdae(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, rpar, ipar)
+    use regdae_kinds, only: wp
+    use regdae_dassl, only: dassl_first_order
+    use regdae_f77_routines, only: f77_point_routine
+    implicit none
+    procedure(f77_point_routine) :: f, b, g, gx, gt   !! the user's routines (GT read when INFO(17) = 1)
+    integer, intent(in) :: n                          !! size of x
+    integer, intent(in) :: m                          !! number of constraints and multipliers
+    real(wp), intent(inout) :: t                      !! the time: t0 at the first call; on return TOUT
+                                                      !! (success) or the time reached (failure)
+    real(wp), intent(inout) :: x(*)                   !! x(t0) at the first call; on return x(T)
+    real(wp), intent(inout) :: y(*)                   !! on return y(T), length M
+    real(wp), intent(in) :: tout                      !! the next output time (> T)
+    integer, intent(inout) :: info(*)                 !! INFO(20): the options (doc/api.md)
+    real(wp), intent(in) :: rtol(*), atol(*)          !! relative and absolute tolerance (INFO(2) = 1: vectors of length N)
+    integer, intent(out) :: idid                      !! 2 or 3: success; 4: x valid, y undefined; < 0: failure
+    real(wp), intent(inout) :: rwork(*)               !! RWORK(LRW), LRW >= 20
+    integer, intent(in) :: lrw                        !! declared length of RWORK
+    integer, intent(inout) :: iwork(*)                !! IWORK(LIW), LIW >= 22; holds the solver between calls
+    integer, intent(in) :: liw                        !! declared length of IWORK
+    real(wp), intent(inout) :: rpar(*)                !! passed to the user's routines
+    integer, intent(inout) :: ipar(*)                 !! passed to the user's routines
+    call dassl_first_order(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, &
+                           rpar, ipar)
+end subroutine dregdae
+
+!> Integrate M(q) q'' = f(q, q', t) + G^T lambda, 0 = g(q, t) from T to TOUT.
+subroutine dregdaem(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
+                    iwork, liw, rpar, ipar)
+    use regdae_kinds, only: wp
+    use regdae_dassl, only: dassl_mechanical
+    use regdae_f77_routines, only: f77_point_routine, f77_motion_routine
+    implicit none
+    procedure(f77_point_routine) :: mass, g, gx, gt   !! the user's routines (GT read when INFO(17) = 1)
+    procedure(f77_motion_routine) :: forces           !! the applied forces f(q, q', t)
+    integer, intent(in) :: n                          !! number of coordinates
+    integer, intent(in) :: m                          !! number of constraints
+    real(wp), intent(inout) :: t                      !! as for DREGDAE
+    real(wp), intent(inout) :: q(*)                   !! q(t0) at the first call; on return q(T)
+    real(wp), intent(inout) :: v(*)                   !! q'(t0) at the first call; on return q'(T)
+    real(wp), intent(inout) :: lambda(*)              !! on return lambda(T), length M
+    real(wp), intent(in) :: tout
+    integer, intent(inout) :: info(*)
+    real(wp), intent(in) :: rtol(*), atol(*)          !! on q and q' (INFO(2) = 1: vectors of length 2N, q then q')
+    integer, intent(out) :: idid
+    real(wp), intent(inout) :: rwork(*)
+    integer, intent(in) :: lrw
+    integer, intent(inout) :: iwork(*)
+    integer, intent(in) :: liw
+    real(wp), intent(inout) :: rpar(*)
+    integer, intent(inout) :: ipar(*)
+    call dassl_mechanical(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
+                          iwork, liw, rpar, ipar)
+end subroutine dregdaem
+
+!> The message of the last DREGDAE or DREGDAEM call on the problem of IWORK
+!! (blank after success), cut or blank-padded to the length of MSG.
+subroutine dregdaemsg(iwork, liw, msg)
+    use regdae_dassl, only: dassl_message
+    implicit none
+    integer, intent(in) :: iwork(*)      !! the problem's IWORK
+    integer, intent(in) :: liw           !! its declared length
+    character(len=*), intent(out) :: msg !! the message
+    call dassl_message(iwork, liw, msg)
+end subroutine dregdaemsg
+
+!> Free the solver that IWORK holds (call it when a problem is done; a new
+!! problem with INFO(1) = 0 on the same IWORK reuses it instead).
+subroutine dregdaefree(iwork, liw)
+    use regdae_dassl, only: dassl_free
+    implicit none
+    integer, intent(inout) :: iwork(*)   !! the problem's IWORK
+    integer, intent(in) :: liw           !! its declared length
+    call dassl_free(iwork, liw)
+end subroutine dregdaefree

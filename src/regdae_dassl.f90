@@ -1,0 +1,469 @@
+!> The DASSL-style door for FORTRAN 77 codes: what the external subroutines
+!! DREGDAE (index-2 problems), DREGDAEM (mechanical systems), DREGDAEMSG and
+!! DREGDAEFREE of `dregdae.f90` do. The calling sequence, INFO, RWORK, IWORK and
+!! IDID follow DASSL (Petzold, SAND82-8637, 1982) where their meanings carry over;
+!! doc/api.md, "FORTRAN 77 interface (DREGDAE)", has the tables.
+!!
+!! Reentrant without SAVE, COMMON or module variables: the first call of a problem
+!! (INFO(1) = 0) allocates a session (the solver, the routines, the last message)
+!! and keeps its address in IWORK(21...) with a mark and a check word in IWORK(19)
+!! and IWORK(20); later calls (INFO(1) = 1), DREGDAEMSG and DREGDAEFREE find it
+!! there and refuse an IWORK whose mark or check word is wrong. Each problem has
+!! its own IWORK: any number can be interleaved. The start does not read IWORK
+!! (DASSL's callers do not initialize it), so it cannot free a solver that IWORK
+!! held before: DREGDAEFREE does that.
+module regdae_dassl
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer
+    use, intrinsic :: iso_fortran_env, only: error_unit, int64
+    use regdae_kinds, only: wp
+    use regdae_status, only: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, &
+                             regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_initialized
+    use regdae_format, only: format_int, format_real
+    use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_dopri5
+    use regdae_solver_front, only: regdae_solver, solver_stats
+    use regdae_foreign_problems, only: foreign_first_order, foreign_mechanical
+    use regdae_f77_routines, only: f77_routines, f77_point_routine, f77_motion_routine
+    implicit none
+    private
+
+    ! INFO: DASSL's entries 1-11 (DDASPK's 12-15 must be 0) and regdae's 16-20.
+    integer, parameter :: info_start = 1         ! 0: first call of a problem; 1: continue
+    integer, parameter :: info_vector_tol = 2    ! 1: ATOL a vector (RTOL too, with equal entries)
+    integer, parameter :: info_intermediate = 3  ! 1: return after every step (not available)
+    integer, parameter :: info_tstop = 4         ! 1: do not pass TSTOP = RWORK(1)
+    integer, parameter :: info_hmax = 7          ! 1: HMAX = RWORK(2)
+    integer, parameter :: info_h0 = 8            ! 1: H0 = RWORK(3)
+    integer, parameter :: info_method = 16       ! 0 (trust_region), 1 baumgarte, 2 trust_region, 3 direct
+    integer, parameter :: info_gt = 17           ! 1: GT is supplied
+    integer, parameter :: info_index = 18        ! DREGDAEM: 0 (3), 2 or 3
+    integer, parameter :: info_integrator = 19   ! 0 auto, 1 ida, 2 dopri5
+    integer, parameter :: info_messages = 20     ! 0: error unit; > 0: that unit; -1: none
+    !> The length of INFO.
+    integer, parameter, public :: info_length = 20
+
+    ! RWORK: DASSL's inputs and outputs, and regdae's parameters (0: auto).
+    integer, parameter :: rwork_tstop = 1, rwork_hmax = 2, rwork_h0 = 3   ! inputs (INFO(4), (7), (8))
+    integer, parameter :: rwork_tn = 4, rwork_hold = 7                   ! outputs: time reached, last step
+    integer, parameter :: rwork_eps = 11, rwork_gamma = 12, rwork_gamma0 = 13, rwork_gamma1 = 14
+    !> The smallest LRW.
+    integer, parameter, public :: min_lrw = 20
+
+    ! IWORK: DASSL's counters, regdae's, the last status and the session's address.
+    integer, parameter :: iwork_steps = 11, iwork_res_evals = 12, iwork_jac_evals = 13, iwork_err_test_fails = 14, &
+                          iwork_conv_fails = 15, iwork_singular_passes = 16, iwork_switches = 17, iwork_status = 18
+    integer, parameter :: iwork_mark = 19, iwork_check = 20, iwork_address = 21
+    ! Default integers that hold an address (2 for 64-bit addresses and 32-bit integers).
+    integer, parameter :: address_words = ceiling(real(storage_size(c_null_ptr))/real(storage_size(0)))
+    !> The smallest LIW.
+    integer, parameter, public :: min_liw = iwork_address + address_words - 1
+    ! IWORK(iwork_mark) of an IWORK that holds a session (and a check word next to it).
+    integer, parameter :: session_mark = 1997018
+
+    ! IDID (DASSL's meanings; the other failures are regdae's status codes).
+    integer, parameter :: idid_exact = 2, idid_interpolated = 3, idid_multiplier_undefined = 4
+    integer, parameter :: idid_user_stop = -11, idid_initial_values = -12, idid_bad_input = -33
+
+    integer, parameter :: kind_first_order = 1, kind_mechanical = 2
+
+    ! One problem's state, behind IWORK.
+    type :: dassl_session
+        type(regdae_solver) :: solver
+        type(f77_routines) :: routines
+        integer :: kind = 0
+        integer :: n = 0, m = 0
+        logical :: exact_stops = .false.   ! INFO(4) = 1 at the start: steps end at every TOUT (IDID = 2)
+        character(len=:), allocatable :: message
+    end type dassl_session
+
+    public :: dassl_first_order, dassl_mechanical, dassl_message, dassl_free
+
+contains
+
+    !> DREGDAE: x' = f(x, t) - B(x, t) y, 0 = g(x, t), from T to TOUT.
+    subroutine dassl_first_order(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, &
+                                 iwork, liw, rpar, ipar)
+        procedure(f77_point_routine) :: f, b, g, gx, gt   !! the user's routines (GT used when INFO(17) = 1)
+        integer, intent(in) :: n, m                       !! sizes of x and y
+        real(wp), intent(inout) :: t                      !! in: T (first call: t0); out: the time reached
+        real(wp), intent(inout) :: x(n)                   !! in: x(t0) at the first call; out: x(T)
+        real(wp), intent(inout) :: y(m)                   !! out: y(T)
+        real(wp), intent(in) :: tout                      !! where to go
+        integer, intent(inout) :: info(info_length)       !! options and the call's state (see the module)
+        real(wp), intent(in) :: rtol(*), atol(*)          !! tolerances (INFO(2) = 0: scalars)
+        integer, intent(out) :: idid                      !! what happened
+        integer, intent(in) :: lrw, liw                   !! lengths of RWORK and IWORK
+        real(wp), intent(inout) :: rwork(lrw)             !! inputs and outputs (see the module)
+        integer, intent(inout) :: iwork(liw)              !! counters, status and the solver's address
+        real(wp), intent(inout), target :: rpar(*)        !! passed to the user's routines
+        integer, intent(inout), target :: ipar(*)         !! passed to the user's routines
+        type(dassl_session), pointer :: s
+        type(foreign_first_order) :: problem
+        type(solver_options) :: opts
+        integer :: stat
+
+        if (.not. open_call(kind_first_order, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
+                            opts)) return
+        call attach(s, g, gx, gt, rpar, ipar)
+        s%routines%f => f
+        s%routines%b => b
+        stat = regdae_success
+        if (info(info_start) == 0) then
+            problem%n = n
+            problem%m = m
+            problem%routines => s%routines
+            call s%solver%init(problem, t, x, opts, stat, atol_vector=tolerances(info, atol, n))
+        end if
+        if (stat == regdae_success) call s%solver%advance(tout, x, y, stat)
+        call close_call(s, stat, t, tout, info, rwork, iwork, idid)
+    end subroutine dassl_first_order
+
+    !> DREGDAEM: M(q) q'' = f(q, q', t) + G^T lambda, 0 = g(q, t), from T to TOUT.
+    subroutine dassl_mechanical(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, &
+                                rwork, lrw, iwork, liw, rpar, ipar)
+        procedure(f77_point_routine) :: mass, g, gx, gt    !! the user's routines (GT used when INFO(17) = 1)
+        procedure(f77_motion_routine) :: forces
+        integer, intent(in) :: n, m
+        real(wp), intent(inout) :: t
+        real(wp), intent(inout) :: q(n)                    !! in: q(t0) at the first call; out: q(T)
+        real(wp), intent(inout) :: v(n)                    !! in: q'(t0) at the first call; out: q'(T)
+        real(wp), intent(inout) :: lambda(m)               !! out: lambda(T)
+        real(wp), intent(in) :: tout
+        integer, intent(inout) :: info(info_length)
+        real(wp), intent(in) :: rtol(*), atol(*)
+        integer, intent(out) :: idid
+        integer, intent(in) :: lrw, liw
+        real(wp), intent(inout) :: rwork(lrw)
+        integer, intent(inout) :: iwork(liw)
+        real(wp), intent(inout), target :: rpar(*)
+        integer, intent(inout), target :: ipar(*)
+        type(dassl_session), pointer :: s
+        type(foreign_mechanical) :: problem
+        type(solver_options) :: opts
+        integer :: stat
+
+        if (.not. open_call(kind_mechanical, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
+                            opts)) return
+        call attach(s, g, gx, gt, rpar, ipar)
+        s%routines%mass => mass
+        s%routines%forces => forces
+        stat = regdae_success
+        if (info(info_start) == 0) then
+            problem%n = n
+            problem%m = m
+            problem%routines => s%routines
+            call s%solver%init(problem, t, q, v, opts, stat, atol_vector=tolerances(info, atol, 2*n))
+        end if
+        if (stat == regdae_success) call s%solver%advance(tout, q, lambda, stat, v=v)
+        call close_call(s, stat, t, tout, info, rwork, iwork, idid)
+    end subroutine dassl_mechanical
+
+    !> DREGDAEMSG: the message of the last call on the problem of IWORK ('' after
+    !! success), blank-padded or cut to the length of msg.
+    subroutine dassl_message(iwork, liw, msg)
+        integer, intent(in) :: liw
+        integer, intent(in) :: iwork(liw)
+        character(len=*), intent(out) :: msg
+        type(dassl_session), pointer :: s
+        msg = 'DREGDAEMSG: IWORK holds no regdae solver (no call with INFO(1) = 0 yet, or DREGDAEFREE since)'
+        if (.not. session_in(iwork, liw, s)) return
+        msg = s%message
+    end subroutine dassl_message
+
+    !> DREGDAEFREE: free the solver of IWORK (nothing if it holds none).
+    subroutine dassl_free(iwork, liw)
+        integer, intent(in) :: liw
+        integer, intent(inout) :: iwork(liw)
+        type(dassl_session), pointer :: s
+        if (.not. session_in(iwork, liw, s)) return
+        call s%solver%destroy()
+        deallocate (s)
+        iwork(iwork_mark) = 0
+        iwork(iwork_check) = 0
+    end subroutine dassl_free
+
+    ! --- the steps of a call ------------------------------------------------------------
+
+    ! The routines of the constraint, and the RPAR and IPAR of this call, for the
+    ! user's routines to receive.
+    subroutine attach(s, g, gx, gt, rpar, ipar)
+        type(dassl_session), intent(inout) :: s
+        procedure(f77_point_routine) :: g, gx, gt
+        real(wp), intent(inout), target :: rpar(*)
+        integer, intent(inout), target :: ipar(*)
+        s%routines%g => g
+        s%routines%gx => gx
+        s%routines%gt => gt
+        s%routines%rpar = c_loc(rpar(1))
+        s%routines%ipar = c_loc(ipar(1))
+    end subroutine attach
+
+    ! The checks of a call, the session of IWORK (created or reset by INFO(1) = 0) and,
+    ! at the start, the options. False: IDID = -33 is set and the message printed.
+    logical function open_call(kind, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, opts) &
+        result(ok)
+        integer, intent(in) :: kind, n, m, lrw, liw
+        real(wp), intent(in) :: t, tout
+        integer, intent(inout) :: info(info_length)
+        real(wp), intent(in) :: rtol(*), atol(*)
+        real(wp), intent(in) :: rwork(lrw)
+        integer, intent(inout) :: iwork(liw)
+        integer, intent(out) :: idid
+        type(dassl_session), pointer, intent(out) :: s
+        type(solver_options), intent(out) :: opts
+        character(len=:), allocatable :: msg
+
+        ok = .false.
+        idid = idid_bad_input
+        s => null()
+        msg = ''
+        if (liw < min_liw) then
+            msg = 'LIW = '//format_int(liw)//' is too small: IWORK needs LIW >= '//format_int(min_liw)
+        else if (info(info_start) == 0) then
+            ! IWORK is not read: as in DASSL it may hold anything at the start
+            call new_session(iwork, liw, s)
+            s%kind = kind
+            s%n = n
+            s%m = m
+        else if (info(info_start) == 1) then
+            if (.not. session_in(iwork, liw, s)) then
+                msg = 'INFO(1) = 1 but IWORK holds no solver: start a problem with INFO(1) = 0 (IWORK must not '// &
+                      'change between the calls of a problem)'
+            else if (s%kind /= kind .or. s%n /= n .or. s%m /= m) then
+                msg = 'INFO(1) = 1 but IWORK holds another problem ('//trim(merge('DREGDAE ', 'DREGDAEM', &
+                      s%kind == kind_first_order))//', N = '//format_int(s%n)//', M = '//format_int(s%m)//')'
+            end if
+        else if (info(info_start) == -1) then
+            msg = 'INFO(1) = -1: the last call failed; set INFO(1) = 1 to try to continue, or 0 to restart'
+        else
+            msg = 'INFO(1) = '//format_int(info(info_start))//' must be 0 (start) or 1 (continue)'
+        end if
+        if (len(msg) == 0) then
+            if (lrw < min_lrw) then
+                msg = 'LRW = '//format_int(lrw)//' is too small: RWORK needs LRW >= '//format_int(min_lrw)
+            else if (tout == t) then
+                msg = 'TOUT = '//format_real(tout)//' is equal to T'
+            else if (info(info_tstop) == 1 .and. rwork(rwork_tstop) < tout) then
+                msg = 'INFO(4) = 1 and TSTOP = RWORK(1) = '//format_real(rwork(rwork_tstop))//' is behind TOUT = '// &
+                      format_real(tout)
+            else if (info(info_start) == 0) then
+                call options_from(kind, n, m, info, rtol, atol, rwork, opts, msg)
+                if (len(msg) == 0) then
+                    s%exact_stops = opts%stop_at_output
+                    s%routines%gt_supplied = (info(info_gt) == 1)
+                end if
+            end if
+        end if
+        ok = (len(msg) == 0)
+        if (ok) return
+        if (associated(s)) then
+            s%message = msg
+            iwork(iwork_status) = regdae_err_bad_input
+        end if
+        info(info_start) = -1
+        call report(info, kind, msg)
+    end function open_call
+
+    ! After the solver's call: T, the counters, IDID, INFO(1) and the message.
+    subroutine close_call(s, stat, t, tout, info, rwork, iwork, idid)
+        type(dassl_session), intent(inout) :: s
+        integer, intent(in) :: stat
+        real(wp), intent(inout) :: t
+        real(wp), intent(in) :: tout
+        integer, intent(inout) :: info(info_length)
+        real(wp), intent(inout) :: rwork(:)
+        integer, intent(inout) :: iwork(:)
+        integer, intent(out) :: idid
+        type(solver_stats) :: st
+
+        st = s%solver%statistics()
+        iwork(iwork_steps) = counter(st%steps)
+        iwork(iwork_res_evals) = counter(st%res_evals)
+        iwork(iwork_jac_evals) = counter(st%jac_evals)
+        iwork(iwork_err_test_fails) = counter(st%err_test_fails)
+        iwork(iwork_conv_fails) = counter(st%conv_fails)
+        iwork(iwork_singular_passes) = st%singular_passes
+        iwork(iwork_switches) = st%switches
+        iwork(iwork_status) = stat
+        rwork(rwork_tn) = st%t
+        rwork(rwork_hold) = st%h_last
+        s%message = ''
+        if (stat /= regdae_success) s%message = s%solver%message()
+        if (stat == regdae_err_user_callback .and. allocated(s%routines%failure)) &
+            s%message = s%message//' ('//s%routines%failure//')'
+        select case (stat)
+        case (regdae_success)
+            idid = merge(idid_exact, idid_interpolated, s%exact_stops)
+        case (regdae_warn_multiplier_undefined)
+            idid = idid_multiplier_undefined
+        case (regdae_err_bad_input, regdae_err_not_initialized)
+            idid = idid_bad_input
+        case (regdae_err_inconsistent_ic)
+            idid = idid_initial_values
+        case (regdae_err_user_callback)
+            idid = idid_user_stop
+        case default
+            idid = stat
+        end select
+        if (idid > 0) then
+            t = tout
+            info(info_start) = 1
+        else
+            t = st%t
+            info(info_start) = -1
+        end if
+        if (idid < 0 .or. idid == idid_multiplier_undefined) call report(info, s%kind, s%message)
+        if (allocated(s%routines%failure)) deallocate (s%routines%failure)
+    end subroutine close_call
+
+    ! The options from INFO, RTOL, ATOL and RWORK; msg names the first bad entry.
+    subroutine options_from(kind, n, m, info, rtol, atol, rwork, opts, msg)
+        integer, intent(in) :: kind, n, m
+        integer, intent(in) :: info(info_length)
+        real(wp), intent(in) :: rtol(*), atol(*), rwork(:)
+        type(solver_options), intent(out) :: opts
+        character(len=:), allocatable, intent(inout) :: msg
+        integer :: i, stat, n_tol
+
+        n_tol = merge(n, 2*n, kind == kind_first_order)   ! the tolerance vectors' length (INFO(2) = 1)
+        if (n < 1 .or. m < 0 .or. m > n) then
+            msg = 'N = '//format_int(n)//', M = '//format_int(m)//': the sizes must satisfy 1 <= N and 0 <= M <= N'
+        else if (info(info_vector_tol) == 1 .and. any(rtol(1:n_tol) /= rtol(1))) then
+            ! ATOL per component (DREGDAE: N entries; DREGDAEM: 2N, q then q'); regdae's rtol
+            ! is one number
+            msg = 'INFO(2) = 1: regdae has one relative tolerance; RTOL(1:'//format_int(n_tol)// &
+                  ') must be equal (ATOL may vary)'
+        else if (info(info_intermediate) == 1) then
+            msg = 'INFO(3) = 1 (intermediate output) is not available: DREGDAE returns at TOUT; set INFO(3) = 0'
+        end if
+        do i = 2, 11
+            if (len(msg) == 0 .and. info(i) /= 0 .and. info(i) /= 1) &
+                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' must be 0 or 1'
+        end do
+        do i = 5, 15
+            if (len(msg) > 0) exit
+            if (info(i) /= 0 .and. any(i == [5, 6, 9, 10, 12, 13, 14, 15])) &
+                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)// &
+                      ', which DREGDAE does not have: set it to 0'
+        end do
+        if (len(msg) > 0) return
+        if (info(info_method) < 0 .or. info(info_method) > method_direct) then
+            msg = 'INFO(16) = '//format_int(info(info_method))//' is not a method (0 or 2 trust_region, '// &
+                  '1 baumgarte, 3 direct)'
+        else if (info(info_gt) /= 0 .and. info(info_gt) /= 1) then
+            msg = 'INFO(17) = '//format_int(info(info_gt))//' must be 0 (no GT) or 1 (GT supplied)'
+        else if (kind == kind_first_order .and. info(info_index) /= 0) then
+            msg = 'INFO(18) = '//format_int(info(info_index))//': the index is for DREGDAEM; set it to 0'
+        else if (.not. any(info(info_index) == [0, 2, 3])) then
+            msg = 'INFO(18) = '//format_int(info(info_index))//' must be 0 (index 3), 2 or 3'
+        else if (info(info_integrator) < 0 .or. info(info_integrator) > integrator_dopri5) then
+            msg = 'INFO(19) = '//format_int(info(info_integrator))//' must be 0 (auto), 1 (ida) or 2 (dopri5)'
+        else if (info(info_hmax) == 1 .and. .not. rwork(rwork_hmax) > 0.0_wp) then
+            msg = 'INFO(7) = 1 and HMAX = RWORK(2) = '//format_real(rwork(rwork_hmax))//' is not > 0'
+        else if (info(info_h0) == 1 .and. .not. rwork(rwork_h0) > 0.0_wp) then
+            msg = 'INFO(8) = 1 and H0 = RWORK(3) = '//format_real(rwork(rwork_h0))//' is not > 0'
+        end if
+        if (len(msg) > 0) return
+        opts%method = merge(method_trust_region, info(info_method), info(info_method) == 0)
+        if (info(info_index) /= 0) opts%index = info(info_index)
+        opts%integrator = info(info_integrator)
+        opts%rtol = rtol(1)
+        opts%atol = atol(1)   ! INFO(2) = 1: the vector goes to init
+        opts%stop_at_output = (info(info_tstop) == 1)
+        if (info(info_hmax) == 1) opts%h_max = rwork(rwork_hmax)
+        if (info(info_h0) == 1) opts%h_init = rwork(rwork_h0)
+        if (rwork(rwork_eps) /= 0.0_wp) opts%eps = rwork(rwork_eps)
+        if (rwork(rwork_gamma) /= 0.0_wp) opts%gamma = rwork(rwork_gamma)
+        if (rwork(rwork_gamma0) /= 0.0_wp) opts%gamma0 = rwork(rwork_gamma0)
+        if (rwork(rwork_gamma1) /= 0.0_wp) opts%gamma1 = rwork(rwork_gamma1)
+        call validate_options(opts, stat, msg)
+        if (stat /= regdae_success) msg = 'RTOL, ATOL or RWORK(11..14): '//msg
+    end subroutine options_from
+
+    ! ATOL for each of the k components of the state: ATOL(1:k) with INFO(2) = 1, else ATOL(1).
+    pure function tolerances(info, atol, k) result(atol_state)
+        integer, intent(in) :: info(info_length), k
+        real(wp), intent(in) :: atol(*)
+        real(wp) :: atol_state(k)
+        if (info(info_vector_tol) == 1) then
+            atol_state = atol(1:k)
+        else
+            atol_state = atol(1)
+        end if
+    end function tolerances
+
+    ! What DASSL's (and DDASPK's) INFO(i) asks for.
+    pure function dassl_feature(i) result(text)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: text
+        select case (i)
+        case (5); text = 'a JAC routine (regdae forms its Jacobians itself)'
+        case (6); text = 'a banded matrix (IWORK(1), IWORK(2))'
+        case (9); text = 'a maximum order (IWORK(3))'
+        case (10); text = 'nonnegative solutions'
+        case default; text = 'a DDASPK option'
+        end select
+    end function dassl_feature
+
+    ! Print a message on the unit of INFO(20) (0: the error unit; -1: none).
+    subroutine report(info, kind, msg)
+        integer, intent(in) :: info(info_length)
+        integer, intent(in) :: kind
+        character(len=*), intent(in) :: msg
+        character(len=:), allocatable :: who
+        who = trim(merge('DREGDAE ', 'DREGDAEM', kind == kind_first_order))//'-- '
+        if (info(info_messages) == 0) then
+            write (error_unit, '(a)') who//msg
+        else if (info(info_messages) > 0) then
+            write (info(info_messages), '(a)') who//msg
+        end if
+    end subroutine report
+
+    ! An int64 counter in a default integer (the largest one if it does not fit).
+    pure integer function counter(k)
+        integer(int64), intent(in) :: k
+        counter = int(min(k, int(huge(0), int64)))
+    end function counter
+
+    ! --- the session's address in IWORK ---------------------------------------------------
+
+    ! A new session, its address kept in IWORK.
+    subroutine new_session(iwork, liw, s)
+        integer, intent(in) :: liw
+        integer, intent(inout) :: iwork(liw)
+        type(dassl_session), pointer, intent(out) :: s
+        type(c_ptr) :: address
+        allocate (s)
+        address = c_loc(s)
+        iwork(iwork_address:min_liw) = transfer(address, iwork(iwork_address:min_liw))
+        iwork(iwork_mark) = session_mark
+        iwork(iwork_check) = check_word(iwork(iwork_address:min_liw))
+    end subroutine new_session
+
+    ! The session whose address IWORK holds; false if it holds none (never had one,
+    ! or freed since: the mark or the check word is wrong).
+    logical function session_in(iwork, liw, s)
+        integer, intent(in) :: liw
+        integer, intent(in) :: iwork(liw)
+        type(dassl_session), pointer, intent(out) :: s
+        type(c_ptr) :: address
+        s => null()
+        session_in = .false.
+        if (liw < min_liw) return
+        if (iwork(iwork_mark) /= session_mark) return
+        if (iwork(iwork_check) /= check_word(iwork(iwork_address:min_liw))) return
+        address = transfer(iwork(iwork_address:min_liw), address)
+        call c_f_pointer(address, s)
+        session_in = .true.
+    end function session_in
+
+    ! A check word of the address words (with the mark).
+    pure integer function check_word(words)
+        integer, intent(in) :: words(:)
+        integer :: k
+        check_word = session_mark
+        do k = 1, size(words)
+            check_word = ieor(ishftc(check_word, 7), words(k))
+        end do
+    end function check_word
+
+end module regdae_dassl

@@ -1,0 +1,133 @@
+!> The routines of a problem given to DREGDAE or DREGDAEM: FORTRAN 77 EXTERNAL
+!! subroutines in the DASSL manner,
+!!
+!!     SUBROUTINE F(T, X, FX, IRES, RPAR, IPAR)          (F, B, G, GX, GT, MASS)
+!!     SUBROUTINE FORCES(T, Q, V, FQ, IRES, RPAR, IPAR)
+!!
+!! with the caller's RPAR and IPAR passed through. IRES is 0 on entry; as in
+!! DASSL, IRES = -1 asks for a smaller step (recoverable: `stat` 1) and any
+!! other nonzero value stops the integration (`stat` = IRES, or -IRES if positive).
+module regdae_f77_routines
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_f_pointer
+    use regdae_kinds, only: wp
+    use regdae_format, only: format_int, format_real
+    use regdae_foreign_problems, only: foreign_routines, routine_f, routine_b, routine_g, routine_gx, routine_gt, &
+                                       routine_mass, routine_forces, routine_name
+    implicit none
+    private
+
+    ! A FORTRAN 77 routine declares no INTENT; these say what it may do with each argument.
+    abstract interface
+        !> A routine of (T, X): F (length N), B (N x M), G (M), GX (M x N), GT (M), MASS (N x N).
+        subroutine f77_point_routine(t, x, val, ires, rpar, ipar)
+            import :: wp
+            real(wp), intent(in) :: t          !! time
+            real(wp), intent(in) :: x(*)       !! position (state), length N
+            real(wp), intent(out) :: val(*)    !! the value; matrices column by column
+            integer, intent(inout) :: ires     !! 0 on entry; -1: retry with a smaller step; other: stop
+            real(wp), intent(inout) :: rpar(*) !! the caller's RPAR
+            integer, intent(inout) :: ipar(*)  !! the caller's IPAR
+        end subroutine f77_point_routine
+
+        !> A routine of (T, Q, V): FORCES (length N).
+        subroutine f77_motion_routine(t, x, v, val, ires, rpar, ipar)
+            import :: wp
+            real(wp), intent(in) :: t
+            real(wp), intent(in) :: x(*)       !! position, length N
+            real(wp), intent(in) :: v(*)       !! velocity, length N
+            real(wp), intent(out) :: val(*)
+            integer, intent(inout) :: ires
+            real(wp), intent(inout) :: rpar(*)
+            integer, intent(inout) :: ipar(*)
+        end subroutine f77_motion_routine
+    end interface
+
+    !> The EXTERNAL routines of one DREGDAE or DREGDAEM problem and the RPAR and
+    !! IPAR of the current call (addresses, set at every call).
+    type, extends(foreign_routines), public :: f77_routines
+        procedure(f77_point_routine), pointer, nopass :: f => null()       !! DREGDAE: F
+        procedure(f77_point_routine), pointer, nopass :: b => null()       !! DREGDAE: B
+        procedure(f77_point_routine), pointer, nopass :: g => null()       !! G
+        procedure(f77_point_routine), pointer, nopass :: gx => null()      !! GX
+        procedure(f77_point_routine), pointer, nopass :: gt => null()      !! GT, used when gt_supplied
+        procedure(f77_point_routine), pointer, nopass :: mass => null()    !! DREGDAEM: MASS
+        procedure(f77_motion_routine), pointer, nopass :: forces => null() !! DREGDAEM: FORCES
+        logical :: gt_supplied = .false.                                   !! INFO(17) = 1
+        type(c_ptr) :: rpar = c_null_ptr                                   !! RPAR(1) of the current call
+        type(c_ptr) :: ipar = c_null_ptr                                   !! IPAR(1) of the current call
+    contains
+        procedure :: has => f77_has
+        procedure :: evaluate => f77_evaluate
+    end type f77_routines
+
+    public :: f77_point_routine, f77_motion_routine
+
+contains
+
+    logical function f77_has(self, which)
+        class(f77_routines), intent(in) :: self
+        integer, intent(in) :: which
+        select case (which)
+        case (routine_f); f77_has = associated(self%f)
+        case (routine_b); f77_has = associated(self%b)
+        case (routine_g); f77_has = associated(self%g)
+        case (routine_gx); f77_has = associated(self%gx)
+        case (routine_gt); f77_has = self%gt_supplied .and. associated(self%gt)
+        case (routine_mass); f77_has = associated(self%mass)
+        case (routine_forces); f77_has = associated(self%forces)
+        case default; f77_has = .false.
+        end select
+    end function f77_has
+
+    subroutine f77_evaluate(self, which, t, x, val, stat, v)
+        class(f77_routines), intent(inout) :: self
+        integer, intent(in) :: which
+        real(wp), intent(in) :: t
+        real(wp), intent(in) :: x(*)
+        real(wp), intent(out) :: val(*)
+        integer, intent(inout) :: stat
+        real(wp), intent(in), optional :: v(*)
+        real(wp), pointer, contiguous :: rpar(:)
+        integer, pointer, contiguous :: ipar(:)
+        procedure(f77_point_routine), pointer :: point
+        procedure(f77_motion_routine), pointer :: motion
+        integer :: ires
+
+        ! The caller's arrays (their length is unknown: element 1 stands for them; the
+        ! routine receives their address, as from DASSL)
+        call c_f_pointer(self%rpar, rpar, [1])
+        call c_f_pointer(self%ipar, ipar, [1])
+        ires = 0
+        select case (which)
+        case (routine_forces)
+            motion => self%forces
+            call motion(t, x, v, val, ires, rpar, ipar)
+        case default
+            select case (which)
+            case (routine_f); point => self%f
+            case (routine_b); point => self%b
+            case (routine_g); point => self%g
+            case (routine_gx); point => self%gx
+            case (routine_gt); point => self%gt
+            case default; point => self%mass
+            end select
+            call point(t, x, val, ires, rpar, ipar)
+        end select
+        if (ires == 0) return
+        stat = merge(1, -abs(ires), ires == -1)
+        self%failure = 'user routine '//f77_routine_name(which)//' set IRES = '//format_int(ires)//' at T = '// &
+                       format_real(t)
+    end subroutine f77_evaluate
+
+    ! The name of a routine as DREGDAE's argument list has it: F, B, G, GX, GT, MASS, FORCES.
+    pure function f77_routine_name(which) result(name)
+        integer, intent(in) :: which
+        character(len=:), allocatable :: name
+        integer :: k
+        name = routine_name(which)
+        do k = 1, len(name)
+            if (name(k:k) >= 'a' .and. name(k:k) <= 'z') name(k:k) = achar(iachar(name(k:k)) - 32)
+        end do
+    end function f77_routine_name
+
+end module regdae_f77_routines

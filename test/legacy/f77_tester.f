@@ -1,0 +1,500 @@
+C     Tests of the FORTRAN 77 door (DREGDAE, DREGDAEM, DREGDAEMSG,
+C     DREGDAEFREE), written as a FORTRAN 77 caller would (-std=legacy).
+C     F77_TESTER SUITE runs one suite, F77_TESTER all; prints one line
+C     per failed check and 'N PASSED, N FAILED'; STOP 1 on a failure.
+C
+C     BADINPUT  work arrays too small, INFO entries DREGDAE lacks,
+C               bad sizes, tolerances, TOUT, continuation without a
+C               start: IDID = -33 and a message, never a crash
+C     TWO       two problems interleaved give what each gives alone,
+C               bit for bit (DREGDAE with DREGDAE, and with DREGDAEM)
+C     MECH      DREGDAEM on a particle on the unit circle (index 3 and
+C               2, IDID = 2 with INFO(4) = 1) against the exact motion
+C     IRES      RPAR and IPAR reach the routines; IRES = -2 stops with
+C               IDID = -11, IRES = -1 beyond a time fails with -108
+C     VECTOR    INFO(2) = 1 (ATOL per component): equal entries give the
+C               scalar run bit for bit, unequal ones a different one;
+C               unequal RTOL entries are refused (IDID = -33)
+      PROGRAM F77TST
+      IMPLICIT NONE
+      CHARACTER*16 SUITE
+      INTEGER NCHK(2)
+      NCHK(1) = 0
+      NCHK(2) = 0
+      SUITE = ' '
+      IF (IARGC() .GE. 1) CALL GETARG(1, SUITE)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'BADINPUT') CALL BADIN(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'TWO') CALL TWO(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'MECH') CALL MECH(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'IRES') CALL IRESTS(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'VECTOR') CALL VECTOR(NCHK)
+      IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
+         WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
+     *        SUITE(1:LEN_TRIM(SUITE)),
+     *        '" (BADINPUT, TWO, MECH, IRES, VECTOR)'
+         STOP 2
+      END IF
+      WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
+     *     ' FAILED'
+      IF (NCHK(2) .GT. 0) STOP 1
+      END
+C
+C     Count a check (NCHK(1) passed, NCHK(2) failed); print the failed.
+      SUBROUTINE CHECK(OK, WHAT, NCHK)
+      LOGICAL OK
+      CHARACTER*(*) WHAT
+      INTEGER NCHK(2)
+      IF (OK) THEN
+         NCHK(1) = NCHK(1) + 1
+      ELSE
+         NCHK(2) = NCHK(2) + 1
+         WRITE (*, '(2A)') '  FAIL ', WHAT
+      END IF
+      END
+C
+C     INFO, RWORK and IWORK at their defaults (all 0), messages off.
+      SUBROUTINE CLEAR(INFO, RWORK, IWORK)
+      INTEGER INFO(20), IWORK(22), I
+      DOUBLE PRECISION RWORK(20)
+      DO 10 I = 1, 20
+         INFO(I) = 0
+         RWORK(I) = 0.0D0
+   10 CONTINUE
+      DO 20 I = 1, 22
+         IWORK(I) = 0
+   20 CONTINUE
+      INFO(20) = -1
+      END
+C
+C     ---- BADINPUT ---------------------------------------------------
+C     Start the circle (DREGDAE) from T = 0 to TOUT; return IDID and
+C     the line DREGDAE printed (INFO(20) = a scratch unit), if any.
+      SUBROUTINE TRY(N, M, TOUT, INFO, RTOL, ATOL, IDID, RWORK, LRW,
+     *     IWORK, LIW, MSG)
+      EXTERNAL CF, CB, CG, CGX
+      INTEGER N, M, INFO(20), IDID, LRW, LIW, IWORK(LIW), IPAR(2)
+      DOUBLE PRECISION TOUT, RTOL, ATOL, RWORK(LRW), T, X(2), Y(2),
+     *     RPAR(2)
+      CHARACTER*(*) MSG
+      T = 0.0D0
+      X(1) = 1.0D0
+      X(2) = 0.0D0
+      IPAR(1) = 0
+      IPAR(2) = 0
+      OPEN (UNIT=21, STATUS='SCRATCH')
+      INFO(20) = 21
+      CALL DREGDAE(CF, CB, CG, CGX, CGX, N, M, T, X, Y, TOUT, INFO,
+     *     RTOL, ATOL, IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR)
+      REWIND (21)
+      MSG = ' '
+      READ (21, '(A)', END=10) MSG
+   10 CLOSE (21)
+      END
+C
+      SUBROUTINE BADIN(NCHK)
+      INTEGER NCHK(2), INFO(20), IWORK(22), IDID
+      DOUBLE PRECISION RWORK(20)
+      CHARACTER*300 MSG
+C     IWORK too small: the message goes to the unit of INFO(20)
+      CALL CLEAR(INFO, RWORK, IWORK)
+      CALL TRY(2, 1, 1.0D0, INFO, 1.0D-6, 1.0D-6, IDID, RWORK, 20,
+     *     IWORK, 21, MSG)
+      CALL CHECK(IDID .EQ. -33, 'LIW 21: IDID -33', NCHK)
+      CALL CHECK(INDEX(MSG, 'DREGDAE-- LIW = 21 is too small') .GT. 0
+     *     .AND. INDEX(MSG, 'LIW >= 22') .GT. 0, 'LIW message', NCHK)
+      CALL CHECK(INFO(1) .EQ. -1, 'LIW 21: INFO(1) = -1', NCHK)
+C     RWORK too small
+      CALL CLEAR(INFO, RWORK, IWORK)
+      CALL TRY(2, 1, 1.0D0, INFO, 1.0D-6, 1.0D-6, IDID, RWORK, 19,
+     *     IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'LRW = 19') .GT. 0
+     *     .AND. INDEX(MSG, 'LRW >= 20') .GT. 0, 'LRW 19', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+C     INFO entries: intermediate output, JAC, DDASPK's, a method
+C     that is none, an index for DREGDAE, not 0/1 (INFO(2): VECTOR)
+      CALL ONEBAD(3, 1, 'INFO(3) = 1 (intermediate', NCHK)
+      CALL ONEBAD(5, 1, 'a JAC routine', NCHK)
+      CALL ONEBAD(6, 1, 'a banded matrix', NCHK)
+      CALL ONEBAD(12, 1, 'a DDASPK option', NCHK)
+      CALL ONEBAD(16, 7, 'INFO(16) = 7 is not a method', NCHK)
+      CALL ONEBAD(17, 2, 'INFO(17) = 2', NCHK)
+      CALL ONEBAD(18, 3, 'the index is for DREGDAEM', NCHK)
+      CALL ONEBAD(19, 5, 'INFO(19) = 5', NCHK)
+      CALL ONEBAD(11, 2, 'INFO(11) = 2 must be 0 or 1', NCHK)
+      CALL ONEBAD(1, 2, 'INFO(1) = 2 must be 0', NCHK)
+C     sizes, tolerances, TOUT, TSTOP, HMAX
+      CALL CLEAR(INFO, RWORK, IWORK)
+      CALL EXPECT(0, 0, 1.0D0, 1.0D-6, 1.0D-6, INFO, RWORK, 'N = 0',
+     *     NCHK)
+      CALL EXPECT(2, 3, 1.0D0, 1.0D-6, 1.0D-6, INFO, RWORK, 'M = 3',
+     *     NCHK)
+      CALL EXPECT(2, 1, 1.0D0, 2.0D0, 1.0D-6, INFO, RWORK, 'rtol must',
+     *     NCHK)
+      CALL EXPECT(2, 1, 1.0D0, 1.0D-6, 0.0D0, INFO, RWORK, 'atol must',
+     *     NCHK)
+      CALL EXPECT(2, 1, 0.0D0, 1.0D-6, 1.0D-6, INFO, RWORK,
+     *     'TOUT = 0.000000E+00 is equal to T', NCHK)
+      CALL EXPECT(2, 1, -1.0D0, 1.0D-6, 1.0D-6, INFO, RWORK,
+     *     'before the current time', NCHK)
+      INFO(4) = 1
+      RWORK(1) = 0.5D0
+      CALL EXPECT(2, 1, 1.0D0, 1.0D-6, 1.0D-6, INFO, RWORK,
+     *     'TSTOP = RWORK(1) = 5.000000E-01 is behind TOUT', NCHK)
+      CALL CLEAR(INFO, RWORK, IWORK)
+      INFO(7) = 1
+      CALL EXPECT(2, 1, 1.0D0, 1.0D-6, 1.0D-6, INFO, RWORK,
+     *     'HMAX = RWORK(2) = 0.000000E+00 is not > 0', NCHK)
+C     continuation: without a start; after a failure without resetting
+C     INFO(1); on a freed IWORK
+      CALL CLEAR(INFO, RWORK, IWORK)
+      INFO(1) = 1
+      CALL TRY(2, 1, 1.0D0, INFO, 1.0D-6, 1.0D-6, IDID, RWORK, 20,
+     *     IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'holds no solver')
+     *     .GT. 0, 'INFO(1) = 1 first', NCHK)
+      CALL CHECK(INFO(1) .EQ. -1, 'INFO(1) = -1 after -33', NCHK)
+      CALL TRY(2, 1, 1.0D0, INFO, 1.0D-6, 1.0D-6, IDID, RWORK, 20,
+     *     IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'the last call failed')
+     *     .GT. 0, 'INFO(1) = -1: IDID -33', NCHK)
+C     an inconsistent start, x0 off the circle: IDID = -12
+      CALL CLEAR(INFO, RWORK, IWORK)
+      CALL BADX0(INFO, RWORK, IWORK, IDID, MSG)
+      CALL CHECK(IDID .EQ. -12 .AND. INDEX(MSG, 'ic_tol') .GT. 0,
+     *     'x0 inconsistent: IDID -12', NCHK)
+      CALL CHECK(IWORK(18) .EQ. -102, 'IWORK(18) = -102', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(INDEX(MSG, 'no regdae solver') .GT. 0,
+     *     'freed: DREGDAEMSG', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+      CALL DREGDAEMSG(IWORK, 3, MSG)
+      CALL CHECK(INDEX(MSG, 'no regdae solver') .GT. 0,
+     *     'LIW 3: DREGDAEMSG', NCHK)
+      END
+C
+C     Start the circle with INFO(K) = VALUE: IDID = -33 and a message
+C     that contains PART.
+      SUBROUTINE ONEBAD(K, VALUE, PART, NCHK)
+      INTEGER K, VALUE, NCHK(2), INFO(20), IWORK(22)
+      DOUBLE PRECISION RWORK(20)
+      CHARACTER*(*) PART
+      CALL CLEAR(INFO, RWORK, IWORK)
+      INFO(K) = VALUE
+      CALL EXPECT(2, 1, 1.0D0, 1.0D-6, 1.0D-6, INFO, RWORK, PART, NCHK)
+      END
+C
+C     Start the circle with these arguments: IDID = -33 and a printed
+C     message that contains PART.
+      SUBROUTINE EXPECT(N, M, TOUT, RTOL, ATOL, INFO, RWORK, PART,
+     *     NCHK)
+      INTEGER N, M, INFO(20), NCHK(2), IWORK(22), IDID, I, INF(20)
+      DOUBLE PRECISION TOUT, RTOL, ATOL, RWORK(20)
+      CHARACTER*(*) PART
+      CHARACTER*300 MSG
+C     a copy: DREGDAE sets INFO(1) = -1
+      DO 10 I = 1, 20
+         INF(I) = INFO(I)
+   10 CONTINUE
+      DO 20 I = 1, 22
+         IWORK(I) = 0
+   20 CONTINUE
+      CALL TRY(N, M, TOUT, INF, RTOL, ATOL, IDID, RWORK, 20, IWORK, 22,
+     *     MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, PART) .GT. 0, PART,
+     *     NCHK)
+      IF (IDID .NE. -33 .OR. INDEX(MSG, PART) .EQ. 0)
+     *     WRITE (*, '(2A)') '    MESSAGE: ', MSG(1:LEN_TRIM(MSG))
+      CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+      SUBROUTINE BADX0(INFO, RWORK, IWORK, IDID, MSG)
+      EXTERNAL CF, CB, CG, CGX
+      INTEGER INFO(20), IWORK(22), IDID, IPAR(2)
+      DOUBLE PRECISION RWORK(20), T, X(2), Y(1), RPAR(2)
+      CHARACTER*(*) MSG
+      CALL CIRCLE0(T, X, IPAR)
+      X(1) = 1.5D0
+      CALL DREGDAE(CF, CB, CG, CGX, CGX, 2, 1, T, X, Y, 1.0D0, INFO,
+     *     1.0D-6, 1.0D-6, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      END
+C
+C     ---- TWO ---------------------------------------------------------
+      SUBROUTINE TWO(NCHK)
+      EXTERNAL CG, CGX, MM, MF
+      INTEGER NCHK(2), INFA(20), INFB(20), IWA(22), IWB(22), IDA, IDB,
+     *     IPA(2), IPB(2), K
+      DOUBLE PRECISION RWA(20), RWB(20), TA, TB, XA(2), XB(2), YA(1),
+     *     YB(1), VB(2), ALONE(2, 10), RPA(2), RPB(2)
+      LOGICAL SAME, OK
+C     the circle alone
+      CALL CLEAR(INFA, RWA, IWA)
+      CALL CIRCLE0(TA, XA, IPA)
+      DO 10 K = 1, 10
+         CALL CSTEP(TA, XA, YA, 0.5D0 * K, INFA, IDA, RWA, IWA,
+     *        RPA, IPA)
+         ALONE(1, K) = XA(1)
+         ALONE(2, K) = XA(2)
+   10 CONTINUE
+      CALL DREGDAEFREE(IWA, 22)
+C     the circle with another circle (Baumgarte, other times), and with
+C     the mechanical circle; neither disturbs it
+      CALL CLEAR(INFA, RWA, IWA)
+      CALL CLEAR(INFB, RWB, IWB)
+      CALL CIRCLE0(TA, XA, IPA)
+      CALL CIRCLE0(TB, XB, IPB)
+      INFB(16) = 1
+      SAME = .TRUE.
+      OK = .TRUE.
+      DO 20 K = 1, 10
+         CALL CSTEP(TA, XA, YA, 0.5D0 * K, INFA, IDA, RWA, IWA,
+     *        RPA, IPA)
+         CALL CSTEP(TB, XB, YB, 0.25D0 * K, INFB, IDB, RWB, IWB,
+     *        RPB, IPB)
+         SAME = SAME .AND. XA(1) .EQ. ALONE(1, K) .AND.
+     *        XA(2) .EQ. ALONE(2, K)
+         OK = OK .AND. IDA .EQ. 3 .AND. IDB .EQ. 3
+   20 CONTINUE
+      CALL CHECK(OK, 'two DREGDAE: IDID 3', NCHK)
+      CALL CHECK(SAME, 'two DREGDAE: the same as alone', NCHK)
+      CALL CHECK(ABS(XB(1) - COS(2.5D0)) .LT. 1.0D-6 .AND.
+     *     ABS(XB(2) - SIN(2.5D0)) .LT. 1.0D-6, 'Baumgarte circle',
+     *     NCHK)
+      CALL CHECK(IPA(1) .GT. 0 .AND. IPB(1) .GT. 0,
+     *     'each IPAR counted its calls', NCHK)
+      CALL DREGDAEFREE(IWA, 22)
+      CALL DREGDAEFREE(IWB, 22)
+      CALL CLEAR(INFA, RWA, IWA)
+      CALL CLEAR(INFB, RWB, IWB)
+      CALL CIRCLE0(TA, XA, IPA)
+      CALL CIRCLE0(TB, XB, IPB)
+      VB(1) = 0.0D0
+      VB(2) = 1.0D0
+      SAME = .TRUE.
+      OK = .TRUE.
+      DO 30 K = 1, 10
+         CALL DREGDAEM(MM, MF, CG, CGX, CGX, 2, 1, TB, XB, VB, YB,
+     *        0.5D0 * K, INFB, 1.0D-8, 1.0D-8, IDB, RWB, 20, IWB, 22,
+     *        RPB, IPB)
+         CALL CSTEP(TA, XA, YA, 0.5D0 * K, INFA, IDA, RWA, IWA,
+     *        RPA, IPA)
+         SAME = SAME .AND. XA(1) .EQ. ALONE(1, K) .AND.
+     *        XA(2) .EQ. ALONE(2, K)
+         OK = OK .AND. IDA .EQ. 3 .AND. IDB .EQ. 3
+   30 CONTINUE
+      CALL CHECK(OK, 'DREGDAE and DREGDAEM: IDID 3', NCHK)
+      CALL CHECK(SAME, 'DREGDAE with DREGDAEM: as alone', NCHK)
+      CALL CHECK(ABS(XB(1) - COS(5.0D0)) .LT. 1.0D-6 .AND.
+     *     ABS(YB(1) + 0.5D0) .LT. 1.0D-6, 'DREGDAEM circle', NCHK)
+      CALL DREGDAEFREE(IWA, 22)
+      CALL DREGDAEFREE(IWB, 22)
+      END
+C
+C     One DREGDAE call on the circle, tolerances 1E-8, to TOUT.
+      SUBROUTINE CSTEP(T, X, Y, TOUT, INFO, IDID, RWORK, IWORK, RPAR,
+     *     IPAR)
+      EXTERNAL CF, CB, CG, CGX
+      INTEGER INFO(20), IDID, IWORK(22), IPAR(2)
+      DOUBLE PRECISION T, X(2), Y(1), TOUT, RWORK(20), RPAR(2)
+      CALL DREGDAE(CF, CB, CG, CGX, CGX, 2, 1, T, X, Y, TOUT, INFO,
+     *     1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
+      END
+C
+      SUBROUTINE CIRCLE0(T, X, IPAR)
+      INTEGER IPAR(2)
+      DOUBLE PRECISION T, X(2)
+      T = 0.0D0
+      X(1) = 1.0D0
+      X(2) = 0.0D0
+      IPAR(1) = 0
+      IPAR(2) = 0
+      END
+C
+C     ---- MECH --------------------------------------------------------
+C     The particle on the unit circle, M = I, no forces: q = (cos t,
+C     sin t), lambda = -1/2; index 3, index 2, and INFO(4) = 1.
+      SUBROUTINE MECH(NCHK)
+      INTEGER NCHK(2), INFO(20), IWORK(22), VARIANT
+      DOUBLE PRECISION RWORK(20), ERR
+      INTEGER IDIDS(3)
+      DO 10 VARIANT = 1, 3
+         CALL CLEAR(INFO, RWORK, IWORK)
+         IF (VARIANT .EQ. 2) INFO(18) = 2
+         IF (VARIANT .EQ. 3) THEN
+            INFO(4) = 1
+            RWORK(1) = 10.0D0
+         END IF
+         CALL MRUN(INFO, RWORK, IWORK, ERR, IDIDS(VARIANT))
+C        RTOL = ATOL = 1E-8 over 0.8 revolutions: the C tests measure
+C        1.2E-8 to 4.6E-8 on this motion; 1E-6 is 20 times that
+         CALL CHECK(ERR .LT. 1.0D-6, 'DREGDAEM error', NCHK)
+         CALL CHECK(IWORK(11) .GT. 0 .AND. IWORK(12) .GE. IWORK(11)
+     *        .AND. RWORK(4) .GE. 5.0D0 .AND. RWORK(7) .GT. 0.0D0,
+     *        'DREGDAEM counters', NCHK)
+         IF (ERR .GE. 1.0D-6) WRITE (*, '(A, I2, 1P, E10.2)')
+     *        '    variant, error', VARIANT, ERR
+         CALL DREGDAEFREE(IWORK, 22)
+   10 CONTINUE
+      CALL CHECK(IDIDS(1) .EQ. 3 .AND. IDIDS(2) .EQ. 3 .AND.
+     *     IDIDS(3) .EQ. 2, 'IDID 3, 3, 2', NCHK)
+      END
+C
+      SUBROUTINE MRUN(INFO, RWORK, IWORK, ERR, IDID)
+      EXTERNAL MM, MF, CG, CGX
+      INTEGER INFO(20), IWORK(22), IDID, IPAR(2), K
+      DOUBLE PRECISION RWORK(20), ERR, T, Q(2), V(2), LAMBDA(1),
+     *     RPAR(2), TOUT
+      CALL CIRCLE0(T, Q, IPAR)
+      V(1) = 0.0D0
+      V(2) = 1.0D0
+      ERR = 0.0D0
+      DO 10 K = 1, 10
+         TOUT = 0.5D0 * K
+         CALL DREGDAEM(MM, MF, CG, CGX, CGX, 2, 1, T, Q, V, LAMBDA,
+     *        TOUT, INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22,
+     *        RPAR, IPAR)
+         IF (IDID .LT. 0) THEN
+            ERR = 1.0D0
+            RETURN
+         END IF
+         ERR = MAX(ERR, ABS(Q(1) - COS(T)), ABS(Q(2) - SIN(T)),
+     *        ABS(V(1) + SIN(T)), ABS(V(2) - COS(T)),
+     *        ABS(LAMBDA(1) + 0.5D0))
+   10 CONTINUE
+      END
+C
+C     ---- IRES --------------------------------------------------------
+C     IPAR(2) = 1: G sets IRES = -1 from T = RPAR(2) on; IPAR(2) = 2:
+C     IRES = -2 from there.
+      SUBROUTINE IRESTS(NCHK)
+      INTEGER NCHK(2), INFO(20), IWORK(22), IPAR(2), IDID, MODE
+      DOUBLE PRECISION RWORK(20), RPAR(2), T, X(2), Y(1)
+      CHARACTER*300 MSG
+      DO 10 MODE = 1, 2
+         CALL CLEAR(INFO, RWORK, IWORK)
+         CALL CIRCLE0(T, X, IPAR)
+         IPAR(2) = MODE
+         RPAR(2) = 1.5D0
+         INFO(19) = 1
+         CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK, RPAR,
+     *        IPAR)
+         CALL CHECK(IDID .EQ. 3 .AND. INFO(1) .EQ. 1 .AND.
+     *        IPAR(1) .GT. 0, 'to T = 1: RPAR, IPAR reach G', NCHK)
+         CALL CSTEP(T, X, Y, 2.0D0, INFO, IDID, RWORK, IWORK, RPAR,
+     *        IPAR)
+         CALL DREGDAEMSG(IWORK, 22, MSG)
+         IF (MODE .EQ. 1) THEN
+            CALL CHECK(IDID .EQ. -108 .AND.
+     *           INDEX(MSG, 'cannot get past') .GT. 0,
+     *           'IRES = -1: IDID -108', NCHK)
+         ELSE
+            CALL CHECK(IDID .EQ. -11 .AND.
+     *           INDEX(MSG, 'user routine G set IRES = -2') .GT. 0,
+     *           'IRES = -2: IDID -11', NCHK)
+         END IF
+         CALL CHECK(INFO(1) .EQ. -1 .AND. T .GE. 1.0D0 .AND.
+     *        T .LT. 1.5D0, 'T reached, INFO(1) = -1', NCHK)
+         IF (IDID .GE. 0 .OR. T .GE. 1.5D0) WRITE (*, '(2A)')
+     *        '    MESSAGE: ', MSG(1:LEN_TRIM(MSG))
+         CALL DREGDAEFREE(IWORK, 22)
+   10 CONTINUE
+      END
+C
+C     ---- the problems ------------------------------------------------
+C     The circle (example_circle): x' = (x1 - x2, x1 + x2) - 2x y.
+      SUBROUTINE CF(T, X, FX, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(2), FX(2), RPAR(*)
+      FX(1) = X(1) - X(2)
+      FX(2) = X(1) + X(2)
+      END
+C
+      SUBROUTINE CB(T, X, BX, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(2), BX(2, 1), RPAR(*)
+      BX(1, 1) = 2.0D0 * X(1)
+      BX(2, 1) = 2.0D0 * X(2)
+      END
+C
+C     g = x1^2 + x2^2 - 1, counting its calls in IPAR(1) and failing
+C     from T = RPAR(2) on as IPAR(2) says.
+      SUBROUTINE CG(T, X, GV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(2)
+      DOUBLE PRECISION T, X(2), GV(1), RPAR(2)
+      GV(1) = X(1)**2 + X(2)**2 - 1.0D0
+      IPAR(1) = IPAR(1) + 1
+      IF (IPAR(2) .NE. 0 .AND. T .GE. RPAR(2)) IRES = -IPAR(2)
+      END
+C
+      SUBROUTINE CGX(T, X, GM, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(2), GM(1, 2), RPAR(*)
+      GM(1, 1) = 2.0D0 * X(1)
+      GM(1, 2) = 2.0D0 * X(2)
+      END
+C
+C     The particle: M = I, no forces.
+      SUBROUTINE MM(T, Q, AM, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, Q(2), AM(2, 2), RPAR(*)
+      AM(1, 1) = 1.0D0
+      AM(2, 1) = 0.0D0
+      AM(1, 2) = 0.0D0
+      AM(2, 2) = 1.0D0
+      END
+C
+      SUBROUTINE MF(T, Q, V, FV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, Q(2), V(2), FV(2), RPAR(*)
+      FV(1) = 0.0D0
+      FV(2) = 0.0D0
+      END
+C
+C     The circle from (1, 0) to TOUT = 1 with the tolerances RT, AT
+C     (INFO(2) = 1: vectors of length 2); X, IDID and the message.
+      SUBROUTINE TRYVEC(IVEC, RT, AT, X, IDID, MSG)
+      EXTERNAL CF, CB, CG, CGX
+      INTEGER IVEC, IDID, INFO(20), IWORK(22), IPAR(2), I
+      DOUBLE PRECISION RT(2), AT(2), X(2), Y(2), RWORK(20), RPAR(2), T
+      CHARACTER*(*) MSG
+      DO 10 I = 1, 20
+         INFO(I) = 0
+         RWORK(I) = 0.0D0
+   10 CONTINUE
+      INFO(2) = IVEC
+      INFO(20) = -1
+      T = 0.0D0
+      X(1) = 1.0D0
+      X(2) = 0.0D0
+      IPAR(1) = 0
+      IPAR(2) = 0
+      CALL DREGDAE(CF, CB, CG, CGX, CGX, 2, 1, T, X, Y, 1.0D0, INFO,
+     *     RT, AT, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+      SUBROUTINE VECTOR(NCHK)
+      INTEGER NCHK(2), IDID
+      DOUBLE PRECISION RT(2), AT(2), XS(2), XV(2), XL(2)
+      CHARACTER*300 MSG
+      RT(1) = 1.0D-6
+      RT(2) = 1.0D-6
+      AT(1) = 1.0D-6
+      AT(2) = 1.0D-6
+      CALL TRYVEC(0, RT, AT, XS, IDID, MSG)
+      CALL CHECK(IDID .GT. 0, 'scalar tolerances: success', NCHK)
+      CALL TRYVEC(1, RT, AT, XV, IDID, MSG)
+      CALL CHECK(IDID .GT. 0 .AND. XV(1) .EQ. XS(1) .AND.
+     *     XV(2) .EQ. XS(2), 'equal ATOL(i): the scalar run', NCHK)
+      AT(2) = 1.0D-2
+      CALL TRYVEC(1, RT, AT, XL, IDID, MSG)
+      CALL CHECK(IDID .GT. 0 .AND. (XL(1) .NE. XS(1) .OR.
+     *     XL(2) .NE. XS(2)), 'ATOL(2) = 1e-2: another run', NCHK)
+      RT(2) = 1.0D-5
+      CALL TRYVEC(1, RT, AT, XL, IDID, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND.
+     *     INDEX(MSG, 'one relative tolerance') .GT. 0,
+     *     'unequal RTOL(i) refused', NCHK)
+      END
