@@ -92,7 +92,10 @@ contains
             return
         end if
         m%rows = table_rows(lines, tail)
-        problems = [(text_line(row_problem(m%rows(i)%s)), i=1, size(m%rows))]
+        allocate (problems(size(m%rows)))
+        do i = 1, size(m%rows)   ! (an array constructor of text_line(f(...)) leaks with gfortran 12)
+            problems(i)%s = row_problem(m%rows(i)%s)
+        end do
         allocate (done(size(m%rows)))
         done = .false.
         if (out /= '-') then
