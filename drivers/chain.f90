@@ -26,7 +26,7 @@
 program chain_driver
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use regdae
-    use chain_problem, only: chain, new_chain, chain_start
+    use chain_problem, only: chain, new_chain, chain_start, chain_energy_of, chain_violation
     use chain_peer, only: run_chain_peer
     use slider_crank_problem, only: slider_crank_reduced
     use reference_ode, only: integrate_reference
@@ -105,7 +105,7 @@ contains
         max_drift = 0.0_wp
         energy_change = 0.0_wp
         max_err = -1.0_wp
-        e0 = energy(problem, q0, v0)
+        e0 = chain_energy_of(problem, q0, v0)
         if (peer) then
             ! plain IDA (band) on the unregularized stabilized index-2 form
             allocate (qpeer(problem%n, nout + 1))
@@ -120,7 +120,7 @@ contains
                 if (stat /= 0 .and. .not. all(qpeer(:, k + 1) == qpeer(:, k + 1))) exit
                 st%t = times(k + 1)
                 table(:, k) = [times(k + 1), qpeer(problem%n - 1, k + 1), qpeer(problem%n, k + 1), &
-                               ieee_value(1.0_wp, ieee_quiet_nan), constraint_violation(problem, qpeer(:, k + 1)), &
+                               ieee_value(1.0_wp, ieee_quiet_nan), chain_violation(problem, qpeer(:, k + 1)), &
                                ieee_value(1.0_wp, ieee_quiet_nan)]
             end do
             engine = 'peer/band'
@@ -146,8 +146,8 @@ contains
                     call solver%advance(times(k + 1), q, y, stat, v)
                     call solve_clock%stop()
                     if (stat < 0) exit
-                    e = energy(problem, q, v)
-                    drift = constraint_violation(problem, q)
+                    e = chain_energy_of(problem, q, v)
+                    drift = chain_violation(problem, q)
                     energy_change = max(energy_change, abs(e - e0))
                     max_drift = max(max_drift, drift)
                     table(:, k) = [times(k + 1), q(problem%n - 1), q(problem%n), e, drift, solver%sigma_min()]
@@ -187,24 +187,6 @@ contains
         if (text /= 'yes' .and. text /= 'no') call die_usage(prog, 'bad value "'//text//'" for '//name//' (yes, no)')
         yes_no = (text == 'yes')
     end function yes_no
-
-    real(wp) function energy(problem, q, v)
-        type(chain), intent(inout) :: problem
-        real(wp), intent(in) :: q(:), v(:)
-        integer :: ustat
-        ustat = 0
-        call problem%invariant(t0, q, v, energy, ustat)
-    end function energy
-
-    real(wp) function constraint_violation(problem, q)
-        type(chain), intent(inout) :: problem
-        real(wp), intent(in) :: q(:)
-        real(wp) :: g(problem%m)
-        integer :: ustat
-        ustat = 0
-        call problem%constraint(t0, q, g, ustat)
-        constraint_violation = maxval(abs(g))
-    end function constraint_violation
 
     subroutine write_table(table, last)
         real(wp), intent(in) :: table(:, 0:)

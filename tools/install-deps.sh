@@ -1,10 +1,11 @@
 #!/bin/sh
-# Install the Debian packages regdae needs, if any is missing.
+# Install the Debian packages regdae needs, if any is missing (Open MPI: drivers/sweep on MPI;
+# without it CMake builds the serial sweep).
 # Usage: tools/install-deps.sh [--figures] [--tests]
 #   --figures adds gnuplot-nox (the report's figures); --tests adds valgrind (memcheck tests)
 #   and pkg-config (builds against the installed regdae.pc)
 set -eu
-packages="gfortran cmake make liblapack-dev libsundials-dev libsundials-fortran-dev"
+packages="gfortran cmake make liblapack-dev libsundials-dev libsundials-fortran-dev libopenmpi-dev openmpi-bin"
 for arg in "$@"; do
     case $arg in
     --figures) packages="$packages gnuplot-nox" ;;

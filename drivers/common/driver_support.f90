@@ -8,7 +8,8 @@ module driver_support
     private
 
     public :: format_int
-    public :: read_number, read_count, common_argument, stats_fields, run_status, resolved_line, event_lines
+    public :: read_number, read_count, common_argument, parse_number, parse_count, common_option
+    public :: stats_fields, run_status, resolved_line, event_lines
 
     !> The largest `nout` the drivers accept: their tables hold nout + 1 rows.
     integer, parameter, public :: max_nout = 1000000
@@ -134,11 +135,22 @@ contains
     subroutine read_number(program_name, key, value, x)
         character(len=*), intent(in) :: program_name, key, value
         real(wp), intent(inout) :: x
-        logical :: ok
-        call parse_real(value, x, ok)
-        if (.not. ok) call die_usage(program_name, 'bad value "'//value//'" for '//key// &
-                                     ' (a finite number, e.g. 1e-3, 2.5 or .5)')
+        character(len=:), allocatable :: msg
+        call parse_number(key, value, x, msg)
+        if (len(msg) > 0) call die_usage(program_name, msg)
     end subroutine read_number
+
+    !> `read_number` without stopping: `msg` is empty on success, else the usage
+    !! message naming the key (x unchanged).
+    subroutine parse_number(key, value, x, msg)
+        character(len=*), intent(in) :: key, value
+        real(wp), intent(inout) :: x
+        character(len=:), allocatable, intent(out) :: msg
+        logical :: ok
+        msg = ''
+        call parse_real(value, x, ok)
+        if (.not. ok) msg = 'bad value "'//value//'" for '//key//' (a finite number, e.g. 1e-3, 2.5 or .5)'
+    end subroutine parse_number
 
     !> Read an integer option value in [lo, hi], or stop with a usage error
     !! naming the key and the range.
@@ -146,15 +158,29 @@ contains
         character(len=*), intent(in) :: program_name, key, value
         integer, intent(inout) :: k
         integer, intent(in) :: lo, hi
+        character(len=:), allocatable :: msg
+        call parse_count(key, value, k, lo, hi, msg)
+        if (len(msg) > 0) call die_usage(program_name, msg)
+    end subroutine read_count
+
+    !> `read_count` without stopping: `msg` is empty on success, else the usage
+    !! message naming the key and the range (k unchanged).
+    subroutine parse_count(key, value, k, lo, hi, msg)
+        character(len=*), intent(in) :: key, value
+        integer, intent(inout) :: k
+        integer, intent(in) :: lo, hi
+        character(len=:), allocatable, intent(out) :: msg
         integer :: tmp
         logical :: ok
+        msg = ''
         tmp = lo
         call parse_integer(value, tmp, ok)
-        if (.not. ok .or. tmp < lo .or. tmp > hi) &
-            call die_usage(program_name, 'bad value "'//value//'" for '//key//' (an integer in ['// &
-                           format_int(lo)//', '//format_int(hi)//'])')
-        k = tmp
-    end subroutine read_count
+        if (.not. ok .or. tmp < lo .or. tmp > hi) then
+            msg = 'bad value "'//value//'" for '//key//' (an integer in ['//format_int(lo)//', '//format_int(hi)//'])'
+        else
+            k = tmp
+        end if
+    end subroutine parse_count
 
     !> The arguments all drivers share: `nout` (an integer in [1, max_nout]) and
     !! every solver option; anything else stops with a usage error naming it.
@@ -163,14 +189,29 @@ contains
         type(solver_options), intent(inout) :: opts
         integer, intent(inout) :: nout
         character(len=:), allocatable :: msg
+        call common_option(key, value, opts, nout, msg)
+        if (len(msg) > 0) call die_usage(program_name, msg)
+    end subroutine common_argument
+
+    !> `common_argument` without stopping: `msg` is empty on success, else the
+    !! message naming the key (drivers/sweep: a bad row is reported, not fatal).
+    subroutine common_option(key, value, opts, nout, msg)
+        character(len=*), intent(in) :: key, value
+        type(solver_options), intent(inout) :: opts
+        integer, intent(inout) :: nout
+        character(len=:), allocatable, intent(out) :: msg
         integer :: stat
         if (key == 'nout') then
-            call read_count(program_name, key, value, nout, 1, max_nout)
+            call parse_count(key, value, nout, 1, max_nout, msg)
         else
             call set_option(opts, key, value, stat, msg)
-            if (stat /= regdae_success) call die_usage(program_name, msg)
+            if (stat == regdae_success) then
+                msg = ''
+            else if (len(msg) == 0) then
+                msg = 'bad option '//key//'='//value
+            end if
         end if
-    end subroutine common_argument
+    end subroutine common_option
 
     !> The statistics fields that end every summary line: `seconds` is the solve
     !! (init and advances), `output_seconds` (if given) the writing of the table.

@@ -49,7 +49,7 @@ module chain_problem
         procedure :: invariant => chain_energy
     end type chain
 
-    public :: new_chain, chain_start
+    public :: new_chain, chain_start, chain_energy_of, chain_violation
 
 contains
 
@@ -240,6 +240,26 @@ contains
         end do
         if (self%slider) val(self%links + 1:self%m) = 0.0_wp
     end subroutine chain_curvature
+
+    !> The energy of the state (q, v) (the invariant; the chain's energy does not depend on t).
+    real(wp) function chain_energy_of(p, q, v) result(e)
+        type(chain), intent(inout) :: p
+        real(wp), intent(in) :: q(:), v(:)
+        integer :: ustat
+        ustat = 0
+        call p%invariant(0.0_wp, q, v, e, ustat)
+    end function chain_energy_of
+
+    !> max |g(q)|: how far q is from the constraints.
+    real(wp) function chain_violation(p, q) result(drift)
+        type(chain), intent(inout) :: p
+        real(wp), intent(in) :: q(:)
+        real(wp) :: g(p%m)
+        integer :: ustat
+        ustat = 0
+        call p%constraint(0.0_wp, q, g, ustat)
+        drift = maxval(abs(g))
+    end function chain_violation
 
     !> Kinetic plus potential energy.
     subroutine chain_energy(self, t, x, v, val, stat)

@@ -1,0 +1,274 @@
+!> The scheduling of drivers/sweep: rank 0 reads the table, skips the rows the
+!! result file already holds, hands the others out one at a time (`ahead` rows
+!! queued per rank) to the other ranks as they return results, runs rows itself
+!! in between (serving the others from `run_row`'s hook after every output time),
+!! and appends the result lines in row order: a result that arrives early waits
+!! until every row before it is written. The ranks exchange only through module
+!! sweep_comm (MPI, or one rank without it).
+module sweep_schedule
+    use, intrinsic :: iso_fortran_env, only: int64, error_unit, output_unit
+    use regdae, only: wp, parse_real
+    use driver_support, only: format_int, argument, split_key_value, parse_count, clock_start, elapsed_seconds
+    use sweep_rows, only: run_row, row_problem, row_hook
+    use sweep_table, only: text_line, read_lines, table_rows, word, results_present
+    use sweep_comm, only: send_text, receive_text, text_waiting, any_rank, comm_kind
+    implicit none
+    private
+
+    public :: sweep_main, serve_rows, release_ranks
+
+    integer, parameter :: tag_row = 1, tag_result = 2
+    integer, parameter :: stop_id = 0   !! a row id that tells a rank to stop
+
+    !> Rank 0's state: the rows to run, the results not written yet, the counts.
+    type, extends(row_hook) :: sweep_master
+        type(text_line), allocatable :: rows(:)      !! the table's rows; id k is rows(k)
+        integer, allocatable :: order(:)             !! the ids to run, in table order
+        integer, allocatable :: position(:)          !! position in `order` of each id
+        type(text_line), allocatable :: results(:)   !! by position, until written
+        logical, allocatable :: arrived(:)           !! by position
+        integer, allocatable :: queued(:)            !! rows handed to each rank and not returned
+        integer :: ranks = 1, ahead = 2
+        integer :: next = 1            !! the next position to hand out or run
+        integer :: written = 0         !! positions written
+        integer :: finished = 0        !! results received in this run
+        integer :: earlier = 0         !! rows found in the result file
+        integer :: counts(3) = 0       !! failed, off_branch, bad_input
+        integer :: unit = output_unit
+        real(wp) :: every = 5.0_wp     !! seconds between progress lines (0: none)
+        integer(int64) :: started = 0, reported = 0
+    contains
+        procedure :: poll => master_poll
+        procedure :: feed => master_feed
+        procedure :: take => master_take
+        procedure :: report => master_report
+    end type sweep_master
+
+contains
+
+    !> Rank 0: parse the command line, run the sweep. code: 0 done (whatever the rows'
+    !! status), 1 the result file cannot be read or written, 2 bad arguments, an unreadable
+    !! table or a result file of another table. Every message goes to stderr.
+    subroutine sweep_main(ranks, code)
+        integer, intent(in) :: ranks
+        integer, intent(out) :: code
+        type(sweep_master) :: m
+        type(text_line), allocatable :: lines(:), problems(:)
+        character(len=:), allocatable :: key, value, table, out, tail, msg, note
+        logical, allocatable :: done(:)
+        logical :: ok
+        integer :: i, w, pos, ios
+        table = ''
+        out = '-'
+        code = 2
+        do i = 1, command_argument_count()
+            call split_key_value(argument(i), key, value, ok)
+            msg = ''
+            if (.not. ok) then
+                msg = 'argument "'//argument(i)//'" is not of the form key=value'
+            else
+                select case (key)
+                case ('table'); table = value
+                case ('out'); out = value
+                case ('ahead'); call parse_count(key, value, m%ahead, 1, 100, msg)
+                case ('progress')
+                    call parse_real(value, m%every, ok)
+                    if (.not. ok .or. m%every < 0.0_wp) msg = 'bad value "'//value//'" for progress (seconds >= 0)'
+                case default; msg = 'unknown key "'//key//'" (table, out, progress, ahead)'
+                end select
+            end if
+            if (len(msg) > 0) then
+                call say(msg)
+                return
+            end if
+        end do
+        if (len(table) == 0) then
+            call say('usage: sweep table=FILE [out=FILE|-] [progress=SECONDS] [ahead=N]')
+            return
+        end if
+        call read_lines(table, lines, tail, ios, msg)
+        if (ios /= 0) then
+            call say(msg)
+            return
+        end if
+        m%rows = table_rows(lines, tail)
+        allocate (problems(size(m%rows)))
+        do i = 1, size(m%rows)   ! (an array constructor of text_line(f(...)) leaks with gfortran 12)
+            problems(i)%s = row_problem(m%rows(i)%s)
+        end do
+        allocate (done(size(m%rows)))
+        done = .false.
+        if (out /= '-') then
+            call results_present(out, problems, done, note, code, msg)
+            if (len(note) > 0) call say(note)
+            if (code /= 0) then
+                call say(msg)
+                ! code: results_present's stat, 1 cannot read or cut, 2 another table's results
+                return
+            end if
+            code = 1
+            open (newunit=m%unit, file=out, status='unknown', position='append', action='write', iostat=ios)
+            if (ios /= 0) then
+                call say('cannot open "'//out//'" for writing')
+                return
+            end if
+        end if
+        code = 0
+        m%earlier = count(done)
+        m%order = pack([(i, i=1, size(m%rows))], .not. done)
+        allocate (m%position(size(m%rows)), m%results(size(m%order)), m%arrived(size(m%order)), m%queued(ranks - 1))
+        m%position = 0
+        m%position(m%order) = [(pos, pos=1, size(m%order))]
+        m%arrived = .false.
+        m%queued = 0
+        m%ranks = ranks
+        if (m%earlier == 0) write (m%unit, '(a)') '# regdae sweep: id problem status t_end=... <errors> steps=... '// &
+            'res_evals=... jac_evals=... err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... '// &
+            '[message=...]'
+        call say(format_int(size(m%rows))//' rows in "'//table//'", '//format_int(m%earlier)//' already in "'//out// &
+                 '", '//format_int(size(m%order))//' to run on '//format_int(ranks)//' rank(s) ('//comm_kind//')')
+        m%started = clock_start()
+        m%reported = m%started
+        do w = 1, ranks - 1
+            call m%feed(w)
+        end do
+        do
+            if (m%next <= size(m%order)) then
+                pos = m%next
+                m%next = m%next + 1
+                call m%take(0, m%order(pos), run_row(m%order(pos), m%rows(m%order(pos))%s, m))
+                call m%poll()
+            else if (any(m%queued > 0)) then
+                call m%take(-1, 0, '')
+                call m%report(.false.)
+            else
+                exit
+            end if
+        end do
+        call m%report(.true.)
+        if (m%unit /= output_unit) close (m%unit)
+    end subroutine sweep_main
+
+    !> Every other rank: run the rows rank 0 sends until it sends `stop_id`.
+    subroutine serve_rows()
+        character(len=:), allocatable :: line
+        integer :: id, from
+        do
+            call receive_text(0, tag_row, id, line, from)
+            if (id == stop_id) exit
+            call send_text(0, tag_result, id, run_row(id, line))
+        end do
+    end subroutine serve_rows
+
+    !> Rank 0, at the end: tell every other rank to stop.
+    subroutine release_ranks(ranks)
+        integer, intent(in) :: ranks
+        integer :: w
+        do w = 1, ranks - 1
+            call send_text(w, tag_row, stop_id, '')
+        end do
+    end subroutine release_ranks
+
+    !> Between rank 0's output times: receive what has arrived, hand out more rows,
+    !! write a progress line when one is due.
+    subroutine master_poll(self)
+        class(sweep_master), intent(inout) :: self
+        do while (text_waiting(tag_result))
+            call self%take(-1, 0, '')
+        end do
+        call self%report(.false.)
+    end subroutine master_poll
+
+    !> Queue rows on rank w up to `ahead`.
+    subroutine master_feed(self, w)
+        class(sweep_master), intent(inout) :: self
+        integer, intent(in) :: w
+        integer :: id
+        do while (self%queued(w) < self%ahead .and. self%next <= size(self%order))
+            id = self%order(self%next)
+            call send_text(w, tag_row, id, self%rows(id)%s)
+            self%next = self%next + 1
+            self%queued(w) = self%queued(w) + 1
+        end do
+    end subroutine master_feed
+
+    !> A result: rank 0's own (from = 0, id, text), or (from = -1) the next one another
+    !! rank sends (blocking), after which that rank gets more rows. Then write every
+    !! result whose predecessors are all written, one write and a flush per line.
+    subroutine master_take(self, from, id, text)
+        class(sweep_master), intent(inout) :: self
+        integer, intent(in) :: from, id
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: line, status
+        integer :: pos, rid, sender
+        if (from < 0) then
+            call receive_text(any_rank, tag_result, rid, line, sender)
+            self%queued(sender) = self%queued(sender) - 1
+            call self%feed(sender)
+        else
+            rid = id
+            line = text
+        end if
+        pos = self%position(rid)
+        self%results(pos)%s = line
+        self%arrived(pos) = .true.
+        self%finished = self%finished + 1
+        status = word(line, 3)
+        if (status == 'failed') self%counts(1) = self%counts(1) + 1
+        if (status == 'off_branch') self%counts(2) = self%counts(2) + 1
+        if (status == 'bad_input') self%counts(3) = self%counts(3) + 1
+        do while (self%written < size(self%order))
+            if (.not. self%arrived(self%written + 1)) exit
+            self%written = self%written + 1
+            write (self%unit, '(a)') self%results(self%written)%s
+            flush (self%unit)
+            deallocate (self%results(self%written)%s)
+        end do
+    end subroutine master_take
+
+    !> A progress line on stderr when `every` seconds have passed since the last (or
+    !! `final`): rows done of the total, failures so far, time spent and left.
+    subroutine master_report(self, final)
+        class(sweep_master), intent(inout) :: self
+        logical, intent(in) :: final
+        real(wp) :: spent, left
+        character(len=:), allocatable :: estimate, prefix
+        if (.not. final .and. (self%every <= 0.0_wp .or. elapsed_seconds(self%reported) < self%every)) return
+        self%reported = clock_start()
+        spent = elapsed_seconds(self%started)
+        estimate = ''
+        if (.not. final .and. self%finished > 0) then
+            left = spent/self%finished*(size(self%order) - self%finished)
+            estimate = ', about '//duration(left)//' left'
+        end if
+        prefix = ''
+        if (final) prefix = 'done, '
+        call say(prefix//format_int(self%earlier + self%finished)//'/'// &
+                 format_int(size(self%rows))//' rows ('//format_int(self%earlier)//' from before); this run: '// &
+                 format_int(self%counts(1))//' failed, '// &
+                 format_int(self%counts(2))//' off_branch, '//format_int(self%counts(3))//' bad_input; '// &
+                 duration(spent)//estimate)
+    end subroutine master_report
+
+    !> Seconds as '12 s', '3.4 min' or '2.5 h'.
+    function duration(seconds) result(text)
+        real(wp), intent(in) :: seconds
+        character(len=:), allocatable :: text
+        character(len=16) :: buffer
+        if (seconds < 100.0_wp) then
+            write (buffer, '(f8.1, a)') seconds, ' s'
+        else if (seconds < 6000.0_wp) then
+            write (buffer, '(f8.1, a)') seconds/60.0_wp, ' min'
+        else
+            write (buffer, '(f12.1, a)') seconds/3600.0_wp, ' h'
+        end if
+        text = trim(adjustl(buffer))
+    end function duration
+
+    subroutine say(text)
+        character(len=*), intent(in) :: text
+        write (error_unit, '(a)') 'sweep: '//text
+        flush (error_unit)
+    end subroutine say
+
+end module sweep_schedule

@@ -1,0 +1,43 @@
+!> Driver: a sweep, many runs from a table, on MPI ranks or serially (issue 13).
+!!
+!! Usage: sweep table=FILE [out=FILE|-] [progress=SECONDS] [ahead=N]
+!!        mpirun -np K sweep table=FILE out=FILE ...
+!!   table=FILE    the runs, one a line: a problem (ex51, crank2, crank3, pendulum, chain) and
+!!                 key=value words with the drivers' keys (drivers/common/sweep_rows.f90 lists
+!!                 them); blank lines and lines starting with '#' are skipped. A row's id is its
+!!                 number among the other lines (1, 2, ...): editing the table renumbers the rows
+!!   out=-         the result file; '-' (the default) is stdout, without resuming. With a file
+!!                 that exists, the rows it holds are not run again (a killed sweep resumes)
+!!   progress=5    seconds between the progress lines on stderr (rows done of the total,
+!!                 failures so far, time spent and left); 0: only the first and last line
+!!   ahead=2       rows queued on each other rank (1..100)
+!! Output: a '#' line (on a new file), then one line per row in row order whatever the number
+!! of ranks,
+!!   <id> <problem> <status> t_end=... <errors> steps=... res_evals=... jac_evals=...
+!!       err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... [message=...]
+!! status ok, failed, off_branch or bad_input (with message=, the rest of the line). Each line
+!! is written by one write statement and flushed when it and every row before it are done;
+!! a rerun drops a partial last line (a kill in the middle of a write) and appends the rows
+!! not in the file, in row order: the file ends equal to an uninterrupted run's.
+!! Exit status: 0 the sweep is complete (whatever its rows' status), 1 the result file cannot
+!! be read or written, 2 bad arguments, an unreadable table or a result file of another table.
+!! Built with MPI (CMake option REGDAE_MPI) rank 0 runs rows too and serves the other ranks
+!! between its output times; without MPI the same program runs every row itself.
+program sweep_driver
+    use sweep_comm, only: comm_start, comm_stop
+    use sweep_schedule, only: sweep_main, serve_rows, release_ranks
+    implicit none
+    integer :: rank, ranks, code
+
+    code = 0
+    call comm_start(rank, ranks)
+    if (rank == 0) then
+        call sweep_main(ranks, code)
+        call release_ranks(ranks)
+    else
+        call serve_rows()
+    end if
+    call comm_stop()
+    if (code == 1) stop 1
+    if (code == 2) stop 2
+end program sweep_driver

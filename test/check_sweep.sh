@@ -1,0 +1,111 @@
+#!/bin/sh
+# drivers/sweep (issue 13). Without MPIRUN: the small table (test/sweep/small.txt: every problem,
+# every status, one bad row) serially, its rows against the drivers' own summaries, a rerun on a
+# complete file, another table's file refused, and a sweep killed (SIGKILL) after five lines, a
+# partial line appended, resumed: equal to an uninterrupted run. With MPIRUN (an MPI build): the
+# small table on 2 and 3 ranks equal to the serial run row by row, and the kill-and-resume under
+# mpirun (its ranks killed by SIGKILL). Rows are compared in every column but seconds.
+# Usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]
+bin=${1:?usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]}
+dir=${2:?usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]}
+mpirun=${3:-}
+tmp=$(mktemp -d) || exit 1
+trap 'rm -rf "$tmp"' EXIT INT TERM
+. "$(dirname "$0")/check_lib.sh"
+sweep=$bin/sweep
+total=$(grep -v -e '^#' -e '^[[:space:]]*$' "$dir/resume.txt" | wc -l)   # resume.txt's rows
+
+rows() { grep -v '^#' "$1" | sed 's/ seconds=[^ ]*//'; }   # rows FILE: the result lines without seconds
+same() { rows "$1" >"$tmp/same.a"; rows "$2" >"$tmp/same.b"; cmp -s "$tmp/same.a" "$tmp/same.b"; }
+count() { if [ -f "$1" ]; then grep -c '^[0-9]' "$1"; else echo 0; fi; }   # count FILE: result lines
+sfield() { awk -v id="$2" '$1 == id' "$1" | tr ' ' '\n' | sed -n "s/^$3=//p"; }   # sfield FILE ID KEY
+dfield() { tail -n 1 "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }   # dfield FILE KEY: a driver's summary
+
+# kill_after N WHOM OUT COMMAND...: run COMMAND in the background, SIGKILL it (WHOM = self) or
+# its child processes (WHOM = children: mpirun's ranks, a node lost) once OUT has N result lines
+# (or after 60 s), wait for it.
+kill_after() {
+    n=$1; whom=$2; out=$3; shift 3
+    "$@" >/dev/null 2>"$tmp/killed.err" &
+    pid=$!
+    i=0
+    while [ "$(count "$out")" -lt "$n" ] && kill -0 "$pid" 2>/dev/null && [ "$i" -lt 1200 ]; do
+        sleep 0.05
+        i=$((i + 1))
+    done
+    if [ "$whom" = children ]; then
+        # shellcheck disable=SC2046
+        kill -KILL $(ps -o pid= --ppid "$pid") 2>/dev/null
+    else
+        kill -KILL "$pid" 2>/dev/null
+    fi
+    wait "$pid" 2>/dev/null
+}
+
+# resume_check LABEL REFERENCE KILLED: the resumed file equals the uninterrupted one, no id twice
+resume_check() {
+    check "$1: the resumed file equals the uninterrupted run" "$(same "$2" "$3"; echo $?)"
+    check "$1: no row twice" "$(rows "$3" | awk '{ print $1 }' | sort | uniq -d | wc -l | tr -d ' ' | grep -qx 0; echo $?)"
+}
+
+if [ -z "$mpirun" ]; then
+    "$sweep" table="$dir/small.txt" out="$tmp/serial.txt" progress=0 2>"$tmp/serial.err"
+    check "serial sweep of small.txt exits 0" $?
+    check "12 result lines, ids 1..12 in order" \
+        "$(rows "$tmp/serial.txt" | awk '{ printf "%s ", $1 }' | grep -qx '1 2 3 4 5 6 7 8 9 10 11 12 '; echo $?)"
+    check "each row's status" "$(rows "$tmp/serial.txt" | awk '{ printf "%s ", $3 }' |
+        grep -qx 'ok failed ok failed ok off_branch ok ok ok ok ok bad_input '; echo $?)"
+    check "the bad row's message names the key" "$(grep -q '^12 ex51 bad_input message=.*gamma' "$tmp/serial.txt"; echo $?)"
+    check "a failed row has the solver's message" "$(grep -q '^4 crank2 failed .*message=the velocity jumped' "$tmp/serial.txt"; echo $?)"
+    # The rows against the drivers' summaries (the same runs).
+    "$bin/ex51" >"$tmp/ex51.out"
+    "$bin/ex52" index=3 >"$tmp/ex52.out"
+    "$bin/pendulum" >"$tmp/pendulum.out"
+    "$bin/chain" n_links=4 >"$tmp/chain.out"
+    for spec in "1 ex51 max_err_x" "1 ex51 steps" "3 ex52 max_err_th" "3 ex52 max_branch_dev" "3 ex52 res_evals" \
+        "7 pendulum max_err_pos" "7 pendulum steps" "9 chain max_drift" "9 chain energy_change" "9 chain steps"; do
+        set -- $spec
+        a=$(sfield "$tmp/serial.txt" "$1" "$3")
+        b=$(dfield "$tmp/$2.out" "$3")
+        check "row $1's $3 = $2's ($a)" "$([ -n "$a" ] && [ "$a" = "$b" ]; echo $?)"
+    done
+    cp "$tmp/serial.txt" "$tmp/again.txt"
+    "$sweep" table="$dir/small.txt" out="$tmp/again.txt" progress=0 2>"$tmp/again.err"
+    check "a rerun on the complete file runs nothing and leaves it as it was" \
+        "$([ $? = 0 ] && cmp -s "$tmp/serial.txt" "$tmp/again.txt" && grep -q '12 already in' "$tmp/again.err"; echo $?)"
+    "$sweep" table="$dir/resume.txt" out="$tmp/serial.txt" progress=0 2>"$tmp/other.err"
+    check "another table's result file: exit 2 and a message" \
+        "$([ $? = 2 ] && grep -q 'not a result of this table' "$tmp/other.err"; echo $?)"
+    "$sweep" table="$dir/missing.txt" 2>"$tmp/missing.err"
+    check "a missing table: exit 2" "$([ $? = 2 ] && grep -q 'cannot open' "$tmp/missing.err"; echo $?)"
+    "$sweep" tabel=x 2>"$tmp/key.err"
+    check "an unknown key: exit 2" "$([ $? = 2 ] && grep -q 'unknown key "tabel"' "$tmp/key.err"; echo $?)"
+
+    "$sweep" table="$dir/resume.txt" out="$tmp/whole.txt" progress=0 2>/dev/null
+    kill_after 5 self "$tmp/killed.txt" "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0
+    left=$(count "$tmp/killed.txt")
+    check "killed after $left of $total rows" "$([ "$left" -ge 5 ] && [ "$left" -lt "$total" ]; echo $?)"
+    printf '%s' "$((left + 1)) pendulum ok t_end=1.0" >>"$tmp/killed.txt"   # a write cut short
+    "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0 2>"$tmp/resumed.err"
+    check "the resumed sweep exits 0 and drops the partial line" \
+        "$([ $? = 0 ] && grep -q 'dropped the partial last line' "$tmp/resumed.err"; echo $?)"
+    resume_check serial "$tmp/whole.txt" "$tmp/killed.txt"
+else
+    launch="$mpirun --oversubscribe"
+    [ "$(id -u)" = 0 ] && launch="$launch --allow-run-as-root"
+    "$sweep" table="$dir/small.txt" out="$tmp/serial.txt" progress=0 2>/dev/null
+    for np in 2 3; do
+        $launch -np $np "$sweep" table="$dir/small.txt" out="$tmp/mpi$np.txt" progress=0 2>"$tmp/mpi$np.err"
+        check "mpirun -np $np exits 0" $?
+        check "mpirun -np $np: on $np ranks" "$(grep -q "on $np rank(s) (MPI)" "$tmp/mpi$np.err"; echo $?)"
+        check "mpirun -np $np: equal to the serial run row by row" "$(same "$tmp/serial.txt" "$tmp/mpi$np.txt"; echo $?)"
+    done
+    "$sweep" table="$dir/resume.txt" out="$tmp/whole.txt" progress=0 2>/dev/null
+    kill_after 5 children "$tmp/killed.txt" $launch -np 2 "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0
+    left=$(count "$tmp/killed.txt")
+    check "mpirun killed after $left of $total rows" "$([ "$left" -ge 5 ] && [ "$left" -lt "$total" ]; echo $?)"
+    $launch -np 2 "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0 2>/dev/null
+    check "the resumed mpirun exits 0" $?
+    resume_check mpi "$tmp/whole.txt" "$tmp/killed.txt"
+fi
+finish
