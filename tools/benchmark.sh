@@ -4,7 +4,7 @@
 # the singular configuration, the chain with sliders) and drivers/report/chain_bench.sh (the chain
 # driver from 2 to 1024 links, its slider variant, the stiff chain against the plain IDA peer, the
 # small stiff chain's automatic switch), and regenerate doc/performance.md with its PNGs
-# (doc/figures/perf_*.png). About 6 minutes on a 2-core machine.
+# (doc/figures/perf_*.png). About 7.5 minutes on a 2-core machine (2.5 of them the sweeps).
 # Usage: tools/benchmark.sh [--reuse]   (--reuse: redraw from the raw outputs of the last run,
 #        kept in build/benchmark/)
 set -eu
@@ -598,16 +598,17 @@ give the same results (${same}). The cost of a row: the 10 x 10 crank map (100 r
 run with its CVODE reference at 1e-13) took ${tmap} s on one rank, $(awk -v t="$tmap" 'BEGIN { printf "%.0f", 10 * t }') ms a row, of which
 ${map_solve} ms is regdae's solve (the rest the reference and the checks of the row); a single
 \`ex52\` process with the same work takes ${tex} s of wall time (the process start, its reference
-and its 1001 printed outputs): a sweep row costs less than a driver run.
+and its 1001 printed outputs; one run, timed with date): a sweep row costs about what a driver
+process costs, without a process per row.
 
 TXT
 cat <<'TXT'
 ## Machine and commands
 
-`sh tools/benchmark.sh` (about 6 minutes on 2 cores, measured on 2026-11-29: the bench under 1,
-the tuned stability grid about 2, most of it index 3 with gamma >= 1e7 at tight tolerances, the
-default-options grid and the extended grid under 1, the chain sections about 2.5, of which 40 s
-are the two runs stopped at 20 s). Single runs: `build/bin/bench
+`sh tools/benchmark.sh` (7.5 minutes on 2 cores, measured on 2026-11-29: the bench under 1, the
+tuned stability grid about 2, most of it index 3 with gamma >= 1e7 at tight tolerances, the
+default-options grid and the extended grid under 1, the chain sections about 2, of which 40 s
+are the two runs stopped at 20 s, the sweeps 2.5). Single runs: `build/bin/bench
 problem=crank tol_from=4 tol_to=6`, `build/bin/stability problem=crank2 rtol=1e-5 checks=off`,
 `build/bin/stability defaults=yes problem=crank3`, `build/bin/stability problem=crank_near`,
 `build/bin/ex52 integrator=dopri5 gamma1=20 gamma0=200 eps=1e-14 stop_at_output=no`,
