@@ -1626,41 +1626,21 @@ contains
 
         st%t = self%t
         if (.not. associated(self%core)) return
-        st%switches = self%core%switches
-        if (self%core%switching .or. self%core%switches > 0) then   ! integrator=auto: both integrators' counts
-            call self%core%ida%get_statistics(st)
-            st%steps = st%steps + self%core%rk%steps
-            st%res_evals = st%res_evals + self%core%rk%evals
-            st%err_test_fails = st%err_test_fails + self%core%rk%rejects
-            if (self%core%active == integrator_dopri5) st%h_last = self%core%rk%h_last
-            st%singular_passes = self%core%monitor%n_singular
-            st%sigma_min = self%core%monitor%sigma_min
-            st%velocity_jump = self%core%monitor%jump_max
-            st%max_drift = self%core%monitor%drift_max
-            st%invariant_change = self%core%monitor%invariant_change
-            st%work_defect = self%core%monitor%work_defect
-            return
-        end if
-        if (self%core%active == integrator_dopri5) then
-            st%steps = self%core%rk%steps
-            st%res_evals = self%core%rk%evals
-            st%err_test_fails = self%core%rk%rejects
-            st%h_last = self%core%rk%h_last
-            st%singular_passes = self%core%monitor%n_singular
-            st%sigma_min = self%core%monitor%sigma_min
-            st%velocity_jump = self%core%monitor%jump_max
-            st%max_drift = self%core%monitor%drift_max
-            st%invariant_change = self%core%monitor%invariant_change
-            st%work_defect = self%core%monitor%work_defect
-            return
-        end if
-        call self%core%ida%get_statistics(st)
-        st%singular_passes = self%core%monitor%n_singular
-        st%sigma_min = self%core%monitor%sigma_min
-        st%velocity_jump = self%core%monitor%jump_max
-        st%max_drift = self%core%monitor%drift_max
-        st%invariant_change = self%core%monitor%invariant_change
-        st%work_defect = self%core%monitor%work_defect
+        associate (core => self%core)
+            st%switches = core%switches
+            ! IDA's counts (none if it never ran) plus the explicit integrator's (zero if it never ran)
+            call core%ida%get_statistics(st)
+            st%steps = st%steps + core%rk%steps
+            st%res_evals = st%res_evals + core%rk%evals
+            st%err_test_fails = st%err_test_fails + core%rk%rejects
+            if (core%active == integrator_dopri5) st%h_last = core%rk%h_last
+            st%singular_passes = core%monitor%n_singular
+            st%sigma_min = core%monitor%sigma_min
+            st%velocity_jump = core%monitor%jump_max
+            st%max_drift = core%monitor%drift_max
+            st%invariant_change = core%monitor%invariant_change
+            st%work_defect = core%monitor%work_defect
+        end associate
     end function solver_statistics
 
     function solver_message(self) result(msg)
