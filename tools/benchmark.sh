@@ -575,6 +575,7 @@ tex=$(awk '$1 == "ex52" { print $2 }' "$raw/sweep_times.txt")
 solve_sum=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) s += substr($i, 9) } END { printf "%.1f", s }' "$raw/sweep_1.txt")
 map_solve=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) { s += substr($i, 9); n++ } } END { printf "%.1f", 1000 * s / n }' "$raw/sweep_map.txt")
 speedup=$(awk -v a="$t1" -v b="${t2:-0}" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "-" }')
+bench_rows=$(sh drivers/report/sweep_tables.sh bench | grep -vc '^#')
 same=$(if [ -f "$raw/sweep_2.txt" ] && cmp -s "$raw/sweep_1.txt" "$raw/sweep_2.txt" 2>/dev/null; then echo "identical files"; else
     awk 'FNR == 1 { f++ } $1 ~ /^[0-9]+$/ { line = $0; gsub(/ seconds=[^ ]*/, "", line); if (f == 1) a[$1] = line; else if (a[$1] != line) d++ } END { printf "%d rows differ outside seconds", d }' "$raw/sweep_1.txt" "$raw/sweep_2.txt"; fi)
 cat <<TXT
@@ -600,6 +601,26 @@ ${map_solve} ms is regdae's solve (the rest the reference and the checks of the 
 \`ex52\` process with the same work takes ${tex} s of wall time (the process start, its reference
 and its 1001 printed outputs; one run, timed with date): a sweep row costs about what a driver
 process costs, without a process per row.
+
+The benchmark's tolerance sweeps of regdae run through it as well:
+
+    sh drivers/report/sweep_tables.sh bench >bench_table.txt      # or: bench crank, bench ex51
+    mpirun -np 2 --oversubscribe build/bin/sweep table=bench_table.txt out=bench_results.txt
+
+writes \`bench\`'s regdae rows as a table (${bench_rows} rows in \`bench\`'s order: its 9 slider-crank
+configurations and 6 of Example 5.1 at each rtol = atol = 1e-3 ... 1e-10, then its extra crank
+tolerances) and runs them: a status, the error (\`max_err_th\`, \`max_err_x\`) and the counts per
+row. The oracles and IDA peers (not regdae) and the other problems stay in \`drivers/bench\`. The
+errors and counts are \`bench\`'s for \`crank2\` and Example 5.1's eliminated rows (but a failed
+run's error, taken up to its last good output); \`crank3\` gets the solver's difference quotient
+for g_xx(v, v) in the sweep (as \`ex52\`), the analytic one in \`bench\`, and Example 5.1's output
+times differ from \`bench\`'s by an ulp, which moves the multiplier formulation's rows: those
+errors and counts differ (the header of \`sweep_tables.sh\` says how). Nor are the seconds the same
+quantity: a sweep row's \`seconds\` is one run's solve (\`init\` and the advances, the multiplier
+computed at every output; not the reference, not the row's checks), cold or warm as it comes,
+\`bench\`'s the median of at least 5 repetitions in one process (each with its \`init\`; no
+multiplier at the outputs, which saves the crank at 1e-6 about 0.3 ms of 0.7 with \`dopri5\`):
+compare seconds within one tool, not across the two.
 
 TXT
 cat <<'TXT'
