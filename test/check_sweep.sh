@@ -86,6 +86,11 @@ if [ -z "$mpirun" ]; then
     "$sweep" tabel=x 2>"$tmp/key.err"
     check "an unknown key: exit 2" "$([ $? = 2 ] && grep -q 'unknown key "tabel"' "$tmp/key.err"; echo $?)"
 
+    sh "$(dirname "$0")/../drivers/report/sweep_tables.sh" bench >"$tmp/bench_table.txt"
+    "$sweep" table="$tmp/bench_table.txt" out="$tmp/bench.txt" progress=0 2>/dev/null
+    check "sweep_tables.sh bench: 140 rows, each ok or failed (none bad_input)" \
+        "$([ "$(rows "$tmp/bench.txt" | awk '$3 == "ok" || $3 == "failed"' | wc -l)" = 140 ]; echo $?)"
+
     "$sweep" table="$dir/resume.txt" out="$tmp/whole.txt" progress=0 2>/dev/null
     kill_after 5 self "$tmp/killed.txt" "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0
     left=$(count "$tmp/killed.txt")

@@ -611,11 +611,11 @@ writes \`bench\`'s regdae rows as a table (${bench_rows} rows in \`bench\`'s ord
 configurations and 6 of Example 5.1 at each rtol = atol = 1e-3 ... 1e-10, then its extra crank
 tolerances) and runs them: a status, the error (\`max_err_th\`, \`max_err_x\`) and the counts per
 row. The oracles and IDA peers (not regdae) and the other problems stay in \`drivers/bench\`. The
-errors and counts are \`bench\`'s for \`crank2\` and Example 5.1's eliminated rows (but a failed
-run's error, taken up to its last good output); \`crank3\` gets the solver's difference quotient
-for g_xx(v, v) in the sweep (as \`ex52\`), the analytic one in \`bench\`, and Example 5.1's output
-times differ from \`bench\`'s by an ulp, which moves the multiplier formulation's rows: those
-errors and counts differ (the header of \`sweep_tables.sh\` says how). Nor are the seconds the same
+slider-crank rows at index 3 carry \`curvature_source=analytic\` (\`bench\`'s g_xx(v, v)): the crank rows
+and Example 5.1's eliminated rows give \`bench\`'s errors and counts in every printed digit (111
+of the 140 rows all of them, 3 more the error; a failed run's error is taken up to its last good
+output), but Example 5.1's output times differ from \`bench\`'s by an ulp at 23 of 201, which
+moves the multiplier formulation's rows: those errors and counts differ (the header of \`sweep_tables.sh\` says how). Nor are the seconds the same
 quantity: a sweep row's \`seconds\` is one run's solve (\`init\` and the advances, the multiplier
 computed at every output; not the reference, not the row's checks), cold or warm as it comes,
 \`bench\`'s the median of at least 5 repetitions in one process (each with its \`init\`; no

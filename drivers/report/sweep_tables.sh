@@ -21,15 +21,14 @@
 #       'dopri5 gamma1=20' and 'defaults', and 1e-11, 1e-12 of those and 'trust_region eps=1e-12'
 #       (crank 92 rows, ex51 48; all 140). Not here: bench's oracles and IDA peers (not regdae),
 #       its other problems (order3, redundant, singular_mass, linear_*: not sweep problems).
-#       Not bench's numbers everywhere: crank2 and ex51's eliminated rows give bench's error, steps
-#       and evaluations in every printed digit, but (1) the crank at index 3 gets the solver's
-#       difference quotient for g_xx(v, v) here (as ex52; bench gives it the analytic one): other
-#       errors and counts (near 1e-11 about twice bench's error), some statuses too; (2) ex51's
-#       outputs are -1 + 2k/200 here, bench's -1 + 0.01k (23 of 201 an ulp apart): with steps
-#       ending there the multiplier formulation takes another path (baumgarte multiplier even
-#       fails or not); (3) a failed crank run's max_err_th stops at its last good output (bench
-#       also counts the failed advance's). Without (1) and (2) bench gives the same 140 rows but
-#       for (3). Timing: a row's seconds is one run's solve, bench's the median of repetitions.
+#       The crank rows at index 3 have curvature_source=analytic (bench's g_xx(v, v); ex52 and a
+#       row without the key use the solver's difference quotient). The crank rows and ex51's
+#       eliminated rows give bench's error, steps and evaluations in every printed digit, but
+#       (1) ex51's outputs are -1 + 2k/200 here, bench's -1 + 0.01k (23 of 201 an ulp apart):
+#       with steps ending there the multiplier formulation takes another path (baumgarte
+#       multiplier even fails or not); (2) a failed crank run's max_err_th stops at its last
+#       good output (bench also counts the failed advance's). Timing: a row's seconds is one
+#       run's solve with the multiplier at every output, bench's the median of repetitions.
 set -eu
 case ${1:-} in
 crank_map)
@@ -91,27 +90,26 @@ bench)
         print "# Not here: the oracles (dopri5, CVODE, IDA on the reduced ODE) and the IDA peers (not regdae), order3, " \
             "redundant, singular_mass, linear_* (not sweep problems)."
         print "# Not bench\047s numbers everywhere (see the header of drivers/report/sweep_tables.sh):" \
-            (crank ? " crank3 has the solver\047s difference quotient for g_xx(v, v) here, bench the analytic one;" : "") \
             (ex51 ? " the ex51 outputs -1 + 2k/200 are an ulp from bench\047s -1 + 0.01k at 23 times (the multiplier rows differ);" : "") \
             " seconds is one run\047s solve, not a median of repetitions with setup."
         for (k = 3; k <= 10; k++) {
             tol = "rtol=1e-" k " atol=1e-" k
             if (crank) for (i = 1; i <= n; i++)
-                print (i == n ? "crank2" : "crank3"), opts[i], tol, "stop_at_output=no"
+                print (i == n ? "crank2" : "crank3 curvature_source=analytic"), opts[i], tol, "stop_at_output=no"
             if (ex51) for (m = 1; m <= 3; m++) for (f = 1; f <= 2; f++)
                 print "ex51 method=" methods[m], "formulation=" forms[f], "eps=1e-12", tol
         }
         if (!crank) exit
         for (k = 7; k <= 19; k += 2) {
             tol = sprintf("rtol=%.17g atol=%.17g", 10 ^ (-k / 2), 10 ^ (-k / 2))
-            print "crank3", rk, tol, "stop_at_output=no"
-            print "crank3", tol, "stop_at_output=no"
+            print "crank3 curvature_source=analytic", rk, tol, "stop_at_output=no"
+            print "crank3 curvature_source=analytic", tol, "stop_at_output=no"
         }
         for (k = 11; k <= 12; k++) {
             tol = "rtol=1e-" k " atol=1e-" k
-            print "crank3", rk, tol, "stop_at_output=no"
-            print "crank3", opts[2], tol, "stop_at_output=no"
-            print "crank3", tol, "stop_at_output=no"
+            print "crank3 curvature_source=analytic", rk, tol, "stop_at_output=no"
+            print "crank3 curvature_source=analytic", opts[2], tol, "stop_at_output=no"
+            print "crank3 curvature_source=analytic", tol, "stop_at_output=no"
         } }' | sed 's/  */ /g'
     ;;
 *)
