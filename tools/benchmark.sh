@@ -581,8 +581,9 @@ same=$(if [ -f "$raw/sweep_2.txt" ] && cmp -s "$raw/sweep_1.txt" "$raw/sweep_2.t
 cat <<TXT
 ## Sweeps on MPI ranks
 
-\`drivers/sweep\` ([sweep.md](sweep.md)) runs a table of runs, one result line per row in row order,
-on MPI ranks with dynamic load balancing (rank 0 hands out the rows and runs rows itself). The
+\`drivers/sweep\` ([sweep.md](sweep.md)) runs a table of runs, one result line per row (appended as
+rows finish, the file in row order at the end), on MPI ranks with dynamic load balancing (rank 0
+hands out the rows, the estimated most expensive first, and runs rows itself). The
 project's own sweeps run through it: \`sh drivers/report/sweep_tables.sh stability\` writes the
 tuned stability grid's 768 cells as a table (its options; the sweep gives each cell's status and
 errors, \`drivers/stability\` its classes), \`sweep_tables.sh crank_map N_TH N_W\` the slider-crank
@@ -593,9 +594,10 @@ starts of sweep.md's map, and then
 
 Measured by this script on this 2-core machine (wall seconds of the whole sweep, nothing else
 running): the stability grid in ${t1} s on one rank and ${t2:-(no mpirun)} s on 2 ranks, a speedup
-of **${speedup}x** (target 1.8x; the rows' own solve seconds sum to ${solve_sum} s: rows of up to
-20 s near the table's end, the tight tolerances, leave one rank idle at the end); both runs
-give the same results (${same}). The cost of a row: the 10 x 10 crank map (100 rows of \`ex52\`'s
+of **${speedup}x** (target 1.8x; the rows' own solve seconds sum to ${solve_sum} s on one rank, six
+rows of 14-22 s among them, which the default \`order=cost\` starts first; in table order the last
+of them started late and left one rank alone at the end: 1.71x); both runs give the same results
+(${same}). The cost of a row: the 10 x 10 crank map (100 rows of \`ex52\`'s
 run with its CVODE reference at 1e-13) took ${tmap} s on one rank, $(awk -v t="$tmap" 'BEGIN { printf "%.0f", 10 * t }') ms a row, of which
 ${map_solve} ms is regdae's solve (the rest the reference and the checks of the row); a single
 \`ex52\` process with the same work takes ${tex} s of wall time (the process start, its reference

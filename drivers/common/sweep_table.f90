@@ -1,7 +1,9 @@
 !> The files of drivers/sweep: the table of runs (one row a line) and the result
-!! file (one line a row, written by `sweep_schedule`), read whole and split into
-!! lines; the rows a result file already holds (a rerun skips them); a partial last
-!! line (a write cut short by a kill) dropped. No MPI and no module state here.
+!! file (one line a row, appended by `sweep_schedule` as rows finish), read whole and
+!! split into lines; the rows a result file already holds (a rerun skips them); a
+!! partial last line (a write cut short by a kill) dropped; the file rewritten in row
+!! order at the end; a row's numeric `key=value` (for the order of dispatch). No MPI
+!! and no module state here.
 module sweep_table
     use, intrinsic :: iso_c_binding, only: c_int, c_long, c_char, c_null_char
     use driver_support, only: format_int
