@@ -2,7 +2,8 @@
 # drivers/sweep (issue 13). Without MPIRUN: the small table (test/sweep/small.txt: every problem,
 # every status, one bad row) serially, its rows against the drivers' own summaries, a rerun on a
 # complete file, another table's file refused, and a sweep killed (SIGKILL) after five lines, a
-# partial line appended, resumed: equal to an uninterrupted run. With MPIRUN (an MPI build): the
+# partial line appended, resumed: equal to an uninterrupted run (lines are appended as rows finish,
+# in the order of sweep's order=cost, and the file is rewritten in row order at the end). With MPIRUN (an MPI build): the
 # small table on 2 and 3 ranks equal to the serial run row by row, and the kill-and-resume under
 # mpirun (its ranks killed by SIGKILL). Rows are compared in every column but seconds.
 # Usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]
@@ -51,6 +52,10 @@ resume_check() {
 if [ -z "$mpirun" ]; then
     "$sweep" table="$dir/small.txt" out="$tmp/serial.txt" progress=0 2>"$tmp/serial.err"
     check "serial sweep of small.txt exits 0" $?
+    "$sweep" table="$dir/small.txt" out="$tmp/table_order.txt" progress=0 order=table 2>/dev/null
+    check "order=table: the same file as the default order=cost" "$(same "$tmp/serial.txt" "$tmp/table_order.txt"; echo $?)"
+    "$sweep" table="$dir/small.txt" progress=0 2>/dev/null | grep -v '^#' | sed 's/ seconds=[^ ]*//' >"$tmp/stdout.txt"
+    check "out=- (stdout): the same lines in row order" "$(rows "$tmp/serial.txt" | cmp -s - "$tmp/stdout.txt"; echo $?)"
     check "12 result lines, ids 1..12 in order" \
         "$(rows "$tmp/serial.txt" | awk '{ printf "%s ", $1 }' | grep -qx '1 2 3 4 5 6 7 8 9 10 11 12 '; echo $?)"
     check "each row's status" "$(rows "$tmp/serial.txt" | awk '{ printf "%s ", $3 }' |
@@ -81,10 +86,17 @@ if [ -z "$mpirun" ]; then
     "$sweep" tabel=x 2>"$tmp/key.err"
     check "an unknown key: exit 2" "$([ $? = 2 ] && grep -q 'unknown key "tabel"' "$tmp/key.err"; echo $?)"
 
+    sh "$(dirname "$0")/../drivers/report/sweep_tables.sh" bench >"$tmp/bench_table.txt"
+    "$sweep" table="$tmp/bench_table.txt" out="$tmp/bench.txt" progress=0 2>/dev/null
+    check "sweep_tables.sh bench: 140 rows, each ok or failed (none bad_input)" \
+        "$([ "$(rows "$tmp/bench.txt" | awk '$3 == "ok" || $3 == "failed"' | wc -l)" = 140 ]; echo $?)"
+
     "$sweep" table="$dir/resume.txt" out="$tmp/whole.txt" progress=0 2>/dev/null
     kill_after 5 self "$tmp/killed.txt" "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0
     left=$(count "$tmp/killed.txt")
     check "killed after $left of $total rows" "$([ "$left" -ge 5 ] && [ "$left" -lt "$total" ]; echo $?)"
+    check "the killed file holds complete lines of distinct rows" \
+        "$(rows "$tmp/killed.txt" | awk '{ print $1 }' | sort | uniq -d | wc -l | tr -d ' ' | grep -qx 0; echo $?)"
     printf '%s' "$((left + 1)) pendulum ok t_end=1.0" >>"$tmp/killed.txt"   # a write cut short
     "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0 2>"$tmp/resumed.err"
     check "the resumed sweep exits 0 and drops the partial line" \

@@ -575,13 +575,15 @@ tex=$(awk '$1 == "ex52" { print $2 }' "$raw/sweep_times.txt")
 solve_sum=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) s += substr($i, 9) } END { printf "%.1f", s }' "$raw/sweep_1.txt")
 map_solve=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) { s += substr($i, 9); n++ } } END { printf "%.1f", 1000 * s / n }' "$raw/sweep_map.txt")
 speedup=$(awk -v a="$t1" -v b="${t2:-0}" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "-" }')
+bench_rows=$(sh drivers/report/sweep_tables.sh bench | grep -vc '^#')
 same=$(if [ -f "$raw/sweep_2.txt" ] && cmp -s "$raw/sweep_1.txt" "$raw/sweep_2.txt" 2>/dev/null; then echo "identical files"; else
     awk 'FNR == 1 { f++ } $1 ~ /^[0-9]+$/ { line = $0; gsub(/ seconds=[^ ]*/, "", line); if (f == 1) a[$1] = line; else if (a[$1] != line) d++ } END { printf "%d rows differ outside seconds", d }' "$raw/sweep_1.txt" "$raw/sweep_2.txt"; fi)
 cat <<TXT
 ## Sweeps on MPI ranks
 
-\`drivers/sweep\` ([sweep.md](sweep.md)) runs a table of runs, one result line per row in row order,
-on MPI ranks with dynamic load balancing (rank 0 hands out the rows and runs rows itself). The
+\`drivers/sweep\` ([sweep.md](sweep.md)) runs a table of runs, one result line per row (appended as
+rows finish, the file in row order at the end), on MPI ranks with dynamic load balancing (rank 0
+hands out the rows, the estimated most expensive first, and runs rows itself). The
 project's own sweeps run through it: \`sh drivers/report/sweep_tables.sh stability\` writes the
 tuned stability grid's 768 cells as a table (its options; the sweep gives each cell's status and
 errors, \`drivers/stability\` its classes), \`sweep_tables.sh crank_map N_TH N_W\` the slider-crank
@@ -592,14 +594,35 @@ starts of sweep.md's map, and then
 
 Measured by this script on this 2-core machine (wall seconds of the whole sweep, nothing else
 running): the stability grid in ${t1} s on one rank and ${t2:-(no mpirun)} s on 2 ranks, a speedup
-of **${speedup}x** (target 1.8x; the rows' own solve seconds sum to ${solve_sum} s: rows of up to
-20 s near the table's end, the tight tolerances, leave one rank idle at the end); both runs
-give the same results (${same}). The cost of a row: the 10 x 10 crank map (100 rows of \`ex52\`'s
+of **${speedup}x** (target 1.8x; the rows' own solve seconds sum to ${solve_sum} s on one rank, six
+rows of 14-22 s among them, which the default \`order=cost\` starts first; in table order the last
+of them started late and left one rank alone at the end: 1.71x); both runs give the same results
+(${same}). The cost of a row: the 10 x 10 crank map (100 rows of \`ex52\`'s
 run with its CVODE reference at 1e-13) took ${tmap} s on one rank, $(awk -v t="$tmap" 'BEGIN { printf "%.0f", 10 * t }') ms a row, of which
 ${map_solve} ms is regdae's solve (the rest the reference and the checks of the row); a single
 \`ex52\` process with the same work takes ${tex} s of wall time (the process start, its reference
 and its 1001 printed outputs; one run, timed with date): a sweep row costs about what a driver
 process costs, without a process per row.
+
+The benchmark's tolerance sweeps of regdae run through it as well:
+
+    sh drivers/report/sweep_tables.sh bench >bench_table.txt      # or: bench crank, bench ex51
+    mpirun -np 2 --oversubscribe build/bin/sweep table=bench_table.txt out=bench_results.txt
+
+writes \`bench\`'s regdae rows as a table (${bench_rows} rows in \`bench\`'s order: its 9 slider-crank
+configurations and 6 of Example 5.1 at each rtol = atol = 1e-3 ... 1e-10, then its extra crank
+tolerances) and runs them: a status, the error (\`max_err_th\`, \`max_err_x\`) and the counts per
+row. The oracles and IDA peers (not regdae) and the other problems stay in \`drivers/bench\`. The
+slider-crank rows at index 3 carry \`curvature_source=analytic\` (\`bench\`'s g_xx(v, v)): the crank rows
+and Example 5.1's eliminated rows give \`bench\`'s errors and counts in every printed digit (111
+of the 140 rows all of them, 3 more the error; a failed run's error is taken up to its last good
+output), but Example 5.1's output times differ from \`bench\`'s by an ulp at 23 of 201, which
+moves the multiplier formulation's rows: those errors and counts differ (the header of \`sweep_tables.sh\` says how). Nor are the seconds the same
+quantity: a sweep row's \`seconds\` is one run's solve (\`init\` and the advances, the multiplier
+computed at every output; not the reference, not the row's checks), cold or warm as it comes,
+\`bench\`'s the median of at least 5 repetitions in one process (each with its \`init\`; no
+multiplier at the outputs, which saves the crank at 1e-6 about 0.3 ms of 0.7 with \`dopri5\`):
+compare seconds within one tool, not across the two.
 
 TXT
 cat <<'TXT'

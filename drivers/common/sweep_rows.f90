@@ -3,7 +3,9 @@
 !!
 !!   ex51      orientation=psd|paper x0=0 nout=200             (t in [-1, 1]; error against x = t + 1)
 !!   crank2    th1=pi/2 w1=0 tf=10 nout=1000 gravity=9.8 branch_tol=0.1   (the slider crank at index 2;
-!!   crank3    the same at index 3; errors against the reduced ODE by CVODE at 1e-13, as drivers/ex52)
+!!   crank3    the same at index 3; errors against the reduced ODE by CVODE at 1e-13, as drivers/ex52;
+!!             curvature_source=difference|analytic: regdae's difference quotient for g_xx(v, v), as
+!!             drivers/ex52, or the analytic one, as drivers/bench)
 !!   pendulum  phi0=pi/2 w0=0 tf=10 nout=1000 gravity=9.81     (against the angle ODE by CVODE, as
 !!             drivers/pendulum; index=2|3 as a solver option)
 !!   chain     n_links=16 slider=no tf=1 nout=100 gravity=9.81 mass=1 stiffness=0 damping=0
@@ -59,7 +61,7 @@ module sweep_rows
     real(wp), parameter :: pi = acos(-1.0_wp)
     !> The keys that belong to one problem or another (each problem's own: `own_keys`).
     character(len=*), parameter :: problem_keys = &
-        ' orientation x0 th1 w1 tf gravity branch_tol phi0 w0 n_links slider mass stiffness damping peer '
+        ' orientation x0 th1 w1 tf gravity branch_tol curvature_source phi0 w0 n_links slider mass stiffness damping peer '
 
     !> A parsed row: the problem, its parameters and the solver options.
     type :: row_setup
@@ -69,6 +71,7 @@ module sweep_rows
         real(wp) :: tf = 1.0_wp, gravity = 9.81_wp
         real(wp) :: angle = 0.0_wp, speed = 0.0_wp   !! crank: th1, w1; pendulum: phi0, w0
         real(wp) :: branch_tol = 0.1_wp
+        logical :: analytic_curvature = .false.      !! crank: curvature_source=analytic (drivers/bench's g_xx(v, v))
         real(wp) :: x0 = 0.0_wp
         integer :: orientation = orientation_psd
         integer :: n_links = 16
@@ -287,7 +290,7 @@ contains
         character(len=:), allocatable :: keys
         select case (problem)
         case ('ex51'); keys = 'orientation x0'
-        case ('crank2', 'crank3'); keys = 'th1 w1 tf gravity branch_tol'
+        case ('crank2', 'crank3'); keys = 'th1 w1 tf gravity branch_tol curvature_source'
         case ('pendulum'); keys = 'phi0 w0 tf gravity'
         case default; keys = 'n_links slider tf gravity mass stiffness damping'
         end select
@@ -317,6 +320,10 @@ contains
         case ('slider')
             if (value /= 'yes' .and. value /= 'no') msg = 'bad value "'//value//'" for slider (yes, no)'
             s%slider = (value == 'yes')
+        case ('curvature_source')
+            if (value /= 'analytic' .and. value /= 'difference') &
+                msg = 'bad value "'//value//'" for curvature_source (difference, analytic)'
+            s%analytic_curvature = (value == 'analytic')
         case ('orientation')
             select case (value)
             case ('psd'); s%orientation = orientation_psd
@@ -458,6 +465,7 @@ contains
         type(row_result), intent(inout) :: r
         type(slider_crank_reduced) :: reduced
         self%crank = new_slider_crank(s%gravity)
+        self%crank%analytic_curvature = s%analytic_curvature
         reduced%gravity = s%gravity
         call reference_states(reduced, s, self%times, self%ref, r)
         self%e0 = self%crank%energy([s%angle, pi - s%angle], [s%speed, -s%speed])

@@ -1,16 +1,18 @@
 !> The scheduling of drivers/sweep: rank 0 reads the table, skips the rows the
-!! result file already holds, hands the others out one at a time (`ahead` rows
-!! queued per rank) to the other ranks as they return results, runs rows itself
-!! in between (serving the others from `run_row`'s hook after every output time),
-!! and appends the result lines in row order: a result that arrives early waits
-!! until every row before it is written. The ranks exchange only through module
-!! sweep_comm (MPI, or one rank without it).
+!! result file already holds, orders the others by their estimated cost (the tightest
+!! rtol first, then the largest gamma), hands them out one at a time (`ahead` rows
+!! queued per rank) to the other ranks as they return results, runs rows itself in
+!! between (serving the others from `run_row`'s hook after every output time), and
+!! appends each result line as soon as it arrives; at the end the result file is
+!! rewritten in row order (a new file renamed over the old one). The ranks exchange
+!! only through module sweep_comm (MPI, or one rank without it).
 module sweep_schedule
     use, intrinsic :: iso_fortran_env, only: int64, error_unit, output_unit
-    use regdae, only: wp, parse_real
+    use regdae, only: wp, parse_real, solver_options
     use driver_support, only: format_int, argument, split_key_value, parse_count, clock_start, elapsed_seconds
     use sweep_rows, only: run_row, row_problem, row_hook
-    use sweep_table, only: text_line, read_lines, table_rows, word, results_present
+    use sweep_table, only: text_line, read_lines, table_rows, word, results_present, sort_result_file, &
+                           row_real
     use sweep_comm, only: send_text, receive_text, text_waiting, any_rank, comm_kind
     implicit none
     private
@@ -20,17 +22,16 @@ module sweep_schedule
     integer, parameter :: tag_row = 1, tag_result = 2
     integer, parameter :: stop_id = 0   !! a row id that tells a rank to stop
 
-    !> Rank 0's state: the rows to run, the results not written yet, the counts.
+    !> Rank 0's state: the rows to run, the results held for stdout, the counts.
     type, extends(row_hook) :: sweep_master
         type(text_line), allocatable :: rows(:)      !! the table's rows; id k is rows(k)
-        integer, allocatable :: order(:)             !! the ids to run, in table order
-        integer, allocatable :: position(:)          !! position in `order` of each id
-        type(text_line), allocatable :: results(:)   !! by position, until written
-        logical, allocatable :: arrived(:)           !! by position
+        integer, allocatable :: order(:)             !! the ids to run, in the order they are handed out
+        type(text_line), allocatable :: held(:)      !! by id: the results for stdout, written at the end
         integer, allocatable :: queued(:)            !! rows handed to each rank and not returned
         integer :: ranks = 1, ahead = 2
-        integer :: next = 1            !! the next position to hand out or run
-        integer :: written = 0         !! positions written
+        logical :: by_cost = .true.    !! order=cost (the default) or order=table
+        logical :: to_file = .false.   !! out= a file: each result appended when it arrives
+        integer :: next = 1            !! the next position in `order` to hand out or run
         integer :: finished = 0        !! results received in this run
         integer :: earlier = 0         !! rows found in the result file
         integer :: counts(3) = 0       !! failed, off_branch, bad_input
@@ -71,10 +72,13 @@ contains
                 case ('table'); table = value
                 case ('out'); out = value
                 case ('ahead'); call parse_count(key, value, m%ahead, 1, 100, msg)
+                case ('order')
+                    if (value /= 'cost' .and. value /= 'table') msg = 'bad value "'//value//'" for order (cost|table)'
+                    m%by_cost = (value == 'cost')
                 case ('progress')
                     call parse_real(value, m%every, ok)
                     if (.not. ok .or. m%every < 0.0_wp) msg = 'bad value "'//value//'" for progress (seconds >= 0)'
-                case default; msg = 'unknown key "'//key//'" (table, out, progress, ahead)'
+                case default; msg = 'unknown key "'//key//'" (table, out, progress, ahead, order)'
                 end select
             end if
             if (len(msg) > 0) then
@@ -83,7 +87,7 @@ contains
             end if
         end do
         if (len(table) == 0) then
-            call say('usage: sweep table=FILE [out=FILE|-] [progress=SECONDS] [ahead=N]')
+            call say('usage: sweep table=FILE [out=FILE|-] [progress=SECONDS] [ahead=N] [order=cost|table]')
             return
         end if
         call read_lines(table, lines, tail, ios, msg)
@@ -114,12 +118,12 @@ contains
             end if
         end if
         code = 0
+        m%to_file = (out /= '-')
         m%earlier = count(done)
         m%order = pack([(i, i=1, size(m%rows))], .not. done)
-        allocate (m%position(size(m%rows)), m%results(size(m%order)), m%arrived(size(m%order)), m%queued(ranks - 1))
-        m%position = 0
-        m%position(m%order) = [(pos, pos=1, size(m%order))]
-        m%arrived = .false.
+        if (m%by_cost) call order_by_cost(m%rows, m%order)
+        allocate (m%queued(ranks - 1))
+        if (.not. m%to_file) allocate (m%held(size(m%rows)))
         m%queued = 0
         m%ranks = ranks
         if (m%earlier == 0) write (m%unit, '(a)') '# regdae sweep: id problem status t_end=... <errors> steps=... '// &
@@ -146,7 +150,19 @@ contains
             end if
         end do
         call m%report(.true.)
-        if (m%unit /= output_unit) close (m%unit)
+        if (m%to_file) then
+            close (m%unit)
+            call sort_result_file(out, size(m%rows), ios, msg)
+            if (ios /= 0) then
+                call say(msg)
+                code = 1
+            end if
+        else
+            do i = 1, size(m%rows)
+                if (allocated(m%held(i)%s)) write (m%unit, '(a)') m%held(i)%s
+            end do
+            flush (m%unit)
+        end if
     end subroutine sweep_main
 
     !> Every other rank: run the rows rank 0 sends until it sends `stop_id`.
@@ -193,14 +209,14 @@ contains
     end subroutine master_feed
 
     !> A result: rank 0's own (from = 0, id, text), or (from = -1) the next one another
-    !! rank sends (blocking), after which that rank gets more rows. Then write every
-    !! result whose predecessors are all written, one write and a flush per line.
+    !! rank sends (blocking), after which that rank gets more rows. Then append it to the
+    !! result file, one write and a flush (for stdout: hold it until the end).
     subroutine master_take(self, from, id, text)
         class(sweep_master), intent(inout) :: self
         integer, intent(in) :: from, id
         character(len=*), intent(in) :: text
         character(len=:), allocatable :: line, status
-        integer :: pos, rid, sender
+        integer :: rid, sender
         if (from < 0) then
             call receive_text(any_rank, tag_result, rid, line, sender)
             self%queued(sender) = self%queued(sender) - 1
@@ -209,21 +225,17 @@ contains
             rid = id
             line = text
         end if
-        pos = self%position(rid)
-        self%results(pos)%s = line
-        self%arrived(pos) = .true.
+        if (self%to_file) then
+            write (self%unit, '(a)') line
+            flush (self%unit)
+        else
+            self%held(rid)%s = line
+        end if
         self%finished = self%finished + 1
         status = word(line, 3)
         if (status == 'failed') self%counts(1) = self%counts(1) + 1
         if (status == 'off_branch') self%counts(2) = self%counts(2) + 1
         if (status == 'bad_input') self%counts(3) = self%counts(3) + 1
-        do while (self%written < size(self%order))
-            if (.not. self%arrived(self%written + 1)) exit
-            self%written = self%written + 1
-            write (self%unit, '(a)') self%results(self%written)%s
-            flush (self%unit)
-            deallocate (self%results(self%written)%s)
-        end do
     end subroutine master_take
 
     !> A progress line on stderr when `every` seconds have passed since the last (or
@@ -249,6 +261,69 @@ contains
                  format_int(self%counts(2))//' off_branch, '//format_int(self%counts(3))//' bad_input; '// &
                  duration(spent)//estimate)
     end subroutine master_report
+
+    !> Sort the ids to run by their estimated cost, the most expensive first, so that
+    !! the long rows start early and do not leave one rank working alone at the end: the
+    !! tightest rtol first (a run's steps grow as rtol falls), then the largest gamma
+    !! (gamma or gamma1: the stiffer stabilization), table order among equals. A row
+    !! without rtol has the solver's default; one without a numeric gamma counts as 0.
+    subroutine order_by_cost(rows, ids)
+        type(text_line), intent(in) :: rows(:)
+        integer, intent(inout) :: ids(:)
+        type(solver_options) :: defaults
+        real(wp), allocatable :: rtol(:), gamma(:)
+        integer, allocatable :: work(:)
+        integer :: i, id
+        allocate (rtol(size(rows)), gamma(size(rows)), work(size(ids)))
+        do i = 1, size(ids)
+            id = ids(i)
+            rtol(id) = row_real(rows(id)%s, 'rtol', defaults%rtol)
+            gamma(id) = max(row_real(rows(id)%s, 'gamma', 0.0_wp), row_real(rows(id)%s, 'gamma1', 0.0_wp))
+        end do
+        call merge_sort(ids, work)
+    contains
+        logical function before(a, b)
+            integer, intent(in) :: a, b
+            if (rtol(a) /= rtol(b)) then
+                before = rtol(a) < rtol(b)
+            else if (gamma(a) /= gamma(b)) then
+                before = gamma(a) > gamma(b)
+            else
+                before = a < b
+            end if
+        end function before
+
+        recursive subroutine merge_sort(x, w)
+            integer, intent(inout) :: x(:), w(:)
+            integer :: half, i, j, k
+            logical :: take_right
+            if (size(x) < 2) return
+            half = size(x)/2
+            call merge_sort(x(:half), w(:half))
+            call merge_sort(x(half + 1:), w(half + 1:))
+            w = x
+            i = 1
+            j = half + 1
+            do k = 1, size(x)
+                if (j <= size(x)) then
+                    if (i > half) then
+                        take_right = .true.
+                    else
+                        take_right = before(w(j), w(i))
+                    end if
+                else
+                    take_right = .false.
+                end if
+                if (take_right) then
+                    x(k) = w(j)
+                    j = j + 1
+                else
+                    x(k) = w(i)
+                    i = i + 1
+                end if
+            end do
+        end subroutine merge_sort
+    end subroutine order_by_cost
 
     !> Seconds as '12 s', '3.4 min' or '2.5 h'.
     function duration(seconds) result(text)

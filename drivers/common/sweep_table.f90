@@ -1,11 +1,13 @@
 !> The files of drivers/sweep: the table of runs (one row a line) and the result
-!! file (one line a row, written by `sweep_schedule`), read whole and split into
-!! lines; the rows a result file already holds (a rerun skips them); a partial last
-!! line (a write cut short by a kill) dropped. No MPI and no module state here.
+!! file (one line a row, appended by `sweep_schedule` as rows finish), read whole and
+!! split into lines; the rows a result file already holds (a rerun skips them); a
+!! partial last line (a write cut short by a kill) dropped; the file rewritten in row
+!! order at the end; a row's numeric `key=value` (for the order of dispatch). No MPI
+!! and no module state here.
 module sweep_table
     use, intrinsic :: iso_c_binding, only: c_int, c_long, c_char, c_null_char
     use driver_support, only: format_int
-    use regdae, only: parse_integer
+    use regdae, only: wp, parse_integer, parse_real
     implicit none
     private
 
@@ -18,7 +20,7 @@ module sweep_table
     !! messages short enough to be sent eagerly, so a send never waits for its receiver.
     integer, parameter, public :: max_row_length = 1000
 
-    public :: read_lines, table_rows, word, results_present
+    public :: read_lines, table_rows, word, results_present, sort_result_file, row_real
 
     interface
         !> POSIX truncate(2): cut the file at `length` bytes.
@@ -27,6 +29,12 @@ module sweep_table
             character(kind=c_char), intent(in) :: path(*)
             integer(c_long), value :: length
         end function c_truncate
+
+        !> C rename(3): replace `new` by `old` (atomic within one file system).
+        integer(c_int) function c_rename(old, new) bind(C, name='rename')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: old(*), new(*)
+        end function c_rename
     end interface
 
 contains
@@ -183,5 +191,101 @@ contains
                    format_int(len(tail))//' characters'
         end if
     end subroutine results_present
+
+    !> The value of `key=value` in a row as a real number: the last word `key=...` that
+    !! parses, `fallback` if none does (no such word, or e.g. `gamma=auto`).
+    function row_real(line, key, fallback) result(x)
+        character(len=*), intent(in) :: line, key
+        real(wp), intent(in) :: fallback
+        real(wp) :: x, y
+        character(len=:), allocatable :: w
+        integer :: k
+        logical :: ok
+        x = fallback
+        k = 2
+        do
+            w = word(line, k)
+            if (len(w) == 0) exit
+            if (len(w) > len(key) + 1) then
+                if (w(:len(key) + 1) == key//'=') then
+                    call parse_real(w(len(key) + 2:), y, ok)
+                    if (ok) x = y
+                end if
+            end if
+            k = k + 1
+        end do
+    end function row_real
+
+    !> Rewrite a result file in row order: its '#' lines first, then the result lines
+    !! by id (the first line of an id if it occurs twice). The sorted text goes to
+    !! `path.sorting`, which is then renamed over `path`, so that a kill at any moment
+    !! leaves the complete file, sorted or not (a rerun sorts it). Nothing is written
+    !! when the file is in row order already. stat = 0, or 1 with msg.
+    subroutine sort_result_file(path, nrows, stat, msg)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: nrows
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        type(text_line), allocatable :: lines(:)
+        character(len=:), allocatable :: tail, first, temporary
+        integer, allocatable :: at(:)
+        integer :: i, id, u, last
+        logical :: ok, sorted
+        call read_lines(path, lines, tail, stat, msg)
+        if (stat /= 0) then
+            stat = 1
+            return
+        end if
+        allocate (at(nrows))
+        at = 0
+        sorted = (len(tail) == 0)
+        last = -1
+        do i = 1, size(lines)
+            first = word(lines(i)%s, 1)
+            if (len(first) == 0) then   ! a blank line: dropped
+                sorted = .false.
+                cycle
+            end if
+            if (first(1:1) == '#') then
+                sorted = sorted .and. last < 0
+                cycle
+            end if
+            id = 0
+            call parse_integer(first, id, ok)
+            if (.not. ok .or. id < 1 .or. id > nrows) then
+                stat = 1
+                msg = '"'//path//'" line '//format_int(i)//' is not a result line: not sorted'
+                return
+            end if
+            sorted = sorted .and. id > last
+            last = max(last, id)
+            if (at(id) == 0) at(id) = i
+        end do
+        if (sorted) return
+        temporary = path//'.sorting'
+        open (newunit=u, file=temporary, status='replace', action='write', iostat=stat)
+        if (stat == 0) then
+            do i = 1, size(lines)
+                first = word(lines(i)%s, 1)
+                if (len(first) > 0) then
+                    if (first(1:1) == '#') write (u, '(a)', iostat=stat) lines(i)%s
+                end if
+                if (stat /= 0) exit
+            end do
+        end if
+        if (stat == 0) then
+            do id = 1, nrows
+                if (at(id) > 0) write (u, '(a)', iostat=stat) lines(at(id))%s
+                if (stat /= 0) exit
+            end do
+        end if
+        if (stat == 0) close (u, iostat=stat)
+        if (stat == 0) stat = c_rename(temporary//c_null_char, path//c_null_char)
+        if (stat /= 0) then
+            stat = 1
+            msg = 'cannot rewrite "'//path//'" in row order (through "'//temporary//'"): its lines stay '// &
+                  'in the order they were written'
+        end if
+    end subroutine sort_result_file
 
 end module sweep_table
