@@ -4,7 +4,8 @@
 # complete file, another table's file refused, and a sweep killed (SIGKILL) after five lines, a
 # partial line appended, resumed: equal to an uninterrupted run (lines are appended as rows finish,
 # in the order of sweep's order=cost, and the file is rewritten in row order at the end). With MPIRUN (an MPI build): the
-# small table on 2 and 3 ranks equal to the serial run row by row, and the kill-and-resume under
+# small table on 2 and 3 ranks equal to the serial run row by row, a row taken back from the rank it
+# was queued on (rank 0 runs it instead) with the same result, and the kill-and-resume under
 # mpirun (its ranks killed by SIGKILL). Rows are compared in every column but seconds.
 # Usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]
 bin=${1:?usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]}
@@ -112,6 +113,12 @@ else
         check "mpirun -np $np: on $np ranks" "$(grep -q "on $np rank(s) (MPI)" "$tmp/mpi$np.err"; echo $?)"
         check "mpirun -np $np: equal to the serial run row by row" "$(same "$tmp/serial.txt" "$tmp/mpi$np.txt"; echo $?)"
     done
+    # Two slow rows: both go to rank 1's queue, rank 0 has nothing left and takes the second back.
+    grep '^pendulum' "$dir/resume.txt" | head -n 2 >"$tmp/two.txt"
+    "$sweep" table="$tmp/two.txt" out="$tmp/two_serial.txt" progress=0 2>/dev/null
+    $launch -np 2 "$sweep" table="$tmp/two.txt" out="$tmp/two_mpi.txt" progress=0 2>"$tmp/two.err"
+    check "a row queued behind a running one is taken back by rank 0" "$(grep -q '1 row(s) taken back' "$tmp/two.err"; echo $?)"
+    check "taken back: equal to the serial run, each row once" "$(same "$tmp/two_serial.txt" "$tmp/two_mpi.txt"; echo $?)"
     "$sweep" table="$dir/resume.txt" out="$tmp/whole.txt" progress=0 2>/dev/null
     kill_after 5 children "$tmp/killed.txt" $launch -np 2 "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0
     left=$(count "$tmp/killed.txt")

@@ -2,7 +2,8 @@
 !! result file already holds, orders the others by their estimated cost (the tightest
 !! rtol first, then the largest gamma), hands them out one at a time (`ahead` rows
 !! queued per rank) to the other ranks as they return results, runs rows itself in
-!! between (serving the others from `run_row`'s hook after every output time), and
+!! between (serving the others from `run_row`'s hook after every output time), takes
+!! back a row queued behind a running one when it has nothing else to run, and
 !! appends each result line as soon as it arrives; at the end the result file is
 !! rewritten in row order (a new file renamed over the old one). The ranks exchange
 !! only through module sweep_comm (MPI, or one rank without it).
@@ -19,7 +20,7 @@ module sweep_schedule
 
     public :: sweep_main, serve_rows, release_ranks
 
-    integer, parameter :: tag_row = 1, tag_result = 2
+    integer, parameter :: tag_row = 1, tag_result = 2, tag_cancel = 3
     integer, parameter :: stop_id = 0   !! a row id that tells a rank to stop
 
     !> Rank 0's state: the rows to run, the results held for stdout, the counts.
@@ -27,12 +28,16 @@ module sweep_schedule
         type(text_line), allocatable :: rows(:)      !! the table's rows; id k is rows(k)
         integer, allocatable :: order(:)             !! the ids to run, in the order they are handed out
         type(text_line), allocatable :: held(:)      !! by id: the results for stdout, written at the end
-        integer, allocatable :: queued(:)            !! rows handed to each rank and not returned
+        integer, allocatable :: queued(:)            !! rows handed to each rank and not answered
+        integer, allocatable :: pending(:, :)        !! (ahead, rank): their ids, in the order sent
+        logical, allocatable :: arrived(:)           !! by id: its result is in (a second one is dropped)
+        logical, allocatable :: taken(:)             !! by id: taken back from the rank it was queued on
         integer :: ranks = 1, ahead = 2
         logical :: by_cost = .true.    !! order=cost (the default) or order=table
         logical :: to_file = .false.   !! out= a file: each result appended when it arrives
         integer :: next = 1            !! the next position in `order` to hand out or run
         integer :: finished = 0        !! results received in this run
+        integer :: taken_back = 0      !! rows taken back from the rank they were queued on
         integer :: earlier = 0         !! rows found in the result file
         integer :: counts(3) = 0       !! failed, off_branch, bad_input
         integer :: unit = output_unit
@@ -43,6 +48,7 @@ module sweep_schedule
         procedure :: feed => master_feed
         procedure :: take => master_take
         procedure :: report => master_report
+        procedure :: take_back => master_take_back
     end type sweep_master
 
 contains
@@ -122,9 +128,11 @@ contains
         m%earlier = count(done)
         m%order = pack([(i, i=1, size(m%rows))], .not. done)
         if (m%by_cost) call order_by_cost(m%rows, m%order)
-        allocate (m%queued(ranks - 1))
+        allocate (m%queued(ranks - 1), m%pending(m%ahead, ranks - 1), m%arrived(size(m%rows)), m%taken(size(m%rows)))
         if (.not. m%to_file) allocate (m%held(size(m%rows)))
         m%queued = 0
+        m%arrived = .false.
+        m%taken = .false.
         m%ranks = ranks
         if (m%earlier == 0) write (m%unit, '(a)') '# regdae sweep: id problem status t_end=... <errors> steps=... '// &
             'res_evals=... jac_evals=... err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... '// &
@@ -141,6 +149,9 @@ contains
                 pos = m%next
                 m%next = m%next + 1
                 call m%take(0, m%order(pos), run_row(m%order(pos), m%rows(m%order(pos))%s, m))
+                call m%poll()
+            else if (m%take_back(pos)) then   ! a row queued behind a running one: run it here
+                call m%take(0, pos, run_row(pos, m%rows(pos)%s, m))
                 call m%poll()
             else if (any(m%queued > 0)) then
                 call m%take(-1, 0, '')
@@ -165,14 +176,28 @@ contains
         end if
     end subroutine sweep_main
 
-    !> Every other rank: run the rows rank 0 sends until it sends `stop_id`.
+    !> Every other rank: run the rows rank 0 sends until it sends `stop_id`, and answer
+    !! each: its result line, or an empty text for a row that rank 0 took back (a cancel
+    !! received before the row started; one that came later finds the row run, and rank
+    !! 0 drops the second result).
     subroutine serve_rows()
-        character(len=:), allocatable :: line
-        integer :: id, from
+        character(len=:), allocatable :: line, ignored
+        integer, allocatable :: cancelled(:)
+        integer :: id, from, back
+        allocate (cancelled(0))
         do
             call receive_text(0, tag_row, id, line, from)
             if (id == stop_id) exit
-            call send_text(0, tag_result, id, run_row(id, line))
+            do while (text_waiting(tag_cancel))
+                call receive_text(0, tag_cancel, back, ignored, from)
+                cancelled = [cancelled, back]
+            end do
+            if (any(cancelled == id)) then
+                cancelled = pack(cancelled, cancelled /= id)
+                call send_text(0, tag_result, id, '')
+            else
+                call send_text(0, tag_result, id, run_row(id, line))
+            end if
         end do
     end subroutine serve_rows
 
@@ -205,6 +230,7 @@ contains
             call send_text(w, tag_row, id, self%rows(id)%s)
             self%next = self%next + 1
             self%queued(w) = self%queued(w) + 1
+            self%pending(self%queued(w), w) = id
         end do
     end subroutine master_feed
 
@@ -216,15 +242,19 @@ contains
         integer, intent(in) :: from, id
         character(len=*), intent(in) :: text
         character(len=:), allocatable :: line, status
-        integer :: rid, sender
+        integer :: rid, sender, k
         if (from < 0) then
             call receive_text(any_rank, tag_result, rid, line, sender)
+            k = findloc(self%pending(1:self%queued(sender), sender), rid, dim=1)
+            self%pending(k:self%queued(sender) - 1, sender) = self%pending(k + 1:self%queued(sender), sender)
             self%queued(sender) = self%queued(sender) - 1
             call self%feed(sender)
         else
             rid = id
             line = text
         end if
+        if (len(line) == 0 .or. self%arrived(rid)) return   ! a row taken back: skipped there, or run twice
+        self%arrived(rid) = .true.
         if (self%to_file) then
             write (self%unit, '(a)') line
             flush (self%unit)
@@ -237,6 +267,29 @@ contains
         if (status == 'off_branch') self%counts(2) = self%counts(2) + 1
         if (status == 'bad_input') self%counts(3) = self%counts(3) + 1
     end subroutine master_take
+
+    !> Nothing is left to hand out: take back a row queued on another rank behind the
+    !! one it is running (the last of its queue, not taken back yet), tell that rank to
+    !! skip it, and return its id to run here; false when there is none. Without it a
+    !! long row queued behind another long one waits while rank 0 has nothing to do.
+    logical function master_take_back(self, id) result(found)
+        class(sweep_master), intent(inout) :: self
+        integer, intent(out) :: id
+        integer :: w, k
+        found = .false.
+        id = 0
+        do w = 1, self%ranks - 1
+            do k = self%queued(w), 2, -1
+                if (self%taken(self%pending(k, w)) .or. self%arrived(self%pending(k, w))) cycle
+                id = self%pending(k, w)
+                self%taken(id) = .true.
+                self%taken_back = self%taken_back + 1
+                call send_text(w, tag_cancel, id, '')
+                found = .true.
+                return
+            end do
+        end do
+    end function master_take_back
 
     !> A progress line on stderr when `every` seconds have passed since the last (or
     !! `final`): rows done of the total, failures so far, time spent and left.
@@ -255,6 +308,8 @@ contains
         end if
         prefix = ''
         if (final) prefix = 'done, '
+        if (final .and. self%taken_back > 0) estimate = ', '//format_int(self%taken_back)//' row(s) taken back '// &
+                                                        'from the rank they were queued on'
         call say(prefix//format_int(self%earlier + self%finished)//'/'// &
                  format_int(size(self%rows))//' rows ('//format_int(self%earlier)//' from before); this run: '// &
                  format_int(self%counts(1))//' failed, '// &
