@@ -10,7 +10,8 @@
 !!                 that exists, the rows it holds are not run again (a killed sweep resumes)
 !!   progress=5    seconds between the progress lines on stderr (rows done of the total,
 !!                 failures so far, time spent and left); 0: only the first and last line
-!!   ahead=2       rows queued on each other rank (1..100)
+!!   ahead=2       rows queued at first on each other rank (1..100); doubled (up to 100) for a
+!!                 rank that ran dry while rank 0 was busy with its own row
 !!   order=cost    the order in which rows are handed out: cost, the estimated most expensive
 !!                 first (the tightest rtol, then the largest gamma or gamma1; table order among
 !!                 equals), so that long rows do not start last; table: in table order

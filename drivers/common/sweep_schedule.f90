@@ -22,6 +22,7 @@ module sweep_schedule
 
     integer, parameter :: tag_row = 1, tag_result = 2, tag_cancel = 3
     integer, parameter :: stop_id = 0   !! a row id that tells a rank to stop
+    integer, parameter :: max_ahead = 100  !! the deepest queue per rank (the largest ahead= too)
 
     !> Rank 0's state: the rows to run, the results held for stdout, the counts.
     type, extends(row_hook) :: sweep_master
@@ -29,7 +30,10 @@ module sweep_schedule
         integer, allocatable :: order(:)             !! the ids to run, in the order they are handed out
         type(text_line), allocatable :: held(:)      !! by id: the results for stdout, written at the end
         integer, allocatable :: queued(:)            !! rows handed to each rank and not answered
-        integer, allocatable :: pending(:, :)        !! (ahead, rank): their ids, in the order sent
+        integer, allocatable :: pending(:, :)        !! (max_ahead, rank): their ids, in the order sent
+        integer, allocatable :: answered(:)          !! answers received from each rank (master_poll's count)
+        integer, allocatable :: depth(:)             !! rows to keep queued on each rank: `ahead` at first, doubled
+                                                     !! (up to max_ahead) each time the rank ran dry
         logical, allocatable :: arrived(:)           !! by id: its result is in (a second one is dropped)
         logical, allocatable :: taken(:)             !! by id: taken back from the rank it was queued on
         integer :: ranks = 1, ahead = 2
@@ -128,7 +132,10 @@ contains
         m%earlier = count(done)
         m%order = pack([(i, i=1, size(m%rows))], .not. done)
         if (m%by_cost) call order_by_cost(m%rows, m%order)
-        allocate (m%queued(ranks - 1), m%pending(m%ahead, ranks - 1), m%arrived(size(m%rows)), m%taken(size(m%rows)))
+        allocate (m%queued(ranks - 1), m%pending(max_ahead, ranks - 1), m%depth(ranks - 1), m%answered(ranks - 1), &
+                  m%arrived(size(m%rows)), m%taken(size(m%rows)))
+        m%depth = m%ahead
+        m%answered = 0
         if (.not. m%to_file) allocate (m%held(size(m%rows)))
         m%queued = 0
         m%arrived = .false.
@@ -212,20 +219,32 @@ contains
 
     !> Between rank 0's output times: receive what has arrived, hand out more rows,
     !! write a progress line when one is due.
+    !! A rank whose whole queue was answered by then ran dry while rank 0 was busy with
+    !! its own row (rank 0 serves only between its output times): its queue doubles (up
+    !! to max_ahead; the rows taken back at the end keep a deep queue from costing).
     subroutine master_poll(self)
         class(sweep_master), intent(inout) :: self
+        integer :: before(size(self%queued)), w
+        before = self%queued
+        self%answered = 0
         do while (text_waiting(tag_result))
             call self%take(-1, 0, '')
+        end do
+        do w = 1, size(self%queued)
+            if (before(w) > 0 .and. self%answered(w) >= before(w) .and. self%next <= size(self%order)) then
+                self%depth(w) = min(2*self%depth(w), max_ahead)
+                call self%feed(w)
+            end if
         end do
         call self%report(.false.)
     end subroutine master_poll
 
-    !> Queue rows on rank w up to `ahead`.
+    !> Queue rows on rank w up to its depth.
     subroutine master_feed(self, w)
         class(sweep_master), intent(inout) :: self
         integer, intent(in) :: w
         integer :: id
-        do while (self%queued(w) < self%ahead .and. self%next <= size(self%order))
+        do while (self%queued(w) < self%depth(w) .and. self%next <= size(self%order))
             id = self%order(self%next)
             call send_text(w, tag_row, id, self%rows(id)%s)
             self%next = self%next + 1
@@ -248,6 +267,7 @@ contains
             k = findloc(self%pending(1:self%queued(sender), sender), rid, dim=1)
             self%pending(k:self%queued(sender) - 1, sender) = self%pending(k + 1:self%queued(sender), sender)
             self%queued(sender) = self%queued(sender) - 1
+            self%answered(sender) = self%answered(sender) + 1
             call self%feed(sender)
         else
             rid = id
