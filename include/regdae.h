@@ -50,6 +50,9 @@ extern "C" {
 #define REGDAE_SUCCESS 0
 /** Warning: x(tout) is valid, but the multiplier is undefined at tout (y = NaN). */
 #define REGDAE_WARN_MULTIPLIER_UNDEFINED 1
+/** Warning: the integration error approaching a singular configuration exceeds resolution_tol times the
+ *  tolerance (the solution near it is not converged in the tolerance; regdae_message says where). */
+#define REGDAE_WARN_UNRESOLVED 2
 /** Invalid argument or option: NULL pointer, wrong length, unknown key, bad value. */
 #define REGDAE_ERR_BAD_INPUT -101
 /** x0 (and v0) violate g(x0, t0) = 0 (G v0 + g_t = 0) beyond ic_tol. */
@@ -182,6 +185,7 @@ typedef struct regdae_options {
     int integrator;            /**< REGDAE_INTEGRATOR_* */
     int linear_solver;         /**< REGDAE_LINEAR_SOLVER_* */
     int check_jacobians;       /**< 1: check G (and the Newton matrix) at init */
+    double resolution_tol;     /**< warn (REGDAE_WARN_UNRESOLVED) above this ratio (0: off) */
 } regdae_options;
 
 /** The statistics (solver_stats of the Fortran API, field for field; doc/api.md section 3). */
@@ -203,6 +207,8 @@ typedef struct regdae_stats {
     double invariant_change;  /**< largest change of the invariant (invariant_tol > 0) */
     int switches;             /**< integrator auto: switches between dopri5 and IDA */
     double work_defect;       /**< mechanical: largest work-energy defect, relative */
+    int unresolved_passes;    /**< singular passes approached with more error than resolution_tol allows */
+    double resolution_ratio;  /**< largest x error implied by the residual on an approach, over the tolerance */
 } regdae_stats;
 
 /* ---- Handles and messages --------------------------------------------------- */

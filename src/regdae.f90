@@ -41,7 +41,8 @@ module regdae
               pattern_from_entries, pattern_union
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     ! regdae_status
-    public :: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, regdae_err_inconsistent_ic, &
+    public :: regdae_success, regdae_warn_multiplier_undefined, regdae_warn_unresolved, regdae_err_bad_input, &
+              regdae_err_inconsistent_ic, &
               regdae_err_user_callback, &
               regdae_err_not_psd, regdae_err_singular, regdae_err_lapack, regdae_err_sundials, &
               regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, regdae_err_mass_matrix, &

@@ -38,6 +38,7 @@ module regdae_c_records
         integer(c_int) :: integrator          !! REGDAE_INTEGRATOR_*
         integer(c_int) :: linear_solver       !! REGDAE_LINEAR_SOLVER_*
         integer(c_int) :: check_jacobians     !! 0 or 1
+        real(c_double) :: resolution_tol
     end type c_options
 
     !> `regdae_stats` (include/regdae.h): the statistics, as `solver_stats`.
@@ -59,6 +60,8 @@ module regdae_c_records
         real(c_double) :: invariant_change
         integer(c_int) :: switches
         real(c_double) :: work_defect
+        integer(c_int) :: unresolved_passes
+        real(c_double) :: resolution_ratio
     end type c_stats
 
     public :: to_c_options, to_c_stats
@@ -77,7 +80,8 @@ contains
                       excluded=opts%excluded, singular_threshold=opts%singular_threshold, jump_tol=opts%jump_tol, &
                       drift_tol=opts%drift_tol, work_tol=opts%work_tol, invariant_tol=opts%invariant_tol, &
                       taylor_h=opts%taylor_h, mass_damping=opts%mass_damping, integrator=opts%integrator, &
-                      linear_solver=opts%linear_solver, check_jacobians=merge(1, 0, opts%check_jacobians))
+                      linear_solver=opts%linear_solver, check_jacobians=merge(1, 0, opts%check_jacobians), &
+                      resolution_tol=opts%resolution_tol)
     end function to_c_options
 
     !> The statistics as the C record.
@@ -88,7 +92,8 @@ contains
                     lin_setups=st%lin_setups, nonlin_iters=st%nonlin_iters, err_test_fails=st%err_test_fails, &
                     conv_fails=st%conv_fails, t=st%t, h_last=st%h_last, singular_passes=st%singular_passes, &
                     sigma_min=st%sigma_min, velocity_jump=st%velocity_jump, max_drift=st%max_drift, &
-                    invariant_change=st%invariant_change, switches=st%switches, work_defect=st%work_defect)
+                    invariant_change=st%invariant_change, switches=st%switches, work_defect=st%work_defect, &
+                    unresolved_passes=st%unresolved_passes, resolution_ratio=st%resolution_ratio)
     end function to_c_stats
 
 end module regdae_c_records

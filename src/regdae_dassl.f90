@@ -16,7 +16,8 @@ module regdae_dassl
     use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer
     use, intrinsic :: iso_fortran_env, only: error_unit, int64
     use regdae_kinds, only: wp
-    use regdae_status, only: regdae_success, regdae_warn_multiplier_undefined, regdae_err_bad_input, &
+    use regdae_status, only: regdae_success, regdae_warn_multiplier_undefined, regdae_warn_unresolved, &
+                             regdae_err_bad_input, &
                              regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_initialized
     use regdae_format, only: format_int, format_real
     use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_dopri5
@@ -291,7 +292,7 @@ contains
         if (stat == regdae_err_user_callback .and. allocated(s%routines%failure)) &
             s%message = s%message//' ('//s%routines%failure//')'
         select case (stat)
-        case (regdae_success)
+        case (regdae_success, regdae_warn_unresolved)   ! the warning: IWORK(status) = 2 and the message
             idid = merge(idid_exact, idid_interpolated, s%exact_stops)
         case (regdae_warn_multiplier_undefined)
             idid = idid_multiplier_undefined
@@ -311,7 +312,8 @@ contains
             t = st%t
             info(info_start) = -1
         end if
-        if (idid < 0 .or. idid == idid_multiplier_undefined) call report(info, s%kind, s%message)
+        if (idid < 0 .or. idid == idid_multiplier_undefined .or. stat == regdae_warn_unresolved) &
+            call report(info, s%kind, s%message)
         if (allocated(s%routines%failure)) deallocate (s%routines%failure)
     end subroutine close_call
 

@@ -39,11 +39,28 @@
 !! alarms) (`alarm_kind = alarm_work`). Inside a regularization layer the
 !! damped multiplier exchanges energy with the motion for a moment (a spike of
 !! lambda^T G v): D is tested at the samples outside the layers only.
+!!
+!! Resolution (problems of order 1 and 2, dense formulations): the constraint
+!! residual g of the integrated solution, made at each step at the scale of the
+!! constraint's conditioning sigma_G = min_i |G_i| (sigma_min(G) for one
+!! constraint) and damped by the stabilization only at its rate (gamma at index
+!! 2; the slower root of s^2 + gamma1 s + gamma0 at index 3), stands for an error
+!! in x of g / sigma_G. On the approach to a singular configuration sigma_G falls
+!! faster than the stabilization forgets the residual made further back, so the
+!! integration errors of the approach are amplified in x by about
+!! R = max_k sigma_G(t_k) exp(-rate (t - t_k)) / sigma_G(t), which the error test,
+!! local to each step, cannot see. R is taken at the samples of a singular
+!! interval before it enters the layer where the damping acts (sigma_min(GB)^2 <
+!! 100 eps; direct: sigma_min(GB) < 100 eps), recorded (`resolution_ratio`), and
+!! R > resolution_tol counts the pass as unresolved (`unresolved`, and
+!! `unresolved_new` for the solver to warn with regdae_warn_unresolved): x near
+!! the pass may carry about R times the tolerance in integration error, and a
+!! tighter rtol (or a larger eps) changes it.
 module regdae_monitor
     use regdae_kinds, only: wp
     use regdae_format, only: format_real, format_int
     use regdae_regularization, only: regularized_dae
-    use regdae_options, only: option_auto
+    use regdae_options, only: option_auto, method_direct, method_baumgarte
     use regdae_scales, only: running_scales
     implicit none
     private
@@ -79,6 +96,11 @@ module regdae_monitor
                                                  !! so that its steps do not jump over a singular pass.
         logical :: model_changed = .false.       !! the last sample raised the model's eps (an explicit
                                                  !! integrator must re-evaluate its slope)
+        real(wp) :: resolution_tol = 0.0_wp      !! R above this counts a pass as unresolved (0: no check)
+        real(wp) :: resolution_ratio = 0.0_wp    !! largest amplification R on an approach so far
+        integer :: unresolved = 0                !! singular intervals whose approach had R > resolution_tol
+        logical :: unresolved_new = .false.      !! a new unresolved interval since the flag was last cleared
+        character(len=:), allocatable :: unresolved_message   !! where and how much (the last one)
         logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
         integer :: alarm_kind = alarm_none       !! alarm_jump or alarm_drift
         character(len=:), allocatable :: alarm_message   !! what, where and how much
@@ -93,7 +115,11 @@ module regdae_monitor
         real(wp), private :: sigma_before = -1.0_wp, t_sigma_before = 0.0_wp   ! the sample before, for land_by
         real(wp), private :: slope_before = 0.0_wp   ! the secant slope of sigma before that (0: none)
         real(wp), allocatable, private :: v_regular(:), a_regular(:)
+        real(wp), private :: memory = -1.0_wp, t_memory = 0.0_wp   ! max_k sigma_G(t_k) exp(-rate (t - t_k))
+        logical, private :: layer_reached = .false., pass_flagged = .false.
     contains
+        !> Turn the resolution check on (tol > 0) or off.
+        procedure :: set_resolution => monitor_set_resolution
         !> Forget all samples; set the threshold.
         procedure :: reset => monitor_reset
         !> Sample the kinetic energy and the power of the applied forces at t (work-energy balance).
@@ -145,6 +171,13 @@ contains
         self%alarm = .false.
         self%alarm_kind = alarm_none
         self%alarm_message = ''
+        self%resolution_ratio = 0.0_wp
+        self%unresolved = 0
+        self%unresolved_new = .false.
+        self%unresolved_message = ''
+        self%layer_reached = .false.
+        self%pass_flagged = .false.
+        self%memory = -1.0_wp
         self%scales = running_scales()
         self%drift_auto = .false.
         self%model_changed = .false.
@@ -197,7 +230,67 @@ contains
             call model%work_sample(t, z, kinetic, power, stat)
             call self%sample_work(t, kinetic, power, stat)
         end if
+        if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
     end subroutine monitor_sample
+
+    subroutine monitor_set_resolution(self, tol)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: tol    !! resolution_tol (<= 0: off)
+        self%resolution_tol = max(0.0_wp, tol)
+    end subroutine monitor_set_resolution
+
+    ! The resolution check at a sample (the model's last evaluation is at (t, z)):
+    ! the memory of sigma_G, and R on the approach to a layer (module doc).
+    subroutine resolution_sample(self, t, model)
+        type(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t
+        type(regularized_dae), intent(inout) :: model
+        real(wp) :: sigma, sigma_g, rate, ratio, disc
+        integer :: i
+        if (model%m == 0 .or. model%order > 2 .or. model%method == method_baumgarte) return
+        sigma_g = huge(1.0_wp)
+        do i = 1, model%m
+            sigma_g = min(sigma_g, norm2(model%gx(i, :)))
+        end do
+        if (.not. (sigma_g == sigma_g)) return
+        if (model%order == 1) then
+            rate = model%w(1)
+        else   ! the slower root of s^2 + gamma1 s + gamma0: its real part
+            disc = 0.25_wp*model%w(2)**2 - model%w(1)
+            rate = 0.5_wp*model%w(2) - sqrt(max(disc, 0.0_wp))
+        end if
+        if (self%memory < 0.0_wp .or. .not. (t > self%t_memory)) then
+            self%memory = max(self%memory, sigma_g)
+        else
+            self%memory = max(sigma_g, self%memory*exp(-max(rate, 0.0_wp)*(t - self%t_memory)))
+        end if
+        self%t_memory = t
+        if (.not. self%in_singular) then
+            self%layer_reached = .false.
+            self%pass_flagged = .false.
+            return
+        end if
+        sigma = self%sigma_last
+        if (model%method == method_direct) then
+            if (sigma < 100.0_wp*model%eps) self%layer_reached = .true.
+        else
+            if (sigma**2 < 100.0_wp*model%eps) self%layer_reached = .true.
+        end if
+        if (self%layer_reached .or. .not. (sigma_g > 0.0_wp)) return
+        ratio = self%memory/sigma_g
+        self%resolution_ratio = max(self%resolution_ratio, ratio)
+        if (ratio > self%resolution_tol .and. .not. self%pass_flagged) then
+            self%pass_flagged = .true.
+            self%unresolved = self%unresolved + 1
+            self%unresolved_new = .true.
+            self%unresolved_message = 'approaching the singular configuration at t = '//format_real(t)// &
+                ' (sigma_min(GB) = '//format_real(sigma)//'), the integration errors made on the approach are '// &
+                'amplified in x by about '//format_real(ratio)//' (the constraint''s conditioning fell by that '// &
+                'factor faster than the stabilization forgets; > resolution_tol = '// &
+                format_real(self%resolution_tol)//'): x near it is not converged in the tolerance; tighten rtol '// &
+                'and atol (or raise eps); resolution_tol=0 turns this warning off'
+        end if
+    end subroutine resolution_sample
 
     subroutine monitor_sample_values(self, t, drift, sigma, invariant, invariant_stat, v, a)
         class(solution_monitor), intent(inout) :: self

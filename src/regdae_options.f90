@@ -23,6 +23,7 @@
 !! | jump_tol       | >= 0 (order >= 2: velocity-jump alarm across a singular interval, 0: off) | 0.1 |
 !! | drift_tol      | >= 0 (order >= 2: alarm when max abs(g(x, t)) exceeds it, 0: off), or auto (from the tolerances on x) | auto |
 !! | invariant_tol  | >= 0 (order >= 2: alarm when the problem's invariant changes by more, 0: off) | 0 |
+!! | resolution_tol | >= 0 (warning regdae_warn_unresolved when the integration errors of the approach to a singular configuration are amplified in x by more than this: the constraint's conditioning falls faster than the stabilization forgets; 0: off) | 1e4 |
 !! | work_tol       | >= 0 or auto (mechanical: alarm when the work-energy defect exceeds this fraction of the energy scale, 0: off; auto: 0.05 (rtol/1e-3)^(1/5) within [0.02, 0.05]) | auto |
 !! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
@@ -109,6 +110,9 @@ module regdae_options
                                                        !! motion's energy scale) that stops the run (regdae_err_work); 0: off
         real(wp) :: invariant_tol = 0.0_wp             !! change of the problem's invariant that stops the run
                                                        !! (regdae_err_invariant); 0: no check
+        real(wp) :: resolution_tol = 1.0e4_wp          !! amplification in x of the integration errors made on the
+                                                       !! approach to a singular configuration above which advance
+                                                       !! warns (regdae_warn_unresolved); 0: off
         real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
         integer :: integrator = integrator_auto        !! auto, ida, or dopri5 (explicit; eliminated formulation)
@@ -194,6 +198,8 @@ contains
             call read_real_or_auto(value, opts%drift_tol, code)
         case ('invariant_tol')
             call read_real(value, opts%invariant_tol, code)
+        case ('resolution_tol')
+            call read_real(value, opts%resolution_tol, code)
         case ('work_tol')
             call read_real_or_auto(value, opts%work_tol, code)
         case ('taylor_h')
@@ -246,6 +252,7 @@ contains
         call need_nonnegative('jump_tol', opts%jump_tol)
         if (opts%drift_tol /= option_auto) call need_nonnegative('drift_tol', opts%drift_tol)
         call need_nonnegative('invariant_tol', opts%invariant_tol)
+        call need_nonnegative('resolution_tol', opts%resolution_tol)
         if (opts%work_tol /= option_auto) call need_nonnegative('work_tol', opts%work_tol)
         call need_positive('taylor_h', opts%taylor_h)
         call need_nonnegative('mass_damping', opts%mass_damping)

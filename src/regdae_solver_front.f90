@@ -468,6 +468,7 @@ contains
         call core%monitor%automatic(core%eps_factor, core%model%eps, core%drift_factor, core%opts%rtol, &
                                     maxval(core%atol_z(1:core%nx)))
         core%monitor%work_floor = core%work_floor
+        call core%monitor%set_resolution(core%opts%resolution_tol)
         call core%monitor%sample(t0, core%model, z0, zp0)
         core%sampled_t = t0
     end subroutine start_monitor
@@ -1453,14 +1454,14 @@ contains
                     call sys%unpack(u, core%ida%slope(), a=a)
                 end select
             end if
-            call self%record(regdae_success, '', stat)
+            call record_done()
             return
         end if
         ! The diagnostics come from the accepted steps (IDA's and dopri5's); the
         ! multiplier is computed only when asked for.
         if (branch_alarm()) return
         if (.not. (present(y) .or. present(a))) then
-            call self%record(regdae_success, '', stat)
+            call record_done()
             return
         end if
         ! The multiplier (and the acceleration) at an output time come from the
@@ -1481,8 +1482,20 @@ contains
             call core%model%dynamics_slope(u(1:core%n), core%y_work, core%zp_work)
             a = core%zp_work(nx + 1:2*nx)
         end if
-        call self%record(regdae_success, '', stat)
+        call record_done()
     contains
+        ! Success at tout, or the resolution warning when the monitor flagged a new
+        ! unresolved singular pass during this advance (logged as an event too).
+        subroutine record_done()
+            if (core%monitor%unresolved_new) then
+                core%monitor%unresolved_new = .false.
+                call log_event(core, 't = '//format_real(core%t)//': unresolved: '//core%monitor%unresolved_message)
+                call self%record(regdae_warn_unresolved, core%monitor%unresolved_message, stat)
+            else
+                call self%record(regdae_success, '', stat)
+            end if
+        end subroutine record_done
+
         ! IDA one step at a time (the same steps as IDA_NORMAL) to tout, the monitor
         ! sampling every accepted step's end and the output times, in time order;
         ! IDA's interpolant gives the state at tout. With switching, every 20 steps
@@ -1640,6 +1653,8 @@ contains
             st%max_drift = core%monitor%drift_max
             st%invariant_change = core%monitor%invariant_change
             st%work_defect = core%monitor%work_defect
+            st%unresolved_passes = core%monitor%unresolved
+            st%resolution_ratio = core%monitor%resolution_ratio
         end associate
     end function solver_statistics
 

@@ -27,6 +27,9 @@ module regdae_solver_stats
         integer :: switches = 0                !! integrator=auto: switches between dopri5 and IDA
         real(wp) :: work_defect = 0.0_wp       !! mechanical problems: largest |T - T(t0) - W| relative to the energy
                                                !! scale of the motion (the work-energy check, work_tol)
+        integer :: unresolved_passes = 0       !! singular passes approached with an x error, implied by the
+                                               !! constraint residual, above resolution_tol times the tolerance
+        real(wp) :: resolution_ratio = 0.0_wp  !! largest such implied error over the tolerance (rtol |x| + atol)
     end type solver_stats
 
 end module regdae_solver_stats

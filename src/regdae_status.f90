@@ -10,6 +10,8 @@ module regdae_status
 
     integer, parameter, public :: regdae_success = 0                 !! success
     integer, parameter, public :: regdae_warn_multiplier_undefined = 1  !! x(tout) is valid, y(tout) is not (NaN)
+    integer, parameter, public :: regdae_warn_unresolved = 2         !! x(tout) is the integrator's, but near a singular
+                                                                     !! configuration its error exceeds resolution_tol rtol
     integer, parameter, public :: regdae_err_bad_input = -101        !! invalid argument or option
     integer, parameter, public :: regdae_err_inconsistent_ic = -102  !! x(t0) violates g(x, t0) = 0
     integer, parameter, public :: regdae_err_user_callback = -103    !! a user routine reported failure
@@ -42,6 +44,8 @@ contains
             msg = 'success'
         case (regdae_warn_multiplier_undefined)
             msg = 'x is valid, but the multiplier is undefined at this time (singular multiplier equation)'
+        case (regdae_warn_unresolved)
+            msg = 'the integration error near a singular configuration exceeds resolution_tol times the tolerance'
         case (regdae_err_bad_input)
             msg = 'invalid input'
         case (regdae_err_inconsistent_ic)

@@ -24,7 +24,8 @@ contains
                  new_test('order_R1_direct', order_r1), new_test('order_R2_trust_region', order_r2), &
                  new_test('order_S1', order_s1), new_test('order_S2', order_s2), &
                  new_test('order_S3_trust_region', order_s3), new_test('order_S4_trust_region', order_s4), &
-                 new_test('order_EX51', order_ex51), new_test('grid_refinement', grid_refinement)]
+                 new_test('order_EX51', order_ex51), new_test('grid_refinement', grid_refinement), &
+                 new_test('layer_resolved_or_reported', layer_resolved_or_reported)]
     end function theory_tests
 
     ! Singular values of a small matrix, descending.
@@ -80,12 +81,13 @@ contains
 
     ! S1-S4, EX51: CB nonsingular for t /= 0 and singular at t* = 0; the order to
     ! which sigma_min(CB) and sigma_min(C C^T) vanish (slope of log sigma against
-    ! log t between t = 1e-3 and 1e-2): S1 2/2, S2 4/4, S3 1/2, S4 2/4, EX51 2/2;
+    ! log t between t = 1e-3 and 1e-2): S1 2/2, S2 4/4, S3 1/2, S4 2/4, EX51 2/2, and of
+    ! sigma_min(C), the other reading of m: 1, 2, 1, 2, 1;
     ! N(B^T) = N(C) for t /= 0 (S3, S4), B = C^T (S1, S2, EX51); r in Im C.
     subroutine hypotheses_singular(chk)
         type(checker), intent(inout) :: chk
         character(len=4), parameter :: names(5) = ['S1  ', 'S2  ', 'S3  ', 'S4  ', 'EX51']
-        integer, parameter :: order_cb(5) = [2, 4, 1, 2, 2], order_cct(5) = [2, 4, 2, 4, 2]
+        integer, parameter :: order_cb(5) = [2, 4, 1, 2, 2], order_cct(5) = [2, 4, 2, 4, 2], order_c(5) = [1, 2, 1, 2, 1]
         type(theory_problem) :: p
         integer :: k, i
         do k = 1, 5
@@ -100,6 +102,8 @@ contains
                            trim(names(k))//': order of sigma_min(CB) at t*')
             call chk%close(log10(sigma_cct(p, 1.0e-2_wp)/sigma_cct(p, 1.0e-3_wp)), real(order_cct(k), wp), 0.01_wp, &
                            trim(names(k))//': order of sigma_min(C C^T) at t*')
+            call chk%close(log10(sigma_c(p, 1.0e-2_wp)/sigma_c(p, 1.0e-3_wp)), real(order_c(k), wp), 0.01_wp, &
+                           trim(names(k))//': order of sigma_min(C) at t*')
         end do
     end subroutine hypotheses_singular
 
@@ -112,6 +116,15 @@ contains
         s = singular_values(matmul(c, b))
         sigma_cb = s(p%m)
     end function sigma_cb
+
+    real(wp) function sigma_c(p, t)
+        type(theory_problem), intent(inout) :: p
+        real(wp), intent(in) :: t
+        real(wp) :: c(p%m, p%n), s(p%m)
+        call p%coefficient_c(t, c)
+        s = singular_values(c)
+        sigma_c = s(p%m)
+    end function sigma_c
 
     real(wp) function sigma_cct(p, t)
         type(theory_problem), intent(inout) :: p
@@ -278,5 +291,55 @@ contains
         call measure_errors(p, opts, output_grid(2), 0.1_wp, e2, stat)
         call chk%close_rel(e2(1:3), e1(1:3), 0.02_wp, 'trust region: errors on the refined grid')
     end subroutine grid_refinement
+
+    ! Issue 14: at gamma = 10, eps = 1e-14, the error near the singularity (max over
+    ! |t| <= 0.1) at the rates driver's tight tolerance rtol = atol = 1e-11 agrees with
+    ! the one at 1e-12 within 5%, or the run at 1e-11 warned regdae_warn_unresolved.
+    ! Every singular case and regularization, with the default integrator (auto) and
+    ! with IDA. Not vacuous: S1 with (3.2) is not converged at 1e-11 (its error there
+    ! comes from the integration, amplified ~1/|t| on the approach) and must warn.
+    subroutine layer_resolved_or_reported(chk)
+        type(checker), intent(inout) :: chk
+        character(len=12), parameter :: methods(2) = [character(len=12) :: 'direct', 'trust_region']
+        character(len=8), parameter :: integrators(2) = [character(len=8) :: 'auto', 'ida']
+        type(theory_problem) :: p
+        type(solver_options) :: opts
+        character(len=:), allocatable :: msg, label
+        real(wp) :: e1(4), e2(4), ratio, change
+        logical :: warned, warned2, s1_direct_warned
+        integer :: ic, im, ii, stat
+        s1_direct_warned = .false.
+        do ii = 1, size(integrators)
+            do ic = 3, size(theory_cases)   ! the singular cases S1 ... EX51
+                p = new_theory_problem(trim(theory_cases(ic)))
+                do im = 1, 2
+                    if (im == 1 .and. .not. p%b_is_ct) cycle   ! (3.2) needs B = C^T
+                    opts = solver_options()
+                    opts%lsq = lsq_stacked
+                    opts%stop_at_output = .true.
+                    opts%max_steps = 1000000
+                    opts%gamma = 10.0_wp
+                    opts%eps = 1.0e-14_wp
+                    call set_option(opts, 'method', trim(methods(im)), stat, msg)
+                    call set_option(opts, 'integrator', trim(integrators(ii)), stat, msg)
+                    opts%rtol = 1.0e-11_wp
+                    opts%atol = 1.0e-11_wp
+                    call measure_errors(p, opts, output_grid(1), 0.1_wp, e1, stat, msg, warned, ratio)
+                    call chk%true(stat == regdae_success, 'run at 1e-11: '//msg)
+                    opts%rtol = 1.0e-12_wp
+                    opts%atol = 1.0e-12_wp
+                    call measure_errors(p, opts, output_grid(1), 0.1_wp, e2, stat, msg, warned2)
+                    call chk%true(stat == regdae_success, 'run at 1e-12: '//msg)
+                    change = abs(e1(2) - e2(2))/e2(2)
+                    label = trim(theory_cases(ic))//' '//trim(methods(im))//' '//trim(integrators(ii))
+                    write (*, '(a,2es11.3,a,f8.4,a,l2,a,es10.2)') '    '//label//' inside errors at 1e-11, 1e-12:', &
+                        e1(2), e2(2), ' change', change, ' warned', warned, ' resolution_ratio', ratio
+                    call chk%true(change <= 0.05_wp .or. warned, label//': converged within 5% or warned')
+                    if (ic == 3 .and. im == 1) s1_direct_warned = s1_direct_warned .or. warned
+                end do
+            end do
+        end do
+        call chk%true(s1_direct_warned, 'S1 (3.2) at 1e-11 warned regdae_warn_unresolved')
+    end subroutine layer_resolved_or_reported
 
 end module test_theory
