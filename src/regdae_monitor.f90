@@ -62,6 +62,7 @@ module regdae_monitor
     use regdae_regularization, only: regularized_dae
     use regdae_options, only: option_auto, method_direct, method_baumgarte
     use regdae_scales, only: running_scales
+    use regdae_auto_rules, only: weight_rule, dense_motion_scales, baumgarte_weights
     implicit none
     private
 
@@ -88,6 +89,11 @@ module regdae_monitor
         real(wp) :: work_defect = 0.0_wp         !! largest |D| / S so far
         real(wp) :: work_floor = 0.0_wp          !! the smallest energy scale S (set after reset)
         type(running_scales) :: scales           !! the problem's scales seen so far (automatic eps, drift bound)
+        type(weight_rule) :: weights             !! the automatic Baumgarte weights along the run
+        integer :: weight_nx = 0                 !! dense models: the size of x (for the weights' rate)
+        logical :: weight_order2 = .false.       !! dense models: z = (x, v, ...)
+        logical :: weights_new = .false.         !! the weights changed since the flag was last cleared
+        character(len=:), allocatable :: weights_message   !! the last change: where and to what
         logical :: drift_auto = .false.          !! drift_tol follows scales%drift_bound()
         real(wp) :: land_by = huge(1.0_wp)       !! sigma_min(GB) falls towards the threshold: a sample by this
                                                  !! time lands inside the coming singular interval (the secant
@@ -135,8 +141,18 @@ module regdae_monitor
         !! following the scales seen at the samples (regdae_scales).
         procedure :: automatic => monitor_automatic
         !> Take the scales of a sample at t: max_i (GB)_ii, max_i |G_i|, max |x|, and
-        !! sigma_min(GB); true if the automatic eps was raised (the new value in scales%eps).
+        !! sigma_min(GB); true if the automatic eps changed (the new value in scales%eps).
         procedure :: observe_scales => monitor_observe_scales
+        !> Let the Baumgarte weights follow the motion (regdae_auto_rules): dense
+        !! models of size nx of x, order2: the state holds (x, v); the rule's rate
+        !! and length at t0, and t0.
+        procedure :: follow_weights => monitor_follow_weights
+        !> A new rate of the motion at t: true if the weights change (the rule's
+        !! rate is then the new one; weights_new and weights_message set).
+        procedure :: new_rate => monitor_new_rate
+        !> Is a new look at the rate due at t (weights following, a regular sample,
+        !! half a time scale after the last look)?
+        procedure :: weights_due => monitor_weights_due
     end type solution_monitor
 
 contains
@@ -155,6 +171,9 @@ contains
         self%layer_eps = eps
         self%layer_threshold = max(self%threshold, 3*sqrt(eps))
         self%in_layer = .false.
+        self%weights%on = .false.
+        self%weight_nx = 0
+        self%weights_new = .false.
         self%invariant_tol = invariant_tol
         self%invariant_change = 0.0_wp
         self%have_invariant = .false.
@@ -201,10 +220,11 @@ contains
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
         real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
-        real(wp) :: drift, invariant, kinetic, power, gb, g
+        real(wp) :: drift, invariant, kinetic, power, gb, g, sigma, ell, rate, sigma_pred
         integer :: stat, invariant_stat, i
         invariant = 0.0_wp
         invariant_stat = 0
+        sigma = model%sigma_min_gb()
         if (self%scales%eps_factor > 0.0_wp .or. self%drift_auto) then
             gb = 0.0_wp
             g = 0.0_wp
@@ -212,7 +232,7 @@ contains
                 gb = max(gb, abs(model%gb(i, i)))
                 g = max(g, norm2(model%gx(i, :)))
             end do
-            if (self%observe_scales(t, gb, g, maxval(abs(z(1:model%n))), model%sigma_min_gb())) then
+            if (self%observe_scales(t, gb, g, maxval(abs(z(1:model%n))), sigma)) then
                 model%eps = self%scales%eps
                 self%model_changed = .true.
             end if
@@ -221,10 +241,26 @@ contains
         drift = 0.0_wp
         if (self%np > 0) drift = model%position_drift(t, z, stat)
         if (self%np > 0) then
-            call self%sample_values(t, drift, model%sigma_min_gb(), invariant, invariant_stat, &
+            call self%sample_values(t, drift, sigma, invariant, invariant_stat, &
                                     z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np))
         else
-            call self%sample_values(t, drift, model%sigma_min_gb(), invariant, invariant_stat, z(1:0), dz(1:0))
+            call self%sample_values(t, drift, sigma, invariant, invariant_stat, z(1:0), dz(1:0))
+        end if
+        ! the weights follow the motion at regular samples, half a time scale apart
+        if (self%weight_nx > 0 .and. self%weights_due(t)) then
+            call dense_motion_scales(model, t, z, dz, self%weight_nx, self%weight_order2, self%weights%ell, &
+                                     .false., ell, rate, sigma_pred, stat)
+            if (stat == 0) then
+                self%weights%ell = ell
+                if (self%new_rate(t, rate)) then
+                    if (model%order == 1) then
+                        model%w = [baumgarte_gamma(self%weights%rate)]
+                    else if (model%order == 2) then
+                        model%w = baumgarte_pair(self%weights%rate)
+                    end if
+                    self%model_changed = .true.
+                end if
+            end if
         end if
         if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
             call model%work_sample(t, z, kinetic, power, stat)
@@ -232,6 +268,54 @@ contains
         end if
         if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
     end subroutine monitor_sample
+
+    subroutine monitor_follow_weights(self, nx, order2, rate, ell, t0)
+        class(solution_monitor), intent(inout) :: self
+        integer, intent(in) :: nx        !! dense models: the size of x (0: the caller gathers the rate)
+        logical, intent(in) :: order2
+        real(wp), intent(in) :: rate, ell, t0   !! the rate and length at t0
+        self%weights%on = .true.
+        self%weights%rate = rate
+        self%weights%ell = ell
+        self%weights%t_next = t0
+        if (rate > 0.0_wp) self%weights%t_next = t0 + 0.5_wp/rate
+        self%weights%changes = 0
+        self%weight_nx = nx
+        self%weight_order2 = order2
+        self%weights_new = .false.
+    end subroutine monitor_follow_weights
+
+    logical function monitor_weights_due(self, t) result(due)
+        class(solution_monitor), intent(in) :: self
+        real(wp), intent(in) :: t
+        due = self%weights%on .and. t >= self%weights%t_next .and. .not. self%in_singular .and. .not. self%in_layer
+    end function monitor_weights_due
+
+    logical function monitor_new_rate(self, t, rate) result(change)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, rate
+        real(wp) :: before
+        before = self%weights%rate
+        change = self%weights%propose(t, rate)
+        if (.not. change) return
+        self%weights_new = .true.
+        self%weights_message = 't = '//format_real(t)//': Baumgarte weights follow the motion, rate '// &
+                               format_real(before)//' -> '//format_real(self%weights%rate)//' (gamma1 = '// &
+                               format_real(baumgarte_gamma(self%weights%rate))//')'
+    end function monitor_new_rate
+
+    ! gamma (index 2) and (gamma0, gamma1) (index 3) of the automatic rule for a rate.
+    pure real(wp) function baumgarte_gamma(rate) result(gamma)
+        real(wp), intent(in) :: rate
+        real(wp) :: g0, g1
+        call baumgarte_weights(rate, gamma, g0, g1)
+    end function baumgarte_gamma
+
+    pure function baumgarte_pair(rate) result(w)
+        real(wp), intent(in) :: rate
+        real(wp) :: w(2), gamma
+        call baumgarte_weights(rate, gamma, w(1), w(2))
+    end function baumgarte_pair
 
     subroutine monitor_set_resolution(self, tol)
         class(solution_monitor), intent(inout) :: self
@@ -475,14 +559,18 @@ contains
         if (self%n_singular > 0) intervals = self%singular(:, 1:self%n_singular)
     end function monitor_intervals
 
-    subroutine monitor_automatic(self, eps_factor, eps, drift_factor, rtol, atol)
+    subroutine monitor_automatic(self, eps_factor, eps, drift_factor, rtol, atol, direct, sigma_pred)
         class(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: eps_factor   !! > 0: eps automatic (eps = eps_factor s^2)
+        real(wp), intent(in) :: eps_factor   !! > 0: eps automatic (regdae_auto_rules' automatic_eps)
         real(wp), intent(in) :: eps          !! eps in force at t0
         real(wp), intent(in) :: drift_factor !! > 0: drift bound automatic
         real(wp), intent(in) :: rtol, atol
+        logical, intent(in) :: direct        !! method=direct
+        real(wp), intent(in) :: sigma_pred   !! the predicted regular sigma_min(GB) of a singular start (< 0: none)
         self%scales%eps_factor = eps_factor
         self%scales%eps = eps
+        self%scales%direct = direct
+        self%scales%sigma_pred = sigma_pred
         self%scales%drift_factor = drift_factor
         self%scales%rtol = rtol
         self%scales%atol = atol
@@ -492,9 +580,9 @@ contains
     logical function monitor_observe_scales(self, t, gb, g, x, sigma) result(raised)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: t, gb, g, x, sigma
-        call self%scales%observe(gb, g, x)
+        call self%scales%observe(gb, g, x, sigma)
         if (self%drift_auto) self%drift_tol = self%scales%drift_bound(self%layer_eps)
-        raised = self%scales%raise_eps(t, sigma)
+        raised = self%scales%retarget_eps(t, sigma)
         if (raised) then
             self%layer_eps = self%scales%eps
             self%layer_threshold = max(self%threshold, 3*sqrt(self%layer_eps))

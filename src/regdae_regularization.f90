@@ -89,6 +89,9 @@ module regdae_regularization
         procedure :: is_mechanical
         !> G = dg/dx of the user's position constraint at (t, x).
         procedure :: position_jacobian
+        !> sigma_min(GB) at the last evaluated point with G replaced by a given
+        !! position Jacobian (B from it, as the problem builds B from G).
+        procedure :: conditioning_with
         !> Residual of the eliminated formulation, unknowns z.
         procedure :: residual_eliminated
         !> The eliminated formulation's right-hand side F (z' = F(z, t)).
@@ -439,6 +442,35 @@ contains
             end select
         end if
     end subroutine position_jacobian
+
+    function conditioning_with(self, t, z, gx, stat) result(sigma)
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)     !! the last evaluated point
+        real(wp), intent(in) :: gx(:, :)    !! a position Jacobian, m x n of the user's problem
+        integer, intent(out) :: stat
+        real(wp) :: sigma
+        real(wp), allocatable :: b(:, :), gb(:, :)
+        integer :: n
+        stat = 0
+        n = size(gx, 2)
+        allocate (b(n, self%m), gb(self%m, self%m))
+        if (allocated(self%second)) then
+            call self%second%matrix_b_from_jacobian(t, z(1:n), z(n + 1:2*n), gx, b, stat)
+        else if (allocated(self%higher)) then
+            b = self%b
+        else
+            select type (p => self%first)
+            type is (velocity_index2_problem)
+                call p%second%matrix_b_from_jacobian(t, z(1:n), z(n + 1:2*n), gx, b, stat)
+            class default
+                b = self%b
+            end select
+        end if
+        sigma = -1.0_wp
+        if (stat /= 0) return
+        gb = matmul(gx, b)
+        sigma = self%lsq_ws%smallest_singular_value(gb)
+    end function conditioning_with
 
     logical function is_mechanical(self)
         class(regularized_dae), intent(in) :: self

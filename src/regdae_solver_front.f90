@@ -39,7 +39,8 @@ module regdae_solver_front
     use regdae_differences, only: central_difference_step
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant, alarm_work
-    use regdae_scales, only: automatic_eps_factor
+    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, &
+                                 motion_rate, constraint_length, rms, degenerate_row
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_format, only: format_real, format_int
     implicit none
@@ -80,6 +81,12 @@ module regdae_solver_front
         real(wp) :: eps_factor = 0.0_wp       ! > 0: eps automatic (regdae_scales)
         real(wp) :: drift_factor = 0.0_wp     ! > 0: drift bound automatic
         real(wp) :: work_floor = 0.0_wp       ! the work-energy check's smallest energy scale
+        real(wp) :: rate0 = 0.0_wp            ! the rate of the motion at t0 (regdae_auto_rules)
+        real(wp) :: ell0 = 0.0_wp             ! the constraint length at t0
+        real(wp) :: sigma_pred0 = -1.0_wp     ! a singular start: the predicted regular sigma_min(GB)
+        real(wp) :: eps_auto0 = 0.0_wp        ! the automatic eps at t0 (also when the user set eps)
+        logical :: follow_weights = .false.   ! the automatic weights follow the motion along the run
+        logical :: auto_gamma = .false., auto_gamma0 = .false., auto_gamma1 = .false.   ! which were auto
         real(wp) :: t0 = 0.0_wp               ! integrator=auto: the start, kept until the first output
         real(wp), allocatable :: z0(:)
         integer :: linear_solver = linear_solver_dense    ! resolved
@@ -407,9 +414,10 @@ contains
         if (core%linear_solver == linear_solver_auto) core%linear_solver = linear_solver_sparse
         allocate (u0(sys%neq), up0(sys%neq), id(sys%neq), core%y_work(core%m))
         call sys%initial_guess(q0, v0, u0, up0, id)
+        call augmented_eps(core, sys, t0, u0)
         core%excluded = sys%excluded_unknowns(opts%excluded)
         if (opts%exclusion == exclusion_off) core%excluded = .false.
-        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
+        call core%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
                              sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
         if (stat /= regdae_success) then
             call fail(stat, msg)
@@ -466,7 +474,10 @@ contains
                                 core%opts%jump_tol, core%opts%drift_tol, core%opts%invariant_tol, &
                                 merge(resolved_work_tol(core%opts), 0.0_wp, core%model%is_mechanical()))
         call core%monitor%automatic(core%eps_factor, core%model%eps, core%drift_factor, core%opts%rtol, &
-                                    maxval(core%atol_z(1:core%nx)))
+                                    maxval(core%atol_z(1:core%nx)), core%model%method == method_direct, &
+                                    core%sigma_pred0)
+        if (core%follow_weights) call core%monitor%follow_weights(core%nx, core%second_order .and. &
+                                                                  size(z0) >= 2*core%nx, core%rate0, core%ell0, t0)
         core%monitor%work_floor = core%work_floor
         call core%monitor%set_resolution(core%opts%resolution_tol)
         call core%monitor%sample(t0, core%model, z0, zp0)
@@ -490,6 +501,8 @@ contains
             t = core%t0
             z = core%z0
             core%model%eps = core%opts%eps
+            if (core%model%order == 1) core%model%w = [core%opts%gamma]
+            if (core%model%order == 2) core%model%w = [core%opts%gamma0, core%opts%gamma1]
         end if
         if (augmented_fits(core)) then
             call switch_to_augmented(core, t, z, from_start, stat, msg)
@@ -596,7 +609,9 @@ contains
         call core%monitor%reset(core%opts%singular_threshold, eps, core%nx, core%opts%jump_tol, &
                                 core%opts%drift_tol, core%opts%invariant_tol, resolved_work_tol(core%opts))
         call core%monitor%automatic(core%eps_factor, eps, core%drift_factor, core%opts%rtol, &
-                                    maxval(core%atol_z(1:core%nx)))
+                                    maxval(core%atol_z(1:core%nx)), core%opts%method == method_direct, &
+                                    core%sigma_pred0)
+        if (core%follow_weights) call core%monitor%follow_weights(0, .true., core%rate0, core%ell0, t)
         core%monitor%work_floor = core%work_floor
         call sample_augmented(core, t)
         core%sampled_t = t
@@ -748,6 +763,7 @@ contains
             if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
         end select
         call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a)
+        if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
         if (core%monitor%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
             select type (sys => core%ida%system)
             type is (augmented_system)
@@ -757,6 +773,36 @@ contains
             end select
         end if
     end subroutine sample_augmented
+
+    ! The automatic weights of the augmented formulation follow the motion: a new
+    ! look at the rate at (t, q, v) with the accelerations a (IDA's v'); new
+    ! weights into the system when it moved by the rule's hysteresis.
+    subroutine follow_weights_augmented(core, t, q, v, a)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, q(:), v(:), a(:)
+        real(wp) :: f(core%nx), mdiag(core%nx), ell, rate, sigma_pred, gamma, gamma0, gamma1
+        integer :: stat
+        select type (sys => core%ida%system)
+        type is (augmented_system)
+            stat = 0
+            call sys%problem%forces(t, q, v, f, stat)   ! M and G at q are in sys from the sample
+            if (stat /= 0) return
+            call mass_diagonal(sys, mdiag)
+            call augmented_motion_scales(sys, t, q, v, a, f/mdiag, core%monitor%weights%ell, .false., ell, rate, &
+                                         sigma_pred, stat)
+            if (stat /= 0) return
+            core%monitor%weights%ell = ell
+            if (.not. core%monitor%new_rate(t, rate)) return
+            call baumgarte_weights(core%monitor%weights%rate, gamma, gamma0, gamma1)
+            if (core%opts%index == 3) then
+                sys%gamma0 = gamma0
+                sys%gamma1 = gamma1
+            else
+                sys%gamma0 = 0.0_wp
+                sys%gamma1 = gamma
+            end if
+        end select
+    end subroutine follow_weights_augmented
 
     ! check_jacobians: the user's G (constraint_jacobian) against central
     ! difference quotients of g at (t0, x0); regdae_err_jacobian names the worst entry.
@@ -943,7 +989,7 @@ contains
             ! 1/100 of it): the explicit method steps through them inaccurately, without an
             ! alarm (doc/methods.md); IDA passes them
             if (core%active == integrator_dopri5 .and. core%m > 0) then
-                if (core%model%eps < automatic_eps_factor(opts%rtol)*gb_scale(core%model)**2/100.0_wp) then
+                if (core%model%eps < core%eps_auto0/100.0_wp) then
                     core%active = integrator_ida
                     call log_event(core, 't = '//format_real(t0)//': ida from the start (eps = '// &
                                    format_real(core%model%eps)//' is below 1/100 of the automatic eps for this '// &
@@ -1010,35 +1056,31 @@ contains
     ! The `auto` parameters of core%opts, from the problem at (t0, z0) (the model
     ! evaluated there with provisional weights); the model gets them, and
     ! core%opts holds them as numbers afterwards (singular_threshold stays auto:
-    ! the monitor's running rule). Each rule is in doc/methods.md.
-    !  - eps = s^2 rtol^2 within [1e-14, 1e-6] s^2, s = max_i (GB)_ii (the scale
-    !    of GB): the regularization error stays below the integration error, and
-    !    the layers stay wide enough (above 1e-14 s^2, about 45 u) to be passed on
-    !    the physical branch with moderate weights (measured: doc/methods.md).
-    !  - gamma = gamma1 = 20/T, gamma0 = gamma1^2/2, T the time scale at t0 (time_scale).
-    !  - drift_tol = 100 max_i |G_i| (rtol max|x0| + atol): 1000 times the constraint
-    !    violation that the tolerances on x allow.
+    ! the monitor's running rule). The rules are regdae_auto_rules' (doc/methods.md):
+    !  - the rate of the motion omega from v, the accelerations and the constraint
+    !    length l; gamma = gamma1 = weight_factor omega, gamma0 = gamma1^2/2, and
+    !    along the run the monitor lets them follow the motion;
+    !  - eps = automatic_eps(rtol, sigma_reg, s), sigma_reg = sigma_min(GB) at t0 or,
+    !    if a row of G vanishes there, the prediction from the constraint curvature;
+    !  - drift_tol = 100 max_i |G_i| (rtol max|x0| + atol).
     subroutine resolve_auto_parameters(core, t0, z0, stat, msg)
         type(solver_core), intent(inout) :: core
         real(wp), intent(in) :: t0, z0(:)
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: scale, t_scale, rate, y(core%m), zp(size(z0)), zc(size(z0)), kinetic, power
-        integer :: i, wstat
-        logical :: recoverable, weights_auto, work_check
+        real(wp) :: scale, rate, ell, sigma0, sigma_pred, y(core%m), zp(size(z0)), zc(size(z0)), kinetic, power
+        integer :: wstat
+        logical :: recoverable, weights_auto, work_check, eps_auto, order2
         stat = regdae_success
         msg = ''
         associate (opts => core%opts, model => core%model)
-            if (opts%eps == option_auto) then
-                scale = 0.0_wp
-                do i = 1, core%m
-                    scale = max(scale, abs(model%gb(i, i)))
-                end do
+            eps_auto = (opts%eps == option_auto)
+            if (eps_auto) then   ! provisional: for the slope at t0 (the rule needs the motion's directions)
+                scale = gb_scale(model)
                 if (.not. (scale > 0.0_wp)) scale = maxval(sum(model%gx**2, dim=2), 1, mask=.true.)
                 if (.not. (scale > 0.0_wp)) scale = 1.0_wp
                 core%eps_factor = automatic_eps_factor(opts%rtol)
-                opts%eps = core%eps_factor*scale**2
-                model%eps = opts%eps
+                model%eps = automatic_eps(opts%rtol, scale, scale, model%method == method_direct)
             end if
             if (opts%drift_tol == option_auto) then
                 core%drift_factor = drift_factor
@@ -1053,124 +1095,86 @@ contains
             end if
             weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
             work_check = (resolved_work_tol(opts) > 0.0_wp .and. model%is_mechanical())
-            if (weights_auto .or. work_check) then
+            sigma0 = model%sigma_min_gb()
+            sigma_pred = -1.0_wp
+            rate = 0.0_wp
+            core%ell0 = 0.0_wp
+            if (weights_auto .or. work_check .or. eps_auto) then
                 call model%solve_multiplier(t0, y, stat)
                 if (stat /= regdae_success) then
                     msg = 'choosing the automatic parameters: the multiplier at t0 failed: '//model%message
                     return
                 end if
                 call model%dynamics_slope(z0, y, zp)
-                t_scale = time_scale(core, t0, z0, zp)
+                order2 = core%second_order .and. size(z0) >= 2*core%nx
+                call dense_motion_scales(model, t0, z0, zp, core%nx, order2, 0.0_wp, eps_auto, ell, rate, &
+                                         sigma_pred, stat)
+                if (stat /= 0) then
+                    msg = 'choosing the automatic parameters: user routine constraint_jacobian reported failure '// &
+                          '(stat = '//format_int(stat)//') at t0'
+                    stat = regdae_err_user_callback
+                    return
+                end if
+                core%ell0 = ell
             end if
+            core%rate0 = rate
+            core%sigma_pred0 = sigma_pred
+            if (eps_auto) then
+                scale = gb_scale(model)
+                opts%eps = automatic_eps(opts%rtol, max(sigma0, sigma_pred), scale, model%method == method_direct)
+                model%eps = opts%eps
+            end if
+            core%eps_auto0 = automatic_eps(opts%rtol, max(sigma0, sigma_pred), gb_scale(model), &
+                                           model%method == method_direct)
             if (work_check) then
                 ! the work-energy check's floor of the energy scale: the kinetic energy of the
-                ! velocities that the accelerations at t0 reach in one time scale (a start
+                ! velocities that the accelerations at t0 reach in one time scale 1/rate (a start
                 ! from rest has no energy of its own to compare the defect with)
                 zc = z0
-                zc(core%nx + 1:2*core%nx) = t_scale*zp(core%nx + 1:2*core%nx)
+                zc(core%nx + 1:2*core%nx) = zp(core%nx + 1:2*core%nx)/merge(rate, 1.0_wp, rate > 0.0_wp)
                 call model%work_sample(t0, zc, kinetic, power, wstat)
                 if (wstat == 0) core%work_floor = kinetic
             end if
             if (weights_auto) then
-                rate = 20.0_wp/t_scale
-                if (opts%gamma == option_auto) opts%gamma = rate
-                if (opts%gamma1 == option_auto) opts%gamma1 = rate
-                if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
+                call set_auto_weights(opts, rate)
                 if (model%order == 1) model%w = [opts%gamma]
                 if (model%order == 2) model%w = [opts%gamma0, opts%gamma1]
-                call model%evaluate(t0, z0, stat, recoverable)   ! r with the final weights
             end if
+            ! the weights follow the motion when all of those the model uses are automatic
+            core%follow_weights = (model%order == 1 .and. core%auto_gamma) .or. &
+                                  (model%order == 2 .and. core%auto_gamma0 .and. core%auto_gamma1)
+            if (weights_auto .or. eps_auto) call model%evaluate(t0, z0, stat, recoverable)   ! r with the final values
         end associate
+    contains
+        ! the weights left auto from the rate; which ones were auto
+        subroutine set_auto_weights(opts, rate)
+            type(solver_options), intent(inout) :: opts
+            real(wp), intent(in) :: rate
+            real(wp) :: gamma, gamma0, gamma1
+            call baumgarte_weights(rate, gamma, gamma0, gamma1)
+            core%auto_gamma = (opts%gamma == option_auto)
+            core%auto_gamma0 = (opts%gamma0 == option_auto)
+            core%auto_gamma1 = (opts%gamma1 == option_auto)
+            if (opts%gamma == option_auto) opts%gamma = gamma
+            if (opts%gamma1 == option_auto) opts%gamma1 = gamma1
+            if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
+        end subroutine set_auto_weights
     end subroutine resolve_auto_parameters
-
-    ! The time scale of the motion at t0 from the state z0 and its slope zp:
-    ! T1 = rms(v)/rms(a) (problems of order 2: how long the velocity takes to
-    ! change), T2 = sqrt(l/rms(a)) (order 1: l/rms(x')), l the length over which
-    ! the constraint gradients turn, min_i |G_i| / |d G_i| along the motion (the
-    ! direction a or x' scaled to max-norm 1). T = min(T1, T2) over those defined,
-    ! 1 if none is (a problem at rest with linear constraints). Both are ratios of
-    ! lengths and times: unchanged by the length unit.
-    real(wp) function time_scale(core, t0, z0, zp) result(t_scale)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t0, z0(:), zp(:)
-        real(wp) :: x(core%nx), vel(core%nx), acc(core%nx), w(core%nx), gx0(core%m, core%nx), gx1(core%m, core%nx)
-        real(wp) :: d, ell, change, size_g
-        integer :: i, nx, stat
-        logical :: order2
-        nx = core%nx
-        order2 = core%second_order .and. size(z0) >= 2*nx
-        x = z0(1:nx)
-        if (order2) then
-            vel = z0(nx + 1:2*nx)
-            acc = zp(nx + 1:2*nx)
-            w = acc
-            if (.not. (maxval(abs(w)) > 0.0_wp)) w = vel
-        else
-            vel = zp(1:nx)
-            acc = 0.0_wp
-            w = vel
-        end if
-        ell = huge(1.0_wp)
-        if (core%m > 0 .and. maxval(abs(w)) > 0.0_wp) then
-            w = w/maxval(abs(w))
-            d = central_difference_step(maxval(abs(x)))
-            ! central differences: an even (second-order) change of G does not count
-            call core%model%position_jacobian(t0, x - d*w, gx0, stat)
-            if (stat == 0) call core%model%position_jacobian(t0, x + d*w, gx1, stat)
-            if (stat == 0) then
-                do i = 1, core%m
-                    change = norm2(gx1(i, :) - gx0(i, :))/(2.0_wp*d)
-                    size_g = 0.5_wp*norm2(gx1(i, :) + gx0(i, :))
-                    if (change*d > 1.0e3_wp*epsilon(1.0_wp)*size_g) ell = min(ell, size_g/change)
-                end do
-            end if
-        end if
-        t_scale = motion_time_scale(order2, vel, acc, ell)
-    contains
-        pure real(wp) function rms(a)
-            real(wp), intent(in) :: a(:)
-            rms = 0.0_wp
-            if (size(a) > 0) rms = norm2(a)/sqrt(real(size(a), wp))
-        end function rms
-    end function time_scale
-
-    ! T = min(T1, T2) of time_scale from the velocities, accelerations (order 2;
-    ! order 1: vel = x') and the constraint length ell (huge: none); 1 if neither.
-    pure real(wp) function motion_time_scale(order2, vel, acc, ell) result(t_scale)
-        logical, intent(in) :: order2
-        real(wp), intent(in) :: vel(:), acc(:), ell
-        real(wp) :: speed
-        t_scale = huge(1.0_wp)
-        if (order2 .and. rms(vel) > 0.0_wp .and. rms(acc) > 0.0_wp) t_scale = rms(vel)/rms(acc)
-        if (ell < huge(1.0_wp)) then
-            speed = merge(rms(acc), rms(vel), order2)
-            if (speed > 0.0_wp) then
-                if (order2) t_scale = min(t_scale, sqrt(ell/speed))
-                if (.not. order2) t_scale = min(t_scale, ell/speed)
-            end if
-        end if
-        if (.not. (t_scale < huge(1.0_wp) .and. t_scale > 0.0_wp)) t_scale = 1.0_wp
-    contains
-        pure real(wp) function rms(a)
-            real(wp), intent(in) :: a(:)
-            rms = 0.0_wp
-            if (size(a) > 0) rms = norm2(a)/sqrt(real(size(a), wp))
-        end function rms
-    end function motion_time_scale
 
     ! The `auto` parameters for the augmented formulation (the rules of
     ! resolve_auto_parameters with the sparse M and G): s = max_i sum_k G_ik^2 / M_kk
     ! (the diagonal of GB with M's diagonal), the accelerations M_kk^-1 f_k of the
-    ! free motion, the constraint length from the sparse G along them.
+    ! free motion, the constraint length from the sparse G along v and them. eps
+    ! needs sigma_min(GB), by inverse iteration at IDA's first vector: the caller
+    ! sets it (augmented_eps) once that vector exists.
     subroutine resolve_augmented_parameters(core, sys, t0, q0, v0, stat, msg)
         type(solver_core), intent(inout) :: core
         type(augmented_system), intent(inout) :: sys
         real(wp), intent(in) :: t0, q0(:), v0(:)
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), w(sys%n), g0(sys%st%constraint%nnz()), &
-                    g1(sys%st%constraint%nnz()), scale, row, d, ell, change, size_g, rate, gmax, t_scale, kinetic, &
-                    power, y_zero(sys%m)
+        real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), g0(sys%st%constraint%nnz()), scale, row, rate, gmax, &
+                    kinetic, power, y_zero(sys%m), ell, sigma_pred, gamma, gamma0, gamma1
         integer :: i, k, ustat
         logical :: recoverable, weights_auto, work_check
         stat = 0
@@ -1183,12 +1187,7 @@ contains
             if (failed('constraint_jacobian_values')) return
             call sys%problem%forces(t0, q0, v0, f, ustat)
             if (failed('forces')) return
-            mdiag = 1.0_wp
-            do i = 1, sys%n
-                k = mp%position(i, i)
-                if (k > 0) mdiag(i) = sys%mvals(k)
-            end do
-            if (.not. all(mdiag > 0.0_wp)) mdiag = 1.0_wp
+            call mass_diagonal(sys, mdiag)
             scale = 0.0_wp
             gmax = 0.0_wp
             do i = 1, sys%m
@@ -1202,7 +1201,7 @@ contains
             if (.not. (scale > 0.0_wp)) scale = 1.0_wp
             if (opts%eps == option_auto) then
                 core%eps_factor = automatic_eps_factor(opts%rtol)
-                opts%eps = core%eps_factor*scale**2
+                opts%eps = automatic_eps(opts%rtol, scale, scale, opts%method == method_direct)   ! provisional
             end if
             if (opts%drift_tol == option_auto) then
                 core%drift_factor = drift_factor
@@ -1210,47 +1209,34 @@ contains
             end if
             weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
             work_check = resolved_work_tol(opts) > 0.0_wp
-            if (weights_auto .or. work_check) then
-                acc = f/mdiag
-                w = acc
-                if (.not. (maxval(abs(w)) > 0.0_wp)) w = v0
-                ell = huge(1.0_wp)
-                if (sys%m > 0 .and. maxval(abs(w)) > 0.0_wp) then
-                    w = w/maxval(abs(w))
-                    d = central_difference_step(maxval(abs(q0)))
-                    call sys%problem%constraint_jacobian_values(t0, q0 - d*w, gp, g0, stat)
-                    if (stat == 0) call sys%problem%constraint_jacobian_values(t0, q0 + d*w, gp, g1, stat)
-                    if (stat == 0) then
-                        do i = 1, sys%m
-                            associate (a => gp%row_start(i), b => gp%row_start(i + 1) - 1)
-                                change = norm2(g1(a:b) - g0(a:b))/(2.0_wp*d)
-                                size_g = 0.5_wp*norm2(g1(a:b) + g0(a:b))
-                                if (change*d > 1.0e3_wp*epsilon(1.0_wp)*size_g) ell = min(ell, size_g/change)
-                            end associate
-                        end do
-                    end if
-                    stat = 0
-                end if
-                t_scale = motion_time_scale(.true., v0, acc, ell)
-                rate = 20.0_wp/t_scale
-                if (opts%gamma == option_auto) opts%gamma = rate
-                if (opts%gamma1 == option_auto) opts%gamma1 = rate
-                if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
-                if (work_check) then   ! the floor of the work check's energy scale (as above)
-                    y_zero = 0.0_wp
-                    call kinetic_energy_and_power(sys%problem, t0, q0, t_scale*acc, y_zero, kinetic, power, &
-                                                  ustat, sys%st%mass)
-                    if (ustat == 0) core%work_floor = kinetic
-                end if
+            acc = f/mdiag
+            call augmented_motion_scales(sys, t0, q0, v0, acc, acc, 0.0_wp, opts%eps == option_auto .or. &
+                                         core%eps_factor > 0.0_wp, ell, rate, sigma_pred, stat)
+            if (stat /= 0) then
+                ustat = stat
+                call user_routine_failure(ustat, 'constraint_jacobian_values', t0, stat, msg, recoverable)
+                return
             end if
+            core%rate0 = rate
+            core%ell0 = ell
+            core%sigma_pred0 = sigma_pred
+            call baumgarte_weights(rate, gamma, gamma0, gamma1)
+            core%auto_gamma = (opts%gamma == option_auto)
+            core%auto_gamma0 = (opts%gamma0 == option_auto)
+            core%auto_gamma1 = (opts%gamma1 == option_auto)
+            if (opts%gamma == option_auto) opts%gamma = gamma
+            if (opts%gamma1 == option_auto) opts%gamma1 = gamma1
+            if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
+            core%follow_weights = merge(core%auto_gamma0 .and. core%auto_gamma1, core%auto_gamma, opts%index == 3)
+            if (work_check) then   ! the floor of the work check's energy scale (as for the dense formulations)
+                y_zero = 0.0_wp
+                call kinetic_energy_and_power(sys%problem, t0, q0, acc/merge(rate, 1.0_wp, rate > 0.0_wp), y_zero, &
+                                              kinetic, power, ustat, sys%st%mass)
+                if (ustat == 0) core%work_floor = kinetic
+            end if
+            if (.not. weights_auto) core%follow_weights = .false.
             sys%eps = opts%eps
-            if (opts%index == 3) then
-                sys%gamma0 = opts%gamma0
-                sys%gamma1 = opts%gamma1
-            else
-                sys%gamma0 = 0.0_wp
-                sys%gamma1 = opts%gamma
-            end if
+            call set_augmented_weights(core, sys)
         end associate
     contains
         ! A user routine returned ustat /= 0 at t0: stat and msg say which and what.
@@ -1260,6 +1246,122 @@ contains
             if (failed) call user_routine_failure(ustat, name, t0, stat, msg, recoverable)
         end function failed
     end subroutine resolve_augmented_parameters
+
+    ! The weights of core%opts into the augmented system (index 2: gamma0 = 0, gamma1 = gamma).
+    subroutine set_augmented_weights(core, sys)
+        type(solver_core), intent(in) :: core
+        type(augmented_system), intent(inout) :: sys
+        if (core%opts%index == 3) then
+            sys%gamma0 = core%opts%gamma0
+            sys%gamma1 = core%opts%gamma1
+        else
+            sys%gamma0 = 0.0_wp
+            sys%gamma1 = core%opts%gamma
+        end if
+    end subroutine set_augmented_weights
+
+    ! The automatic eps of the augmented formulation at t0 from sigma_min(GB) at
+    ! IDA's first vector u0 (or the singular start's prediction).
+    subroutine augmented_eps(core, sys, t0, u0)
+        type(solver_core), intent(inout) :: core
+        type(augmented_system), intent(inout) :: sys
+        real(wp), intent(in) :: t0, u0(:)
+        real(wp) :: sigma0, gb, g
+        integer :: stat
+        sigma0 = sys%sigma_min_gb(t0, u0, stat)
+        if (stat /= 0 .or. .not. (sigma0 < huge(1.0_wp))) sigma0 = 0.0_wp
+        call sys%diagonal_scales(gb, g)
+        core%eps_auto0 = automatic_eps(core%opts%rtol, max(sigma0, core%sigma_pred0), gb, &
+                                       core%opts%method == method_direct)
+        if (core%eps_factor > 0.0_wp) then
+            core%opts%eps = core%eps_auto0
+            sys%eps = core%opts%eps
+        end if
+    end subroutine augmented_eps
+
+    ! M's diagonal (1 where M has none, and everywhere if one is not positive).
+    subroutine mass_diagonal(sys, mdiag)
+        type(augmented_system), intent(in) :: sys
+        real(wp), intent(out) :: mdiag(:)
+        integer :: i, k
+        mdiag = 1.0_wp
+        do i = 1, sys%n
+            k = sys%st%mass%position(i, i)
+            if (k > 0) mdiag(i) = sys%mvals(k)
+        end do
+        if (.not. all(mdiag > 0.0_wp)) mdiag = 1.0_wp
+    end subroutine mass_diagonal
+
+    ! The scales of regdae_auto_rules' dense_motion_scales for the augmented
+    ! formulation at (t, q, v) with the accelerations acc and free (the applied
+    ! forces' M_kk^-1 f_k): the sparse G along v and acc (or free), the length
+    ! (at least ell_before), the rate, and at a singular start (predict) the
+    ! predicted GB scale max_i sum_k G_pred,ik^2 / M_kk (-1: no row vanishes).
+    ! stat: the user's constraint_jacobian_values.
+    subroutine augmented_motion_scales(sys, t, q, v, acc, free, ell_before, predict, ell, rate, sigma_pred, stat)
+        type(augmented_system), intent(inout) :: sys
+        real(wp), intent(in) :: t, q(:), v(:), acc(:), free(:), ell_before
+        logical, intent(in) :: predict
+        real(wp), intent(out) :: ell, rate, sigma_pred
+        integer, intent(out) :: stat
+        real(wp) :: g0(sys%st%constraint%nnz()), g1(sys%st%constraint%nnz()), dg(sys%st%constraint%nnz()), &
+                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, d, change, row
+        integer :: i, k, pass
+        logical :: degenerate
+        stat = 0
+        sigma_pred = -1.0_wp
+        gnorm = 0.0_wp
+        hnorm = 0.0_wp
+        dg = 0.0_wp
+        ell_x = rms(q)
+        if (.not. (ell_x > 0.0_wp)) ell_x = 1.0_wp
+        d = central_difference_step(maxval(abs(q)))
+        associate (gp => sys%st%constraint)
+            do pass = 1, 2
+                if (pass == 1) w = v
+                if (pass == 2) w = merge(acc, free, maxval(abs(acc)) > 0.0_wp)
+                if (.not. (maxval(abs(w)) > 0.0_wp .and. maxval(abs(w)) < huge(1.0_wp))) cycle
+                w = w/maxval(abs(w))
+                call sys%problem%constraint_jacobian_values(t, q - d*w, gp, g0, stat)
+                if (stat == 0) call sys%problem%constraint_jacobian_values(t, q + d*w, gp, g1, stat)
+                if (stat /= 0) return
+                do i = 1, sys%m
+                    associate (a => gp%row_start(i), b => gp%row_start(i + 1) - 1)
+                        change = norm2(g1(a:b) - g0(a:b))/(2.0_wp*d)
+                        gnorm(i) = max(gnorm(i), 0.5_wp*norm2(g1(a:b) + g0(a:b)))
+                        if (.not. (change*d > 1.0e3_wp*epsilon(1.0_wp)*gnorm(i))) change = 0.0_wp
+                        if (change > hnorm(i)) then
+                            hnorm(i) = change
+                            dg(a:b) = (g1(a:b) - g0(a:b))/(2.0_wp*d)
+                        end if
+                    end associate
+                end do
+            end do
+            ell = max(constraint_length(gnorm, hnorm, ell_x), ell_before)
+            rate = motion_rate(.true., v, acc, free, ell)
+            if (.not. predict .or. sys%m == 0) return
+            call sys%problem%constraint_jacobian_values(t, q, gp, g0, stat)
+            if (stat /= 0) return
+            call mass_diagonal(sys, mdiag)
+            degenerate = .false.
+            do i = 1, sys%m
+                if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
+                    degenerate = .true.
+                    g0(gp%row_start(i):gp%row_start(i + 1) - 1) = g0(gp%row_start(i):gp%row_start(i + 1) - 1) + &
+                                                                   ell_x*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
+                end if
+            end do
+            if (.not. degenerate) return
+            sigma_pred = 0.0_wp
+            do i = 1, sys%m
+                row = 0.0_wp
+                do k = gp%row_start(i), gp%row_start(i + 1) - 1
+                    row = row + g0(k)**2/mdiag(gp%cols(k))
+                end do
+                sigma_pred = max(sigma_pred, row)
+            end do
+        end associate
+    end subroutine augmented_motion_scales
 
     ! Can an integrator take a first step from (t0, z0) with slope zp0? The
     ! step that keeps the local error near the tolerance is about 1/|zp0|_w,
@@ -1487,6 +1589,10 @@ contains
         ! Success at tout, or the resolution warning when the monitor flagged a new
         ! unresolved singular pass during this advance (logged as an event too).
         subroutine record_done()
+            if (core%monitor%weights_new) then
+                core%monitor%weights_new = .false.
+                call log_event(core, core%monitor%weights_message)
+            end if
             if (core%monitor%unresolved_new) then
                 core%monitor%unresolved_new = .false.
                 call log_event(core, 't = '//format_real(core%t)//': unresolved: '//core%monitor%unresolved_message)
