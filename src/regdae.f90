@@ -20,7 +20,7 @@ module regdae
     use regdae_parse, only: parse_real, parse_integer
     use regdae_c_strings, only: c_string
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
-    use regdae_solver_front, only: regdae_solver, solver_stats
+    use regdae_solver_trust, only: regdae_solver, solver_stats
     implicit none
     private
 

@@ -30,6 +30,9 @@ module regdae_auto_rules
     !> A row of G whose norm is below degenerate_row |H_i| l_x vanishes here: a
     !! singular configuration of that row, whose distance to it is no length of the mechanism.
     real(wp), parameter, public :: degenerate_row = 1.0e-4_wp
+    !> At a singular start a vanishing row of G is moved by this fraction of the scale
+    !! of x along its curvature, for the prediction of the regular sigma_min(GB).
+    real(wp), parameter, public :: predict_shift = 0.5_wp
     !> Along the run the weights change when the rate has grown by this factor.
     real(wp), parameter, public :: weight_hysteresis = 2.0_wp
     !> Along the run eps changes when its target has moved by this factor.
@@ -233,7 +236,7 @@ contains
                 if (stat /= 0) return
                 do i = 1, model%m
                     if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
-                        gx(i, :) = gx(i, :) + ell_x*dg(i, :)
+                        gx(i, :) = gx(i, :) + predict_shift*ell_x*dg(i, :)
                         degenerate = .true.
                     end if
                 end do

@@ -18,7 +18,7 @@ module regdae_c_api
                               lsq_name, exclusion_name, excluded_name, linear_solver_name
     use regdae_sparsity, only: sparsity_pattern, pattern_from_entries, dense_pattern
     use regdae_mechanical_problem, only: mechanical_structure
-    use regdae_solver_front, only: regdae_solver
+    use regdae_solver_trust, only: regdae_solver
     use regdae_foreign_problems, only: foreign_first_order, foreign_second_order, foreign_mechanical, routine_f, &
                                        routine_b, routine_g, routine_gx, routine_gt, routine_curvature, &
                                        routine_invariant, routine_mass, routine_forces, routine_mass_values, &

@@ -21,7 +21,7 @@ module regdae_dassl
                              regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_initialized
     use regdae_format, only: format_int, format_real
     use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_dopri5
-    use regdae_solver_front, only: regdae_solver, solver_stats
+    use regdae_solver_trust, only: regdae_solver, solver_stats
     use regdae_foreign_problems, only: foreign_first_order, foreign_mechanical
     use regdae_f77_routines, only: f77_routines, f77_point_routine, f77_motion_routine
     implicit none

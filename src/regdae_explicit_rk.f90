@@ -24,6 +24,7 @@ module regdae_explicit_rk
         integer :: steps = 0, evals = 0, rejects = 0
         integer :: stiff_count = 0, quiet_count = 0   ! the stiffness test's counters
         logical :: stiff_detected = .false.          !! the last advance stopped because the system is stiff
+        logical :: pass_stop = .false.               !! the last advance stopped at the end of a singular pass
         ! the continuous extension's vectors of the step ending at dense_t
         real(wp), allocatable :: dense_dz(:), dense_p(:), dense_q(:), dense_r(:)
         real(wp) :: dense_t = -huge(1.0_wp)
@@ -98,7 +99,7 @@ contains
     !! accepted step's end, where `model` holds the evaluation of the
     !! first-same-as-last stage (no extra evaluation).
     subroutine rk_advance(self, model, tout, rtol, atol, h_max, max_steps, land_on_tout, zout, stat, monitor, &
-                          stop_when_stiff)
+                          stop_when_stiff, stop_at_pass_end)
         class(rk_integrator), intent(inout) :: self
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: tout, rtol, h_max
@@ -109,6 +110,8 @@ contains
         integer, intent(out) :: stat
         type(solution_monitor), intent(inout), optional :: monitor
         logical, intent(in), optional :: stop_when_stiff   !! return (success, stiff_detected) instead of failing
+        logical, intent(in), optional :: stop_at_pass_end  !! return (success, pass_stop) at the step where the
+                                                           !! monitor saw a singular interval end (zout: z there)
         real(wp) :: h, e, fac
         integer :: taken, n, i
         logical :: recoverable
@@ -116,6 +119,7 @@ contains
         n = size(self%z)
         stat = regdae_success
         self%stiff_detected = .false.
+        self%pass_stop = .false.
         taken = 0
         do while (self%t < tout)
             if (taken >= max_steps) then
@@ -197,11 +201,18 @@ contains
                     zout = self%z
                     return
                 end if
-                if (monitor%model_changed) then   ! eps raised: the first stage of the next step anew
+                if (monitor%model_changed) then   ! eps or weights changed: the first stage of the next step anew
                     monitor%model_changed = .false.
                     call slope(self, model, self%t, self%z, self%k1, stat, recoverable)
                     if (stat /= regdae_success) then
                         self%message = 'dopri5 at t = '//format_real(self%t)//': '//model%message
+                        zout = self%z
+                        return
+                    end if
+                end if
+                if (present(stop_at_pass_end)) then
+                    if (stop_at_pass_end .and. monitor%pass_ended .and. self%t < tout) then
+                        self%pass_stop = .true.
                         zout = self%z
                         return
                     end if

@@ -62,6 +62,7 @@ module regdae_ida_backend
         real(wp), allocatable :: u_pert(:), up_pert(:), r_pert(:)
         real(wp), allocatable :: atol_u(:)   ! the absolute tolerance of each unknown
         integer(c_long) :: jac_res_evals = 0
+        type(solver_stats) :: carried                   !! IDA's counters before the last FIDAReInit (which zeroes them)
         integer :: pending_stat = regdae_success        !! last failure seen in a callback
         logical :: pending_recoverable = .true.
         character(len=:), allocatable :: pending_message, ida_message
@@ -377,6 +378,9 @@ contains
         real(wp), intent(in) :: t, u(:), up(:)
         integer, intent(out) :: stat
         real(c_double), pointer :: p(:)
+        call self%get_statistics(self%carried)   ! FIDAReInit zeroes IDA's counters: keep them
+        self%carried%jac_res_evals = 0           ! (counted by regdae itself, not reset)
+        self%carried%res_evals = self%carried%res_evals - self%jac_res_evals
         p => FN_VGetArrayPointer(self%uu)
         p = u
         p => FN_VGetArrayPointer(self%up)
@@ -492,14 +496,14 @@ contains
         real(c_double) :: h(1)
         integer(c_int) :: ierr
         if (.not. c_associated(self%ida_mem)) return
-        associate (mem => self%ida_mem)
-            ierr = FIDAGetNumSteps(mem, k); st%steps = k(1)
-            ierr = FIDAGetNumResEvals(mem, k); st%res_evals = k(1) + self%jac_res_evals
-            ierr = FIDAGetNumJacEvals(mem, k); st%jac_evals = k(1)
-            ierr = FIDAGetNumLinSolvSetups(mem, k); st%lin_setups = k(1)
-            ierr = FIDAGetNumNonlinSolvIters(mem, k); st%nonlin_iters = k(1)
-            ierr = FIDAGetNumErrTestFails(mem, k); st%err_test_fails = k(1)
-            ierr = FIDAGetNumNonlinSolvConvFails(mem, k); st%conv_fails = k(1)
+        associate (mem => self%ida_mem, c => self%carried)
+            ierr = FIDAGetNumSteps(mem, k); st%steps = k(1) + c%steps
+            ierr = FIDAGetNumResEvals(mem, k); st%res_evals = k(1) + self%jac_res_evals + c%res_evals
+            ierr = FIDAGetNumJacEvals(mem, k); st%jac_evals = k(1) + c%jac_evals
+            ierr = FIDAGetNumLinSolvSetups(mem, k); st%lin_setups = k(1) + c%lin_setups
+            ierr = FIDAGetNumNonlinSolvIters(mem, k); st%nonlin_iters = k(1) + c%nonlin_iters
+            ierr = FIDAGetNumErrTestFails(mem, k); st%err_test_fails = k(1) + c%err_test_fails
+            ierr = FIDAGetNumNonlinSolvConvFails(mem, k); st%conv_fails = k(1) + c%conv_fails
             ierr = FIDAGetLastStep(mem, h); st%h_last = h(1)
         end associate
         st%jac_res_evals = self%jac_res_evals
@@ -508,7 +512,12 @@ contains
     subroutine backend_free(self)
         class(ida_backend), intent(inout) :: self
         integer(c_int) :: ierr
-        if (c_associated(self%ida_mem)) call FIDAFree(self%ida_mem)
+        if (c_associated(self%ida_mem)) then   ! the counters of a later IDA continue from these
+            call self%get_statistics(self%carried)
+            self%carried%jac_res_evals = 0
+            self%carried%res_evals = self%carried%res_evals - self%jac_res_evals
+            call FIDAFree(self%ida_mem)
+        end if
         if (associated(self%ls)) ierr = FSUNLinSolFree(self%ls)
         if (associated(self%jmat)) call FSUNMatDestroy(self%jmat)
         if (associated(self%idv)) call FN_VDestroy(self%idv)

@@ -67,6 +67,9 @@ module regdae_monitor
     private
 
     integer, parameter, public :: alarm_none = 0, alarm_jump = 1, alarm_drift = 2, alarm_invariant = 3, alarm_work = 4
+    !> The approach to a singular pass begins where sigma_min(GB) falls below this
+    !! many times the singular threshold: the checkpoint a pass is re-integrated from.
+    real(wp), parameter, public :: approach_factor = 5.0_wp
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
@@ -107,6 +110,14 @@ module regdae_monitor
         integer :: unresolved = 0                !! singular intervals whose approach had R > resolution_tol
         logical :: unresolved_new = .false.      !! a new unresolved interval since the flag was last cleared
         character(len=:), allocatable :: unresolved_message   !! where and how much (the last one)
+        logical :: pass_ended = .false.          !! a singular interval ended at the last sample (cleared by the caller)
+        ! The checkpoint before a singular pass (regdae_solver_trust re-integrates the pass
+        ! from it): the last sample on the approach level (sigma_min(GB) >= approach_factor
+        ! x the threshold) before the pass, frozen from the pass's first sample until released.
+        real(wp), allocatable :: checkpoint_z(:) !! the state there
+        real(wp) :: checkpoint_t = 0.0_wp        !! its time
+        logical :: checkpoint_frozen = .false.   !! a pass began since the checkpoint
+        logical :: checkpoint_valid = .false.    !! a checkpoint exists
         logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
         integer :: alarm_kind = alarm_none       !! alarm_jump or alarm_drift
         character(len=:), allocatable :: alarm_message   !! what, where and how much
@@ -150,6 +161,8 @@ module regdae_monitor
         !> A new rate of the motion at t: true if the weights change (the rule's
         !! rate is then the new one; weights_new and weights_message set).
         procedure :: new_rate => monitor_new_rate
+        !> Release the frozen checkpoint: (t, z) is the new one (a verified state after a pass).
+        procedure :: release_checkpoint => monitor_release_checkpoint
         !> Is a new look at the rate due at t (weights following, a regular sample,
         !! half a time scale after the last look)?
         procedure :: weights_due => monitor_weights_due
@@ -174,6 +187,9 @@ contains
         self%weights%on = .false.
         self%weight_nx = 0
         self%weights_new = .false.
+        self%pass_ended = .false.
+        self%checkpoint_frozen = .false.
+        self%checkpoint_valid = .false.
         self%invariant_tol = invariant_tol
         self%invariant_change = 0.0_wp
         self%have_invariant = .false.
@@ -242,9 +258,9 @@ contains
         if (self%np > 0) drift = model%position_drift(t, z, stat)
         if (self%np > 0) then
             call self%sample_values(t, drift, sigma, invariant, invariant_stat, &
-                                    z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np))
+                                    z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np), z)
         else
-            call self%sample_values(t, drift, sigma, invariant, invariant_stat, z(1:0), dz(1:0))
+            call self%sample_values(t, drift, sigma, invariant, invariant_stat, z(1:0), dz(1:0), z)
         end if
         ! the weights follow the motion at regular samples, half a time scale apart
         if (self%weight_nx > 0 .and. self%weights_due(t)) then
@@ -284,6 +300,33 @@ contains
         self%weight_order2 = order2
         self%weights_new = .false.
     end subroutine monitor_follow_weights
+
+    subroutine monitor_release_checkpoint(self, t, z)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)
+        self%checkpoint_frozen = .false.
+        self%checkpoint_t = t
+        self%checkpoint_z = z
+        self%checkpoint_valid = .true.
+    end subroutine monitor_release_checkpoint
+
+    ! The checkpoint at a sample (t, z): frozen at the first sample of a pass (a
+    ! start inside one takes that sample), else moved to every sample on the
+    ! approach level.
+    subroutine checkpoint_sample(self, t, z)
+        type(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)
+        if (self%checkpoint_frozen) return
+        if (self%in_singular) then
+            self%checkpoint_frozen = .true.
+            if (self%checkpoint_valid) return
+        else if (.not. (self%sigma_last >= approach_factor*self%threshold) .and. self%checkpoint_valid) then
+            return
+        end if
+        self%checkpoint_t = t
+        self%checkpoint_z = z
+        self%checkpoint_valid = .true.
+    end subroutine checkpoint_sample
 
     logical function monitor_weights_due(self, t) result(due)
         class(solution_monitor), intent(in) :: self
@@ -376,7 +419,7 @@ contains
         end if
     end subroutine resolution_sample
 
-    subroutine monitor_sample_values(self, t, drift, sigma, invariant, invariant_stat, v, a)
+    subroutine monitor_sample_values(self, t, drift, sigma, invariant, invariant_stat, v, a, z)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: t
         real(wp), intent(in) :: drift           !! max |g(x, t)| (order >= 2)
@@ -384,6 +427,7 @@ contains
         real(wp), intent(in) :: invariant       !! I(x, v, t) (read when invariant_tol > 0)
         integer, intent(in) :: invariant_stat   !! the invariant routine's stat
         real(wp), intent(in) :: v(:), a(:)      !! the np velocities and their slopes
+        real(wp), intent(in), optional :: z(:)  !! the state (for the checkpoint before a singular pass)
         real(wp), allocatable :: grown(:, :)
         real(wp) :: slope, reach
         logical :: was_in_layer
@@ -401,7 +445,8 @@ contains
         self%sigma_min = min(self%sigma_min, self%sigma_last)
         if (self%relative .and. sigma == sigma) then
             self%sigma_peak = max(self%sigma_peak, sigma)
-            self%threshold = 0.05_wp*self%sigma_peak
+            ! a singular start's predicted peak holds until the scales release it
+            self%threshold = 0.05_wp*max(self%sigma_peak, self%scales%sigma_pred)
             self%layer_threshold = max(self%threshold, 3*sqrt(self%layer_eps))
         end if
         if (self%sigma_last < self%threshold) then
@@ -418,8 +463,10 @@ contains
             self%singular(2, self%n_singular) = t
             self%in_singular = .true.
         else
+            if (self%in_singular) self%pass_ended = .true.
             self%in_singular = .false.
         end if
+        if (present(z)) call checkpoint_sample(self, t, z)
         ! the secant of sigma over the last two samples: for a convex decrease (sigma_min
         ! ~ distance^2 at a rank-one singular configuration) it reaches threshold/2 at
         ! most halfway to the minimum, so the landing sample does not jump over it
@@ -571,6 +618,9 @@ contains
         self%scales%eps = eps
         self%scales%direct = direct
         self%scales%sigma_pred = sigma_pred
+        ! a start on a singular configuration: its regular sigma_min(GB) is the prediction,
+        ! so that the relative threshold marks the start as singular
+        if (self%relative .and. sigma_pred > 0.0_wp) self%threshold = 0.05_wp*max(self%sigma_peak, sigma_pred)
         self%scales%drift_factor = drift_factor
         self%scales%rtol = rtol
         self%scales%atol = atol

@@ -30,6 +30,9 @@
 !! | integrator     | auto, ida, dopri5 (explicit, eliminated formulation only; auto: dopri5 while not stiff) | auto |
 !! | linear_solver  | auto, dense, band, sparse (IDA's Newton matrix; band and sparse: augmented) | auto |
 !! | check_jacobians | yes, no (at init: G against difference quotients of g; augmented: the grouped Newton matrix against the full one) | no |
+!! | pass_check     | yes, no (order 1 and 2: each singular pass re-integrated at rtol/10 (and /100, /1000 while they disagree) and held against pass_tol; warning regdae_warn_unresolved if no level agrees) | yes |
+!! | pass_tol       | > 0 (the largest difference of two levels over a pass, in units of the error weights rtol abs(z) + atol, that counts as agreement) | 3 |
+!! | error_estimate | yes, no (a companion solution at rtol/10 alongside: the global error estimate of x at every output) | no |
 !!
 !! `formulation=auto` takes `augmented` for a mechanical problem that declares its
 !! structure and has at least `augmented_min_n` coordinates (integrated by IDA, M
@@ -119,6 +122,10 @@ module regdae_options
         integer :: linear_solver = linear_solver_auto  !! IDA's linear solver
         logical :: check_jacobians = .false.           !! compare the user's G (and the grouped Newton matrix) with
                                                        !! difference quotients at init (regdae_err_jacobian)
+        logical :: pass_check = .true.                 !! re-integrate each singular pass at tighter tolerances and
+                                                       !! compare (regdae_solver_trust); a pass no level resolves warns
+        real(wp) :: pass_tol = 3.0_wp                  !! agreement of two levels over a pass, in error weights
+        logical :: error_estimate = .false.            !! a companion at rtol/10 gives the global error estimate of x
     end type solver_options
 
     public :: resolved_work_tol, option_text
@@ -212,6 +219,14 @@ contains
         case ('check_jacobians')
             call lookup(value, [character(len=12) :: 'yes', 'no'], code)
             if (code > 0) opts%check_jacobians = (code == 1)
+        case ('pass_check')
+            call lookup(value, [character(len=12) :: 'yes', 'no'], code)
+            if (code > 0) opts%pass_check = (code == 1)
+        case ('pass_tol')
+            call read_real(value, opts%pass_tol, code)
+        case ('error_estimate')
+            call lookup(value, [character(len=12) :: 'yes', 'no'], code)
+            if (code > 0) opts%error_estimate = (code == 1)
         case ('linear_solver')
             call lookup(value, [character(len=12) :: 'dense', 'band', 'sparse', 'auto'], code)
             if (code > 0) opts%linear_solver = merge(linear_solver_auto, code, code == 4)
@@ -255,6 +270,7 @@ contains
         call need_nonnegative('resolution_tol', opts%resolution_tol)
         if (opts%work_tol /= option_auto) call need_nonnegative('work_tol', opts%work_tol)
         call need_positive('taylor_h', opts%taylor_h)
+        call need_positive('pass_tol', opts%pass_tol)
         call need_nonnegative('mass_damping', opts%mass_damping)
         if (len(msg) > 0) then
             return
@@ -422,7 +438,7 @@ contains
         case ('linear_solver'); text = ' (auto, dense, band or sparse)'
         case ('lsq'); text = ' (auto, normal or stacked)'
         case ('exclusion'); text = ' (suppress, weights or off)'
-        case ('stop_at_output', 'curvature', 'check_jacobians'); text = ' (yes or no)'
+        case ('stop_at_output', 'curvature', 'check_jacobians', 'pass_check', 'error_estimate'); text = ' (yes or no)'
         case ('index'); text = ' (2 or 3)'
         case ('excluded'); text = ' (y or vy)'
         case ('integrator'); text = ' (auto, ida or dopri5)'

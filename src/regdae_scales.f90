@@ -49,7 +49,7 @@ module regdae_scales
     end type running_scales
 
     !> A predicted sigma_reg gives way to the measured one when a sample reaches this fraction of it.
-    real(wp), parameter, public :: release_fraction = 0.1_wp
+    real(wp), parameter, public :: release_fraction = 0.05_wp
 
     public :: automatic_eps_factor
 

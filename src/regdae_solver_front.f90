@@ -6,7 +6,7 @@
 !! and statistics.
 !!
 !! ```fortran
-!! type(regdae_solver) :: solver
+!! type(solver_engine) :: solver
 !! call solver%init(problem, t0, x0, opts, stat)          ! dae_problem (index 2)
 !! call solver%init(problem, t0, x0, v0, opts, stat)      ! second_order_problem or mechanical_problem
 !! do k = 1, nout
@@ -29,7 +29,8 @@ module regdae_solver_front
     use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
     use regdae_higher_order_problem, only: higher_order_problem
     use regdae_linear_problem, only: linear_dae_problem
-    use regdae_velocity_index2, only: new_velocity_index2
+    use regdae_velocity_index2, only: new_velocity_index2, velocity_index2_problem
+    use regdae_projection, only: project_first_order, project_second_order
     use regdae_options
     use regdae_regularization, only: regularized_dae
     use regdae_explicit_rk, only: rk_integrator
@@ -40,7 +41,7 @@ module regdae_solver_front
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant, alarm_work
     use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, &
-                                 motion_rate, constraint_length, rms, degenerate_row
+                                 motion_rate, constraint_length, rms, degenerate_row, predict_shift
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_format, only: format_real, format_int
     implicit none
@@ -86,6 +87,7 @@ module regdae_solver_front
         real(wp) :: sigma_pred0 = -1.0_wp     ! a singular start: the predicted regular sigma_min(GB)
         real(wp) :: eps_auto0 = 0.0_wp        ! the automatic eps at t0 (also when the user set eps)
         logical :: follow_weights = .false.   ! the automatic weights follow the motion along the run
+        logical :: stop_at_pass_end = .false. ! advance returns early at the end of a singular pass
         logical :: auto_gamma = .false., auto_gamma0 = .false., auto_gamma1 = .false.   ! which were auto
         real(wp) :: t0 = 0.0_wp               ! integrator=auto: the start, kept until the first output
         real(wp), allocatable :: z0(:)
@@ -99,7 +101,7 @@ module regdae_solver_front
     end type solver_core
 
     !> A regularized DAE solver on IDA (see the module documentation).
-    type, public :: regdae_solver
+    type, public :: solver_engine
         private
         type(solver_core), pointer :: core => null()
         real(wp) :: t = 0.0_wp   ! time reached
@@ -144,6 +146,35 @@ module regdae_solver_front
         procedure :: singular_intervals => solver_singular_intervals
         !> Free all IDA and SUNDIALS objects (also done by `init` and finalization).
         procedure :: destroy => solver_destroy
+        ! What regdae_solver_trust needs to verify singular passes with companions:
+        !> Stop `advance` early at the end of a singular pass (on) or not.
+        procedure :: stop_at_pass_ends => engine_stop_at_pass_ends
+        !> Did a singular pass end during the last advances (the flag is cleared)?
+        procedure :: take_pass_end => engine_take_pass_end
+        !> The checkpoint before the current singular pass: time, state, and whether
+        !! it is frozen (a pass began since), valid (one exists).
+        procedure :: checkpoint => engine_checkpoint
+        !> (t, z) is the new checkpoint, the last pass is over.
+        procedure :: release_checkpoint => engine_release_checkpoint
+        !> The integrator's own time (dopri5 may have stepped beyond the last output).
+        procedure :: integrator_time => engine_integrator_time
+        !> The state z at the current time: (x, v) of a second-order problem, x of a first-order one.
+        procedure :: state => engine_state
+        !> Continue from the state z at t (the current time), e.g. a more accurate one.
+        procedure :: restart_at => engine_restart_at
+        !> Start `other` on the same problem from (t, z) with the tolerances divided by
+        !! kappa (eps too when automatic), the weights in force, no checks.
+        procedure :: start_companion => engine_start_companion
+        !> max_i |za_i - zb_i| / (rtol |zb_i| + atol_i) over the state's components in the error test.
+        procedure :: state_distance => engine_state_distance
+        !> Append a line to the events log.
+        procedure :: note_event => engine_note_event
+        !> The size of the state z (0 before init).
+        procedure :: state_size => engine_state_size
+        !> The time reached.
+        procedure :: time => engine_time
+        !> The size of x (0 before init).
+        procedure :: x_size => engine_x_size
         procedure, private :: record => solver_record
         !> `a = b` does not copy a solver (it owns IDA memory and its callbacks
         !! point at it): `a` is left uninitialized, `b` unchanged; `a%advance`
@@ -152,12 +183,12 @@ module regdae_solver_front
         generic :: assignment(=) => assign_refused
         procedure, private :: assign_refused => solver_assign
         final :: solver_finalize
-    end type regdae_solver
+    end type solver_engine
 
 contains
 
     subroutine solver_init_first(self, problem, t0, x0, opts, stat, atol_vector)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         class(dae_problem), intent(in) :: problem   !! the index-2 DAE (copied)
         real(wp), intent(in) :: t0                  !! initial time
         real(wp), intent(in) :: x0(:)               !! x(t0), length n; must satisfy g(x0, t0) = 0
@@ -181,7 +212,7 @@ contains
     end subroutine solver_init_first
 
     subroutine solver_init_second(self, problem, t0, x0, v0, opts, stat, atol_vector)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         class(second_order_problem), intent(in) :: problem   !! the order-2 DAE or mechanical system (copied)
         real(wp), intent(in) :: t0                  !! initial time
         real(wp), intent(in) :: x0(:)               !! x(t0), length n; g(x0, t0) = 0
@@ -253,7 +284,7 @@ contains
     end subroutine solver_init_second
 
     subroutine solver_init_higher(self, problem, t0, xs0, opts, stat, atol_vector)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         class(higher_order_problem), intent(in) :: problem   !! the order-m DAE (copied)
         real(wp), intent(in) :: t0                   !! initial time
         real(wp), intent(in) :: xs0(:, :)            !! (n, order): x, x', ..., x^(m-1) at t0
@@ -305,7 +336,7 @@ contains
 
     ! Common checks of init; false (with stat and message set) if the input is bad.
     logical function check_input(self, t0, x0, v0, n, m, opts, stat) result(ok)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         real(wp), intent(in) :: t0, x0(:), v0(:)
         integer, intent(in) :: n, m
         type(solver_options), intent(in) :: opts
@@ -354,7 +385,7 @@ contains
     ! The dense formulations: refuse formulation=augmented and the structured
     ! linear solvers (the problem is not a mechanical one, or auto chose dense).
     logical function formulation_fits(self, opts, stat) result(ok)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         type(solver_options), intent(in) :: opts
         integer, intent(out) :: stat
         ok = .true.
@@ -373,7 +404,7 @@ contains
     ! IDA with a dense, band or sparse linear solver, consistent initial values by
     ! IDACalcIC, the diagnostics from IDA's state.
     subroutine solver_start_augmented(self, problem, t0, q0, v0, opts, stat)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         class(mechanical_problem), intent(in) :: problem
         real(wp), intent(in) :: t0, q0(:), v0(:)
         type(solver_options), intent(in) :: opts
@@ -762,7 +793,7 @@ contains
             end if
             if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
         end select
-        call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a)
+        call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
         if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
         if (core%monitor%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
             select type (sys => core%ida%system)
@@ -901,7 +932,7 @@ contains
 
     ! With the model set up: consistent initial values, then the IDA objects.
     subroutine solver_start(self, t0, z0, opts, stat)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         real(wp), intent(in) :: t0, z0(:)
         type(solver_options), intent(in) :: opts
         integer, intent(out) :: stat
@@ -1348,7 +1379,7 @@ contains
                 if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
                     degenerate = .true.
                     g0(gp%row_start(i):gp%row_start(i + 1) - 1) = g0(gp%row_start(i):gp%row_start(i + 1) - 1) + &
-                                                                   ell_x*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
+                        predict_shift*ell_x*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
                 end if
             end do
             if (.not. degenerate) return
@@ -1435,7 +1466,7 @@ contains
     end function weights_text
 
     subroutine solver_advance(self, tout, x, y, stat, v, a)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         real(wp), intent(in) :: tout      !! output time (beyond the current time, or equal to it)
         real(wp), intent(out) :: x(:)     !! x(tout), length n
         real(wp), intent(out), optional :: y(:)   !! y(tout) (lambda for a mechanical problem), length m,
@@ -1452,6 +1483,7 @@ contains
         character(len=:), allocatable :: msg
         logical :: recoverable
         integer :: nx
+        real(wp) :: t_reached
 
         core => self%core
         if (.not. associated(core)) then
@@ -1505,15 +1537,18 @@ contains
                       ' (4 epsilon max(|t0|, |tout|), at least sqrt(tiny) = 1.5E-154)')
             return
         end if
+        t_reached = tout
         if (tout > core%t) then
             ! The active integrator to tout; with integrator=auto the explicit one hands
-            ! over to IDA where the system is stiff, and IDA back where it is not.
+            ! over to IDA where the system is stiff, and IDA back where it is not. With
+            ! stop_at_pass_end, the integrator stops early at the end of a singular pass.
             do
                 if (core%active == integrator_dopri5) then
                     u => core%z_rk
                     call core%rk%advance(core%model, tout, core%opts%rtol, core%atol_z, core%opts%h_max, &
                                          core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat, &
-                                         core%monitor, stop_when_stiff=core%switching)
+                                         core%monitor, stop_when_stiff=core%switching, &
+                                         stop_at_pass_end=core%stop_at_pass_end)
                     if (stat /= regdae_success) then
                         core%t = core%rk%t
                         call copy_state()
@@ -1522,6 +1557,10 @@ contains
                         return
                     end if
                     if (core%monitor%alarm) exit
+                    if (core%rk%pass_stop) then
+                        t_reached = core%rk%t
+                        exit
+                    end if
                     if (.not. core%rk%stiff_detected) exit   ! at tout
                     call switch_to_ida(core, stat, msg)
                     if (stat /= regdae_success) then
@@ -1531,10 +1570,11 @@ contains
                 else
                     u => core%ida%state()
                     if (ida_to(tout)) return
+                    if (t_reached < tout) exit                ! stopped at the end of a pass
                     if (core%active == integrator_ida) exit   ! at tout, else switched to dopri5
                 end if
             end do
-            core%t = tout
+            core%t = t_reached
             core%started = .true.
         end if
         if (core%active == integrator_dopri5) then
@@ -1568,14 +1608,14 @@ contains
         end if
         ! The multiplier (and the acceleration) at an output time come from the
         ! regularized equation, not from IDA's interpolant.
-        call core%model%evaluate(tout, u(1:core%n), stat, recoverable)
-        if (stat == regdae_success) call core%model%solve_multiplier(tout, core%y_work, stat)
+        call core%model%evaluate(core%t, u(1:core%n), stat, recoverable)
+        if (stat == regdae_success) call core%model%solve_multiplier(core%t, core%y_work, stat)
         if (stat /= regdae_success) then
             ! The state at tout is valid; only the multiplier equation is singular here
             ! (Baumgarte where GB is singular, or eps = 0 with the normal equations).
             if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
             if (present(a)) a = ieee_value(1.0_wp, ieee_quiet_nan)
-            call self%record(regdae_warn_multiplier_undefined, 'the multiplier at t = '//format_real(tout)// &
+            call self%record(regdae_warn_multiplier_undefined, 'the multiplier at t = '//format_real(core%t)// &
                              ' is undefined: '//core%model%message, stat)
             return
         end if
@@ -1639,6 +1679,11 @@ contains
                 taken = taken + 1
                 if (t_now <= t_out) then
                     if (sample_or_stop(t_now)) return
+                    if (core%stop_at_pass_end .and. core%monitor%pass_ended .and. t_now < t_out) then
+                        t_reached = t_now   ! IDA's state is the step's end
+                        stopped = .false.
+                        return
+                    end if
                 end if
                 if (core%switching .and. t_now < t_out .and. mod(taken, 20) == 0) then
                     if (explicit_would_do(core, t_now)) then
@@ -1740,7 +1785,7 @@ contains
     end subroutine solver_advance
 
     function solver_statistics(self) result(st)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         type(solver_stats) :: st
 
         st%t = self%t
@@ -1761,11 +1806,13 @@ contains
             st%work_defect = core%monitor%work_defect
             st%unresolved_passes = core%monitor%unresolved
             st%resolution_ratio = core%monitor%resolution_ratio
+            st%weight_changes = core%monitor%weights%changes
+            st%eps_changes = core%monitor%scales%eps_changes
         end associate
     end function solver_statistics
 
     function solver_message(self) result(msg)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         character(len=:), allocatable :: msg
         if (allocated(self%last_message)) then
             msg = self%last_message
@@ -1775,7 +1822,7 @@ contains
     end function solver_message
 
     function solver_events(self) result(text)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         character(len=:), allocatable :: text
         text = ''
         if (associated(self%core)) then
@@ -1784,25 +1831,25 @@ contains
     end function solver_events
 
     function solver_options_in_force(self) result(opts)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         type(solver_options) :: opts
         if (associated(self%core)) opts = self%core%opts
     end function solver_options_in_force
 
     integer function solver_formulation(self)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         solver_formulation = 0
         if (associated(self%core)) solver_formulation = self%core%formulation
     end function solver_formulation
 
     integer function solver_linear_solver(self)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         solver_linear_solver = 0
         if (associated(self%core)) solver_linear_solver = self%core%linear_solver
     end function solver_linear_solver
 
     integer function solver_lsq_method(self)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         solver_lsq_method = 0
         if (associated(self%core)) then
             if (.not. self%core%augmented) solver_lsq_method = self%core%model%lsq
@@ -1810,13 +1857,13 @@ contains
     end function solver_lsq_method
 
     real(wp) function solver_sigma_min(self)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         solver_sigma_min = ieee_value(1.0_wp, ieee_quiet_nan)
         if (associated(self%core)) solver_sigma_min = self%core%monitor%sigma_last
     end function solver_sigma_min
 
     function solver_singular_intervals(self) result(intervals)
-        class(regdae_solver), intent(in) :: self
+        class(solver_engine), intent(in) :: self
         real(wp), allocatable :: intervals(:, :)
         if (associated(self%core)) then
             intervals = self%core%monitor%intervals()
@@ -1827,7 +1874,7 @@ contains
 
     ! Set the status of a call and its message.
     subroutine solver_record(self, code, text, stat)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         integer, intent(in) :: code
         character(len=*), intent(in) :: text
         integer, intent(out) :: stat
@@ -1841,7 +1888,7 @@ contains
     end subroutine solver_record
 
     subroutine solver_destroy(self)
-        class(regdae_solver), intent(inout) :: self
+        class(solver_engine), intent(inout) :: self
         type(solver_core), pointer :: core
 
         core => self%core
@@ -1853,8 +1900,8 @@ contains
     end subroutine solver_destroy
 
     subroutine solver_assign(lhs, rhs)
-        class(regdae_solver), intent(inout) :: lhs
-        class(regdae_solver), intent(in) :: rhs
+        class(solver_engine), intent(inout) :: lhs
+        class(solver_engine), intent(in) :: rhs
         integer :: stat
         if (associated(lhs%core) .and. associated(rhs%core)) then
             if (associated(lhs%core, rhs%core)) return   ! a = a
@@ -1867,9 +1914,238 @@ contains
     end subroutine solver_assign
 
     subroutine solver_finalize(self)
-        type(regdae_solver), intent(inout) :: self
+        type(solver_engine), intent(inout) :: self
         call self%destroy()
     end subroutine solver_finalize
+
+    subroutine engine_stop_at_pass_ends(self, on)
+        class(solver_engine), intent(inout) :: self
+        logical, intent(in) :: on
+        if (associated(self%core)) self%core%stop_at_pass_end = on
+    end subroutine engine_stop_at_pass_ends
+
+    logical function engine_take_pass_end(self) result(ended)
+        class(solver_engine), intent(inout) :: self
+        ended = .false.
+        if (.not. associated(self%core)) return
+        ended = self%core%monitor%pass_ended
+        self%core%monitor%pass_ended = .false.
+    end function engine_take_pass_end
+
+    subroutine engine_checkpoint(self, t, z, frozen, valid)
+        class(solver_engine), intent(in) :: self
+        real(wp), intent(out) :: t
+        real(wp), allocatable, intent(out) :: z(:)
+        logical, intent(out) :: frozen, valid
+        t = 0.0_wp
+        frozen = .false.
+        valid = .false.
+        if (.not. associated(self%core)) return
+        associate (mon => self%core%monitor)
+            valid = mon%checkpoint_valid
+            frozen = mon%checkpoint_frozen
+            if (.not. valid) return
+            t = mon%checkpoint_t
+            z = mon%checkpoint_z
+        end associate
+    end subroutine engine_checkpoint
+
+    subroutine engine_release_checkpoint(self, t, z)
+        class(solver_engine), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)
+        if (associated(self%core)) call self%core%monitor%release_checkpoint(t, z)
+    end subroutine engine_release_checkpoint
+
+    real(wp) function engine_integrator_time(self) result(t)
+        class(solver_engine), intent(in) :: self
+        t = self%t
+        if (.not. associated(self%core)) return
+        t = self%core%t
+        if (self%core%active == integrator_dopri5) then
+            t = self%core%rk%t
+        else if (allocated(self%core%ida%system)) then
+            t = self%core%ida%current_time()
+        end if
+    end function engine_integrator_time
+
+    integer function engine_x_size(self) result(n)
+        class(solver_engine), intent(in) :: self
+        n = 0
+        if (associated(self%core)) n = self%core%nx
+    end function engine_x_size
+
+    real(wp) function engine_time(self) result(t)
+        class(solver_engine), intent(in) :: self
+        t = self%t
+    end function engine_time
+
+    integer function engine_state_size(self) result(n)
+        class(solver_engine), intent(in) :: self
+        n = 0
+        if (associated(self%core)) n = self%core%n
+    end function engine_state_size
+
+    subroutine engine_state(self, z)
+        class(solver_engine), intent(in) :: self
+        real(wp), intent(out) :: z(:)   !! length state_size()
+        real(c_double), pointer :: u(:)
+        integer :: nx
+        if (.not. associated(self%core)) return
+        associate (core => self%core)
+            nx = core%nx
+            if (core%active == integrator_dopri5) then
+                z = core%z_rk(1:size(z))
+            else if (core%augmented) then
+                u => core%ida%state()
+                select type (sys => core%ida%system)
+                type is (augmented_system)
+                    call sys%unpack(u, u, q=z(1:nx), v=z(nx + 1:2*nx))
+                end select
+            else
+                u => core%ida%state()
+                z = u(1:size(z))
+            end if
+        end associate
+    end subroutine engine_state
+
+    subroutine engine_restart_at(self, t, z, stat)
+        class(solver_engine), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)
+        integer, intent(out) :: stat
+        real(wp), allocatable :: zp(:), y(:), u0(:), up0(:), id(:)
+        character(len=:), allocatable :: msg
+        logical :: recoverable
+        integer :: nx
+        stat = regdae_err_not_initialized
+        if (.not. associated(self%core)) return
+        associate (core => self%core)
+            nx = core%nx
+            core%t = t
+            self%t = t
+            core%sampled_t = t
+            if (core%active == integrator_dopri5) then
+                core%z_rk = z
+                call core%rk%start(core%model, t, z, core%rk%h_last, stat)
+            else if (core%augmented) then
+                select type (sys => core%ida%system)
+                type is (augmented_system)
+                    allocate (u0(sys%neq), up0(sys%neq), id(sys%neq))
+                    call sys%initial_guess(z(1:nx), z(nx + 1:2*nx), u0, up0, id)
+                    call core%ida%restart(t, u0, up0, stat)
+                    if (stat == regdae_success) call core%ida%calc_ic(id, t + 1.0e-3_wp*max(1.0_wp, abs(t)), stat, msg)
+                end select
+            else
+                allocate (zp(core%n), y(core%m))
+                call core%model%slope_eliminated(t, z, zp, y, stat, recoverable)
+                if (stat /= regdae_success) return
+                if (core%formulation == formulation_multiplier) then
+                    call core%ida%restart(t, [z, y], [zp, spread(0.0_wp, 1, core%m)], stat)
+                else
+                    call core%ida%restart(t, z, zp, stat)
+                end if
+            end if
+        end associate
+    end subroutine engine_restart_at
+
+    subroutine engine_start_companion(self, other, kappa, t, z, stat)
+        class(solver_engine), intent(in) :: self
+        class(solver_engine), intent(inout) :: other
+        real(wp), intent(in) :: kappa       !! the tolerances' divisor (> 1)
+        real(wp), intent(in) :: t, z(:)     !! the start: a state of self (x, v)
+        integer, intent(out) :: stat
+        type(solver_options) :: opts
+        real(wp) :: eps, zs(size(z))
+        integer :: nx, pstat
+        stat = regdae_err_not_initialized
+        if (.not. associated(self%core)) return
+        associate (core => self%core)
+            nx = core%nx
+            opts = core%opts
+            opts%rtol = core%opts%rtol/kappa
+            opts%atol = core%opts%atol/kappa
+            if (opts%atol_v /= option_auto) opts%atol_v = core%opts%atol_v/kappa
+            opts%jump_tol = 0.0_wp
+            opts%drift_tol = 0.0_wp
+            opts%work_tol = 0.0_wp
+            opts%invariant_tol = 0.0_wp
+            opts%resolution_tol = 0.0_wp
+            opts%ic_tol = huge(1.0_wp)
+            opts%check_jacobians = .false.
+            opts%h_init = 0.0_wp
+            opts%integrator = merge(integrator_dopri5, integrator_ida, core%active == integrator_dopri5)
+            opts%formulation = core%formulation
+            opts%linear_solver = merge(core%linear_solver, linear_solver_auto, core%augmented)
+            if (core%augmented) then
+                select type (sys => core%ida%system)
+                type is (augmented_system)
+                    eps = sys%eps
+                    opts%gamma = sys%gamma1
+                    opts%gamma1 = sys%gamma1
+                    opts%gamma0 = sys%gamma0
+                    if (opts%index == 2) opts%gamma0 = 0.5_wp*sys%gamma1**2
+                end select
+            else
+                eps = core%model%eps
+                if (core%model%order == 1) opts%gamma = core%model%w(1)
+                if (core%model%order == 2) then
+                    opts%gamma0 = core%model%w(1)
+                    opts%gamma1 = core%model%w(2)
+                end if
+            end if
+            ! an automatic eps shrinks with the tolerance as its rule says (rtol^2; direct: rtol)
+            opts%eps = eps
+            if (core%eps_factor > 0.0_wp) opts%eps = eps/kappa**merge(1, 2, opts%method == method_direct)
+            ! the start projected onto the constraints: the solution's drift is within its
+            ! tolerance, not within the companion's (with a thinner layer it can bounce off the branch)
+            zs = z
+            if (core%augmented) then
+                select type (sys => core%ida%system)
+                type is (augmented_system)
+                    call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
+                    call other%init(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
+                                    atol_vector=core%atol_z/kappa)
+                end select
+            else if (allocated(core%model%second)) then
+                call project_second_order(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
+                call other%init(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
+                                atol_vector=core%atol_z/kappa)
+            else if (allocated(core%model%higher)) then
+                stat = regdae_err_bad_input   ! order >= 3: not verified
+            else
+                select type (p => core%model%first)
+                type is (velocity_index2_problem)
+                    call project_second_order(p%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
+                    call other%init(p%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, atol_vector=core%atol_z/kappa)
+                class default
+                    call project_first_order(p, t, zs(1:nx), pstat)
+                    call other%init(p, t, zs(1:nx), opts, stat, atol_vector=core%atol_z/kappa)
+                end select
+            end if
+        end associate
+    end subroutine engine_start_companion
+
+    real(wp) function engine_state_distance(self, za, zb) result(d)
+        class(solver_engine), intent(in) :: self
+        real(wp), intent(in) :: za(:), zb(:)
+        integer :: i
+        logical :: skip_v
+        d = 0.0_wp
+        if (.not. associated(self%core)) return
+        associate (core => self%core)
+            skip_v = core%second_order .and. core%opts%excluded == excluded_vy
+            do i = 1, min(size(za), size(zb), core%n)
+                if (skip_v .and. i > core%nx) cycle
+                d = max(d, abs(za(i) - zb(i))/(core%opts%rtol*abs(zb(i)) + core%atol_z(i)))
+            end do
+        end associate
+        if (.not. (d == d)) d = huge(1.0_wp)
+    end function engine_state_distance
+
+    subroutine engine_note_event(self, text)
+        class(solver_engine), intent(inout) :: self
+        character(len=*), intent(in) :: text
+        if (associated(self%core)) call log_event(self%core, text)
+    end subroutine engine_note_event
 
     ! A new core with its model (both at fixed addresses until destroy).
     subroutine new_core(core)

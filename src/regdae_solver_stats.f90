@@ -30,6 +30,16 @@ module regdae_solver_stats
         integer :: unresolved_passes = 0       !! singular passes approached with an x error, implied by the
                                                !! constraint residual, above resolution_tol times the tolerance
         real(wp) :: resolution_ratio = 0.0_wp  !! largest such implied error over the tolerance (rtol |x| + atol)
+        integer :: pass_checks = 0             !! singular passes re-integrated at tighter tolerances (pass_check)
+        integer :: passes_resolved = 0         !! of those, passes where a tighter level's state was taken
+        integer :: passes_unresolved = 0       !! of those, passes where no two levels agreed (a warning each)
+        real(wp) :: pass_error = 0.0_wp        !! largest difference between the solution and the first tighter
+                                               !! level over a pass, in error weights (rtol |z| + atol)
+        integer(int64) :: companion_steps = 0  !! steps of the companions (pass checks and the error estimate)
+        real(wp) :: error_estimate = -1.0_wp   !! error_estimate=yes: the estimated error of x at the last output,
+                                               !! max_i |e_i| / (rtol |x_i| + atol_i); -1: no estimate
+        integer :: weight_changes = 0          !! automatic Baumgarte weights changed along the run
+        integer :: eps_changes = 0             !! automatic eps changed along the run
     end type solver_stats
 
 end module regdae_solver_stats

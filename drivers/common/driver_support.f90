@@ -27,6 +27,16 @@ module driver_support
         procedure :: seconds => stopwatch_seconds
     end type stopwatch
 
+    !> The warnings (status > 0) of a run's advances: how many, the first one's
+    !! time and message (the summary's status word is then 'warning').
+    type, public :: warning_log
+        integer :: count = 0
+        real(wp) :: t_first = 0.0_wp
+        character(len=:), allocatable :: first
+    contains
+        procedure :: note => warning_note
+    end type warning_log
+
 contains
 
     !> The i-th command-line argument.
@@ -223,22 +233,51 @@ contains
         text = ' steps='//format_int(st%steps)//' res_evals='//format_int(st%res_evals)// &
                ' jac_evals='//format_int(st%jac_evals)//' err_test_fails='//format_int(st%err_test_fails)// &
                ' conv_fails='//format_int(st%conv_fails)//' switches='//format_int(st%switches)// &
-               ' work_defect='//num(st%work_defect)//' seconds='//num(seconds)
+               ' work_defect='//num(st%work_defect)//' pass_checks='//format_int(st%pass_checks)// &
+               ' passes_resolved='//format_int(st%passes_resolved)//' passes_unresolved='// &
+               format_int(st%passes_unresolved)//' pass_error='//num(st%pass_error)// &
+               ' companion_steps='//format_int(st%companion_steps)//' seconds='//num(seconds)
         if (present(output_seconds)) text = text//' output_seconds='//num(output_seconds)
     end function stats_fields
 
     !> The summary's status word of a finished run: 'ok', or 'failed' after the
     !! line '# error: <the solver's message>'.
-    function run_status(solver, stat) result(text)
+    function run_status(solver, stat, warnings) result(text)
         type(regdae_solver), intent(in) :: solver
         integer, intent(in) :: stat
+        type(warning_log), intent(in), optional :: warnings   !! the warnings of the run's advances
         character(len=:), allocatable :: text
         text = 'ok'
-        if (stat /= regdae_success) then
+        if (stat < 0) then
             write (*, '(a)') '# error: '//solver%message()
             text = 'failed'
+        else if (stat > 0) then
+            write (*, '(a)') '# warning: '//solver%message()
+            text = 'warning'
+        end if
+        if (present(warnings)) then
+            if (warnings%count > 0) then
+                write (*, '(a)') '# warning: '//format_int(warnings%count)//' advance(s) returned a warning; '// &
+                    'the first, at t = '//num(warnings%t_first)//': '//warnings%first
+                if (text == 'ok') text = 'warning'
+            end if
         end if
     end function run_status
+
+    !> Keep a run's warnings: `note` after each advance (stat > 0 counts; the first
+    !! message and time are kept).
+    subroutine warning_note(self, solver, stat, t)
+        class(warning_log), intent(inout) :: self
+        type(regdae_solver), intent(in) :: solver
+        integer, intent(in) :: stat
+        real(wp), intent(in) :: t
+        if (stat <= 0) return
+        self%count = self%count + 1
+        if (self%count == 1) then
+            self%first = solver%message()
+            self%t_first = t
+        end if
+    end subroutine warning_note
 
     !> Print a usage error naming the problem and stop with status 2.
     subroutine die_usage(program_name, text)

@@ -1,0 +1,553 @@
+!> The solver users hold, `regdae_solver`: the integration engine
+!! (`regdae_solver_front`) with what makes its status ok mean "right to the
+!! tolerance" where the regularization acts, and an estimate of the error.
+!!
+!! **Pass check** (option `pass_check`, default on; problems of order 1 and 2).
+!! The local error test cannot see what a singular pass does to the solution:
+!! the integration errors of the approach are amplified where G loses rank, and
+!! the regularization itself acts there. Each pass is therefore integrated again
+!! from the checkpoint before it (the engine's last sample on the approach, where
+!! sigma_min(GB) was still 5 times the singular threshold) by companions at
+!! rtol/kappa^k, k = 1, 2, ... (kappa = 10, atol likewise, an automatic eps with
+!! its rule's rtol^2, the weights in force, no checks), and held against the
+!! solution in its own error weights: the first level k whose state differs from
+!! level k+1 by at most `pass_tol` (in units of rtol |z| + atol, over the state
+!! z = (x, v) in the error test) is the answer, level 0 being the solution
+!! itself. At the end of the pass (the engine stops there) the solution continues
+!! from the answer's state; at outputs inside the pass the answer's values are
+!! returned. If no two levels agree (at most 3 levels, and none below rtol
+!! 1e-13) the finest level is taken and `advance` returns
+!! `regdae_warn_unresolved` with the differences. Statistics: `pass_checks`,
+!! `passes_resolved`, `passes_unresolved`, `pass_error`, `companion_steps`.
+!!
+!! **Error estimate** (option `error_estimate`, default off): a second solver
+!! on the same problem at rtol/10 and atol/10, with its own automatic parameters
+!! and pass checks, alongside; at every output `error_estimate(e)` gives
+!! e = x_companion - x, and statistics()%error_estimate its norm in error weights.
+module regdae_solver_trust
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use, intrinsic :: iso_fortran_env, only: int64
+    use regdae_kinds, only: wp
+    use regdae_status
+    use regdae_options, only: solver_options
+    use regdae_problem, only: dae_problem
+    use regdae_second_order_problem, only: second_order_problem
+    use regdae_higher_order_problem, only: higher_order_problem
+    use regdae_solver_front, only: solver_engine, solver_stats
+    use regdae_format, only: format_real, format_int
+    implicit none
+    private
+
+    public :: solver_stats
+
+    !> The companions' tolerances are the solution's divided by kappa^k.
+    real(wp), parameter :: kappa = 10.0_wp
+    !> At most this many companion levels per pass.
+    integer, parameter :: max_levels = 3
+    !> No companion below this rtol (the integrators' own floor).
+    real(wp), parameter :: rtol_floor = 1.0e-13_wp
+
+    ! The companions of the current singular pass: level(k) at rtol/kappa^k from
+    ! the checkpoint (t_start, z_start).
+    type :: pass_ladder
+        type(solver_engine) :: level(max_levels)
+        integer :: levels = 0          ! levels started
+        logical :: active = .false.
+        logical :: warned = .false.    ! this pass has warned already
+        real(wp) :: t_start = 0.0_wp
+        real(wp), allocatable :: z_start(:)
+        real(wp), allocatable :: z(:, :)   ! (n, 0:max_levels): the states at the last check
+        real(wp) :: d(max_levels) = 0.0_wp ! d(k): distance between levels k-1 and k there
+    end type pass_ladder
+
+    !> A regularized DAE solver (doc/api.md): `init`, `advance`, `statistics`, ...
+    type, public :: regdae_solver
+        private
+        type(solver_engine) :: main
+        type(pass_ladder) :: ladder
+        type(regdae_solver), pointer :: estimator => null()
+        logical :: verify = .false.
+        real(wp) :: pass_tol = 3.0_wp
+        real(wp) :: rtol = 0.0_wp
+        integer :: max_level = 0
+        integer :: pass_checks = 0, passes_resolved = 0, passes_unresolved = 0
+        real(wp) :: pass_error = 0.0_wp
+        integer(int64) :: retired_steps = 0         ! steps of companions already destroyed
+        real(wp), allocatable :: x_error(:)         ! error_estimate: x_companion - x at the last output
+        real(wp) :: error_norm = -1.0_wp
+        integer :: last_stat = regdae_err_not_initialized
+        character(len=:), allocatable :: last_message
+        logical :: assigned = .false.
+    contains
+        !> Set up a problem (see regdae_solver_front for the three forms):
+        !! `init(problem, t0, x0, opts, stat)` (order 1), `init(problem, t0, x0, v0, opts, stat)`
+        !! (order 2, mechanical), `init(problem, t0, xs0, opts, stat)` (order m >= 3); optional
+        !! last argument `atol_vector`.
+        generic :: init => init_first_order, init_second_order, init_higher_order
+        procedure, private :: init_first_order => trust_init_first
+        procedure, private :: init_second_order => trust_init_second
+        procedure, private :: init_higher_order => trust_init_higher
+        !> Integrate to `tout`; return x(tout), the multiplier y(tout) (lambda for a
+        !! mechanical problem) and, for second-order problems, optionally v(tout) and a(tout).
+        procedure :: advance => trust_advance
+        !> Statistics of the integration so far.
+        procedure :: statistics => trust_statistics
+        !> Message of the last call (empty after success).
+        procedure :: message => trust_message
+        !> The resolved least-squares solver.
+        procedure :: lsq_method => trust_lsq_method
+        !> The log of integrator switches, weight changes and resolved passes, one line each.
+        procedure :: events => trust_events
+        !> The options in force, `auto` values resolved.
+        procedure :: options => trust_options
+        !> The resolved formulation and linear solver (codes of regdae_options).
+        procedure :: formulation => trust_formulation
+        procedure :: linear_solver => trust_linear_solver
+        !> sigma_min(GB) at the last sample.
+        procedure :: sigma_min => trust_sigma_min
+        !> The singular intervals so far: (2, k) array of first and last sample times.
+        procedure :: singular_intervals => trust_singular_intervals
+        !> error_estimate=yes: e = x_companion - x at the last output (length n); false
+        !! if there is no estimate.
+        procedure :: error_estimate => trust_error_estimate
+        !> Free everything (also done by `init` and finalization).
+        procedure :: destroy => trust_destroy
+        generic :: assignment(=) => assign_refused
+        procedure, private :: assign_refused => trust_assign
+        final :: trust_finalize
+    end type regdae_solver
+
+contains
+
+    recursive subroutine trust_init_first(self, problem, t0, x0, opts, stat, atol_vector)
+        class(regdae_solver), intent(inout) :: self
+        class(dae_problem), intent(in) :: problem
+        real(wp), intent(in) :: t0, x0(:)
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        real(wp), intent(in), optional :: atol_vector(:)
+        call self%destroy()
+        call self%main%init(problem, t0, x0, opts, stat, atol_vector)
+        call after_init(self, opts, stat)
+        if (.not. new_estimator(self, opts, stat)) return
+        if (present(atol_vector)) then
+            call self%estimator%init(problem, t0, x0, estimator_options(opts), stat, atol_vector/kappa)
+        else
+            call self%estimator%init(problem, t0, x0, estimator_options(opts), stat)
+        end if
+        call estimator_started(self, stat)
+    end subroutine trust_init_first
+
+    recursive subroutine trust_init_second(self, problem, t0, x0, v0, opts, stat, atol_vector)
+        class(regdae_solver), intent(inout) :: self
+        class(second_order_problem), intent(in) :: problem
+        real(wp), intent(in) :: t0, x0(:), v0(:)
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        real(wp), intent(in), optional :: atol_vector(:)
+        call self%destroy()
+        call self%main%init(problem, t0, x0, v0, opts, stat, atol_vector)
+        call after_init(self, opts, stat)
+        if (.not. new_estimator(self, opts, stat)) return
+        if (present(atol_vector)) then
+            call self%estimator%init(problem, t0, x0, v0, estimator_options(opts), stat, atol_vector/kappa)
+        else
+            call self%estimator%init(problem, t0, x0, v0, estimator_options(opts), stat)
+        end if
+        call estimator_started(self, stat)
+    end subroutine trust_init_second
+
+    recursive subroutine trust_init_higher(self, problem, t0, xs0, opts, stat, atol_vector)
+        class(regdae_solver), intent(inout) :: self
+        class(higher_order_problem), intent(in) :: problem
+        real(wp), intent(in) :: t0, xs0(:, :)
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        real(wp), intent(in), optional :: atol_vector(:)
+        call self%destroy()
+        call self%main%init(problem, t0, xs0, opts, stat, atol_vector)
+        call after_init(self, opts, stat)
+        self%verify = .false.   ! order >= 3: the Taylor weights leave their own error; no pass check
+        call self%main%stop_at_pass_ends(.false.)
+        if (.not. new_estimator(self, opts, stat)) return
+        if (present(atol_vector)) then
+            call self%estimator%init(problem, t0, xs0, estimator_options(opts), stat, atol_vector/kappa)
+        else
+            call self%estimator%init(problem, t0, xs0, estimator_options(opts), stat)
+        end if
+        call estimator_started(self, stat)
+    end subroutine trust_init_higher
+
+    ! After the engine's init: the status, and the pass check's settings.
+    subroutine after_init(self, opts, stat)
+        type(regdae_solver), intent(inout) :: self
+        type(solver_options), intent(in) :: opts
+        integer, intent(in) :: stat
+        self%assigned = .false.
+        call record(self, stat, self%main%message())
+        if (stat < 0) return
+        self%pass_tol = opts%pass_tol
+        self%rtol = opts%rtol
+        self%max_level = 0
+        do while (self%max_level < max_levels .and. opts%rtol/kappa**(self%max_level + 1) >= rtol_floor)
+            self%max_level = self%max_level + 1
+        end do
+        self%verify = opts%pass_check .and. self%max_level > 0
+        call self%main%stop_at_pass_ends(self%verify)
+        allocate (self%x_error(0))
+    end subroutine after_init
+
+    ! The error estimate's companion: the user's options at rtol/10, atol/10.
+    function estimator_options(opts) result(o)
+        type(solver_options), intent(in) :: opts
+        type(solver_options) :: o
+        o = opts
+        o%rtol = opts%rtol/kappa
+        o%atol = opts%atol/kappa
+        if (o%atol_v > 0.0_wp) o%atol_v = opts%atol_v/kappa
+        o%error_estimate = .false.
+    end function estimator_options
+
+    ! error_estimate=yes after a successful init: the companion allocated (true),
+    ! or refused with stat and a message (false). False without an estimate.
+    recursive logical function new_estimator(self, opts, stat) result(wanted)
+        type(regdae_solver), intent(inout) :: self
+        type(solver_options), intent(in) :: opts
+        integer, intent(inout) :: stat
+        wanted = .false.
+        if (stat < 0 .or. .not. opts%error_estimate) return
+        if (opts%rtol/kappa < rtol_floor) then
+            call record(self, regdae_err_bad_input, 'error_estimate=yes needs rtol >= '// &
+                        format_real(kappa*rtol_floor)//' (its companion runs at rtol/10)', stat)
+            call self%main%destroy()
+            return
+        end if
+        allocate (self%estimator)
+        wanted = .true.
+    end function new_estimator
+
+    recursive subroutine estimator_started(self, stat)
+        type(regdae_solver), intent(inout) :: self
+        integer, intent(inout) :: stat
+        integer :: code
+        if (stat < 0) then
+            code = stat
+            call record(self, code, 'error_estimate: the companion at rtol/10 could not start: '// &
+                        self%estimator%message(), stat)
+            call self%destroy()
+            return
+        end if
+        call record(self, regdae_success, '', stat)
+    end subroutine estimator_started
+
+    recursive subroutine trust_advance(self, tout, x, y, stat, v, a)
+        class(regdae_solver), intent(inout) :: self
+        real(wp), intent(in) :: tout      !! output time (beyond the current time, or equal to it)
+        real(wp), intent(out) :: x(:)     !! x(tout), length n
+        real(wp), intent(out), optional :: y(:)   !! y(tout) (lambda for a mechanical problem), length m
+        integer, intent(out) :: stat      !! regdae status code (> 0: a warning, x is returned)
+        real(wp), intent(out), optional :: v(:)   !! second-order problems: v(tout)
+        real(wp), intent(out), optional :: a(:)   !! second-order problems: the acceleration x''(tout)
+        integer :: warn, estat
+        character(len=:), allocatable :: warn_text
+        real(wp) :: t_now
+        real(wp), allocatable :: xe(:)
+        logical :: ended, frozen, valid
+        real(wp) :: tc
+        real(wp), allocatable :: zc(:)
+        warn = regdae_success
+        warn_text = ''
+        do
+            call self%main%advance(tout, x, y, stat, v, a)
+            if (stat < 0) then
+                call record(self, stat, self%main%message())
+                return
+            end if
+            if (stat > 0 .and. warn == regdae_success) then
+                warn = stat
+                warn_text = self%main%message()
+            end if
+            t_now = self%main%time()
+            if (self%verify) then
+                ended = self%main%take_pass_end()
+                call self%main%checkpoint(tc, zc, frozen, valid)
+                if (frozen .and. valid) call check_pass(self, t_now, ended, x, y, v, a, warn, warn_text)
+            end if
+            if (.not. (t_now < tout)) exit
+        end do
+        if (associated(self%estimator)) then
+            allocate (xe(size(x)))
+            call self%estimator%advance(tout, xe, stat=estat)
+            if (estat >= 0) then
+                self%x_error = xe - x
+                self%error_norm = self%main%state_distance(xe, x)
+            else
+                self%x_error = [real(wp) ::]
+                self%error_norm = -1.0_wp
+                if (warn == regdae_success) then
+                    warn = regdae_warn_unresolved
+                    warn_text = 'error_estimate: the companion at rtol/10 failed at t = '// &
+                                format_real(self%estimator%main%time())//' ('//self%estimator%message()// &
+                                '): no estimate from there on'
+                end if
+                call self%estimator%destroy()
+                deallocate (self%estimator)
+            end if
+        end if
+        call record(self, warn, warn_text, stat)
+    end subroutine trust_advance
+
+    ! The pass check at time t (the engine's current time; a pass is going on, or
+    ! ended there if `ended`): the ladder started or continued from the
+    ! checkpoint, its levels brought to t, the answer level's values into the
+    ! outputs; at the end of the pass the engine continues from the answer.
+    subroutine check_pass(self, t, ended, x, y, v, a, warn, warn_text)
+        type(regdae_solver), intent(inout) :: self
+        real(wp), intent(in) :: t
+        logical, intent(in) :: ended
+        real(wp), intent(inout) :: x(:)
+        real(wp), intent(inout), optional :: y(:), v(:), a(:)
+        integer, intent(inout) :: warn
+        character(len=:), allocatable, intent(inout) :: warn_text
+        integer :: k, n, answer, lstat
+        real(wp) :: tc
+        real(wp), allocatable :: zc(:)
+        logical :: frozen, valid, agreed
+        character(len=:), allocatable :: text
+        n = self%main%state_size()
+        associate (lad => self%ladder)
+            if (.not. lad%active) then
+                call self%main%checkpoint(tc, zc, frozen, valid)
+                lad%active = .true.
+                lad%warned = .false.
+                lad%levels = 0
+                lad%t_start = tc
+                lad%z_start = zc
+                if (allocated(lad%z)) deallocate (lad%z)
+                allocate (lad%z(n, 0:max_levels))
+                lad%d = 0.0_wp
+            end if
+            call self%main%state(lad%z(:, 0))
+            answer = -1
+            do k = 1, self%max_level
+                if (k > lad%levels) then
+                    call self%main%start_companion(lad%level(k), kappa**k, lad%t_start, lad%z_start, lstat)
+                    if (lstat < 0) exit
+                    lad%levels = k
+                end if
+                call bring_to(lad%level(k), t, lad%z(:, k), lstat)
+                if (lstat < 0) then   ! this level cannot go on: the pass is not verified beyond k-1
+                    call retire(self, k)
+                    exit
+                end if
+                lad%d(k) = self%main%state_distance(lad%z(:, k - 1), lad%z(:, k))
+                if (k == 1) self%pass_error = max(self%pass_error, lad%d(1))
+                if (lad%d(k) <= self%pass_tol) then
+                    answer = k - 1
+                    exit
+                end if
+            end do
+            agreed = (answer >= 0)
+            if (.not. agreed) answer = lad%levels   ! the finest level that ran
+            if (answer > 0) then   ! its values at t are the outputs
+                call lad%level(answer)%advance(t, x, y, lstat, v, a)
+            end if
+            if (.not. agreed .and. .not. lad%warned) then
+                lad%warned = .true.
+                self%passes_unresolved = self%passes_unresolved + 1
+                text = 'the singular pass after t = '//format_real(lad%t_start)//' is not resolved to the '// &
+                       'tolerance at t = '//format_real(t)//': re-integrated at rtol/10^k, consecutive levels differ by'
+                do k = 1, lad%levels
+                    text = text//' '//format_real(lad%d(k))
+                end do
+                text = text//' error weights (> pass_tol = '//format_real(self%pass_tol)//'); x is the finest '// &
+                       'level''s (rtol/'//format_real(kappa**answer)//'); a smaller rtol, or another eps, may '// &
+                       'resolve it; pass_check=no skips this check'
+                call self%main%note_event('t = '//format_real(t)//': unresolved: '//text)
+                if (warn == regdae_success) then
+                    warn = regdae_warn_unresolved
+                    warn_text = text
+                end if
+            end if
+            if (.not. ended) return
+            ! the end of the pass: the engine goes on from the answer's state
+            self%pass_checks = self%pass_checks + 1
+            if (answer > 0) then
+                call self%main%restart_at(t, lad%z(:, answer), lstat)
+                if (agreed) then
+                    self%passes_resolved = self%passes_resolved + 1
+                    call self%main%note_event('t = '//format_real(t)//': the singular pass after t = '// &
+                                              format_real(lad%t_start)//' resolved at rtol/'// &
+                                              format_real(kappa**answer)//' (the solution differed by '// &
+                                              format_real(lad%d(1))//' error weights); the run goes on from there')
+                end if
+            end if
+            call self%main%release_checkpoint(t, lad%z(:, answer))
+            do k = 1, lad%levels
+                call retire(self, k)
+            end do
+            lad%levels = 0
+            lad%active = .false.
+        end associate
+    end subroutine check_pass
+
+    ! Bring a companion to time t (if it is behind) and read its state.
+    subroutine bring_to(engine, t, z, stat)
+        type(solver_engine), intent(inout) :: engine
+        real(wp), intent(in) :: t
+        real(wp), intent(out) :: z(:)
+        integer, intent(out) :: stat
+        real(wp), allocatable :: xk(:)
+        stat = regdae_success
+        if (engine%time() < t) then
+            allocate (xk(engine%x_size()))
+            do while (engine%time() < t)   ! a companion stops at its own pass ends only if asked: once
+                call engine%advance(t, xk, stat=stat)
+                if (stat < 0) return
+            end do
+        end if
+        call engine%state(z)
+    end subroutine bring_to
+
+    ! Destroy level k of the ladder, keeping its step count.
+    subroutine retire(self, k)
+        type(regdae_solver), intent(inout) :: self
+        integer, intent(in) :: k
+        type(solver_stats) :: st
+        st = self%ladder%level(k)%statistics()
+        self%retired_steps = self%retired_steps + st%steps
+        call self%ladder%level(k)%destroy()
+    end subroutine retire
+
+    recursive function trust_statistics(self) result(st)
+        class(regdae_solver), intent(in) :: self
+        type(solver_stats) :: st
+        type(solver_stats) :: other
+        integer :: k
+        st = self%main%statistics()
+        st%pass_checks = self%pass_checks
+        st%passes_resolved = self%passes_resolved
+        st%passes_unresolved = self%passes_unresolved
+        st%pass_error = self%pass_error
+        st%companion_steps = self%retired_steps
+        do k = 1, self%ladder%levels
+            other = self%ladder%level(k)%statistics()
+            st%companion_steps = st%companion_steps + other%steps
+        end do
+        if (associated(self%estimator)) then
+            other = self%estimator%statistics()
+            st%companion_steps = st%companion_steps + other%steps + other%companion_steps
+        end if
+        st%error_estimate = self%error_norm
+    end function trust_statistics
+
+    logical function trust_error_estimate(self, e) result(have)
+        class(regdae_solver), intent(in) :: self
+        real(wp), intent(out) :: e(:)   !! x_companion - x at the last output, length n
+        have = associated(self%estimator) .and. size(self%x_error) == size(e) .and. size(e) > 0
+        if (have) then
+            e = self%x_error
+        else
+            e = ieee_value(1.0_wp, ieee_quiet_nan)
+        end if
+    end function trust_error_estimate
+
+    recursive function trust_message(self) result(msg)
+        class(regdae_solver), intent(in) :: self
+        character(len=:), allocatable :: msg
+        if (allocated(self%last_message)) then
+            msg = self%last_message
+        else
+            msg = status_message(self%last_stat)
+        end if
+    end function trust_message
+
+    function trust_events(self) result(text)
+        class(regdae_solver), intent(in) :: self
+        character(len=:), allocatable :: text
+        text = self%main%events()
+    end function trust_events
+
+    function trust_options(self) result(opts)
+        class(regdae_solver), intent(in) :: self
+        type(solver_options) :: opts
+        opts = self%main%options()
+    end function trust_options
+
+    integer function trust_formulation(self)
+        class(regdae_solver), intent(in) :: self
+        trust_formulation = self%main%formulation()
+    end function trust_formulation
+
+    integer function trust_linear_solver(self)
+        class(regdae_solver), intent(in) :: self
+        trust_linear_solver = self%main%linear_solver()
+    end function trust_linear_solver
+
+    integer function trust_lsq_method(self)
+        class(regdae_solver), intent(in) :: self
+        trust_lsq_method = self%main%lsq_method()
+    end function trust_lsq_method
+
+    real(wp) function trust_sigma_min(self)
+        class(regdae_solver), intent(in) :: self
+        trust_sigma_min = self%main%sigma_min()
+    end function trust_sigma_min
+
+    function trust_singular_intervals(self) result(intervals)
+        class(regdae_solver), intent(in) :: self
+        real(wp), allocatable :: intervals(:, :)
+        intervals = self%main%singular_intervals()
+    end function trust_singular_intervals
+
+    ! The status and message of a call (stat, if present, gets the code).
+    subroutine record(self, code, text, stat)
+        type(regdae_solver), intent(inout) :: self
+        integer, intent(in) :: code
+        character(len=*), intent(in) :: text
+        integer, intent(out), optional :: stat
+        if (present(stat)) stat = code
+        self%last_stat = code
+        self%last_message = text
+    end subroutine record
+
+    recursive subroutine trust_destroy(self)
+        class(regdae_solver), intent(inout) :: self
+        integer :: k
+        call self%main%destroy()
+        do k = 1, max_levels
+            call self%ladder%level(k)%destroy()
+        end do
+        self%ladder%levels = 0
+        self%ladder%active = .false.
+        if (associated(self%estimator)) then
+            call self%estimator%destroy()
+            deallocate (self%estimator)
+        end if
+        self%estimator => null()
+        self%verify = .false.
+        self%pass_checks = 0
+        self%passes_resolved = 0
+        self%passes_unresolved = 0
+        self%pass_error = 0.0_wp
+        self%retired_steps = 0
+        self%error_norm = -1.0_wp
+        if (allocated(self%x_error)) deallocate (self%x_error)
+    end subroutine trust_destroy
+
+    subroutine trust_assign(lhs, rhs)
+        class(regdae_solver), intent(inout) :: lhs
+        class(regdae_solver), intent(in) :: rhs
+        call lhs%destroy()
+        lhs%main = rhs%main   ! the engine's assignment leaves it uninitialized, saying why
+        lhs%assigned = .true.
+        call record(lhs, regdae_err_not_initialized, 'a regdae_solver cannot be copied by assignment (it owns '// &
+                    'IDA memory): this one is uninitialized; call init on it')
+    end subroutine trust_assign
+
+    subroutine trust_finalize(self)
+        type(regdae_solver), intent(inout) :: self
+        call self%destroy()
+    end subroutine trust_finalize
+
+end module regdae_solver_trust
