@@ -47,10 +47,16 @@ module regdae_solver_trust
     !> No companion below this rtol (the integrators' own floor).
     real(wp), parameter :: rtol_floor = 1.0e-13_wp
 
+    ! A companion engine, allocated when started (a pointer: no array of finalizable
+    ! objects as a component, which gfortran 12 finalizes wrongly).
+    type :: engine_slot
+        type(solver_engine), pointer :: engine => null()
+    end type engine_slot
+
     ! The companions of the current singular pass: level(k) at rtol/kappa^k from
     ! the checkpoint (t_start, z_start).
     type :: pass_ladder
-        type(solver_engine) :: level(max_levels)
+        type(engine_slot) :: level(max_levels)
         integer :: levels = 0          ! levels started
         logical :: active = .false.
         logical :: warned = .false.    ! this pass has warned already
@@ -331,11 +337,15 @@ contains
             answer = -1
             do k = 1, self%max_level
                 if (k > lad%levels) then
-                    call self%main%start_companion(lad%level(k), kappa**k, lad%t_start, lad%z_start, lstat)
-                    if (lstat < 0) exit
+                    allocate (lad%level(k)%engine)
                     lad%levels = k
+                    call self%main%start_companion(lad%level(k)%engine, kappa**k, lad%t_start, lad%z_start, lstat)
+                    if (lstat < 0) then
+                        call retire(self, k)
+                        exit
+                    end if
                 end if
-                call bring_to(lad%level(k), t, lad%z(:, k), lstat)
+                call bring_to(lad%level(k)%engine, t, lad%z(:, k), lstat)
                 if (lstat < 0) then   ! this level cannot go on: the pass is not verified beyond k-1
                     call retire(self, k)
                     exit
@@ -350,7 +360,7 @@ contains
             agreed = (answer >= 0)
             if (.not. agreed) answer = lad%levels   ! the finest level that ran
             if (answer > 0) then   ! its values at t are the outputs
-                call lad%level(answer)%advance(t, x, y, lstat, v, a)
+                call lad%level(answer)%engine%advance(t, x, y, lstat, v, a)
             end if
             if (.not. agreed .and. .not. lad%warned) then
                 lad%warned = .true.
@@ -383,10 +393,7 @@ contains
                 end if
             end if
             call self%main%release_checkpoint(t, lad%z(:, answer))
-            do k = 1, lad%levels
-                call retire(self, k)
-            end do
-            lad%levels = 0
+            call retire(self, 1)
             lad%active = .false.
         end associate
     end subroutine check_pass
@@ -409,14 +416,20 @@ contains
         call engine%state(z)
     end subroutine bring_to
 
-    ! Destroy level k of the ladder, keeping its step count.
+    ! Destroy level k of the ladder (the levels above it too), keeping their step counts.
     subroutine retire(self, k)
         type(regdae_solver), intent(inout) :: self
         integer, intent(in) :: k
         type(solver_stats) :: st
-        st = self%ladder%level(k)%statistics()
-        self%retired_steps = self%retired_steps + st%steps
-        call self%ladder%level(k)%destroy()
+        integer :: j
+        do j = self%ladder%levels, k, -1
+            if (.not. associated(self%ladder%level(j)%engine)) cycle
+            st = self%ladder%level(j)%engine%statistics()
+            self%retired_steps = self%retired_steps + st%steps
+            call self%ladder%level(j)%engine%destroy()
+            deallocate (self%ladder%level(j)%engine)
+        end do
+        self%ladder%levels = min(self%ladder%levels, k - 1)
     end subroutine retire
 
     recursive function trust_statistics(self) result(st)
@@ -431,7 +444,7 @@ contains
         st%pass_error = self%pass_error
         st%companion_steps = self%retired_steps
         do k = 1, self%ladder%levels
-            other = self%ladder%level(k)%statistics()
+            other = self%ladder%level(k)%engine%statistics()
             st%companion_steps = st%companion_steps + other%steps
         end do
         if (associated(self%estimator)) then
@@ -513,12 +526,9 @@ contains
 
     recursive subroutine trust_destroy(self)
         class(regdae_solver), intent(inout) :: self
-        integer :: k
         call self%main%destroy()
-        do k = 1, max_levels
-            call self%ladder%level(k)%destroy()
-        end do
-        self%ladder%levels = 0
+        self%ladder%levels = max_levels
+        call retire(self, 1)
         self%ladder%active = .false.
         if (associated(self%estimator)) then
             call self%estimator%destroy()
