@@ -421,13 +421,16 @@ contains
         type(regdae_solver), intent(inout) :: self
         integer, intent(in) :: k
         type(solver_stats) :: st
+        type(solver_engine), pointer :: engine
         integer :: j
         do j = self%ladder%levels, k, -1
-            if (.not. associated(self%ladder%level(j)%engine)) cycle
-            st = self%ladder%level(j)%engine%statistics()
+            engine => self%ladder%level(j)%engine   ! (through a local pointer: gfortran 12's -fcheck
+            if (.not. associated(engine)) cycle     ! build fails on the component's deallocate)
+            st = engine%statistics()
             self%retired_steps = self%retired_steps + st%steps
-            call self%ladder%level(j)%engine%destroy()
-            deallocate (self%ladder%level(j)%engine)
+            call engine%destroy()
+            deallocate (engine)
+            self%ladder%level(j)%engine => null()
         end do
         self%ladder%levels = min(self%ladder%levels, k - 1)
     end subroutine retire
