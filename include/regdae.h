@@ -448,8 +448,12 @@ int regdae_init(regdae_solver *solver, double t0, const double *x0, int nx0, con
  * and on request y(tout) (length ny = m; lambda for a mechanical problem,
  * recomputed from the state at tout) and v(tout) (length nv = n, second-order
  * and mechanical problems). Pass NULL and 0 for what is not wanted (no y: no
- * multiplier is computed at tout). REGDAE_WARN_MULTIPLIER_UNDEFINED: x (and v)
- * valid, y NaN; the solver can go on.
+ * multiplier is computed at tout). A warning is a status of its own, > 0, with
+ * its message in regdae_message; the solver can go on after it:
+ * REGDAE_WARN_MULTIPLIER_UNDEFINED: x (and v) valid, y NaN;
+ * REGDAE_WARN_UNRESOLVED: x is the integrator's, but near a singular configuration
+ * passed during this call it may miss the tolerance (once per pass; the option
+ * resolution_tol, 0: off).
  */
 int regdae_advance(regdae_solver *solver, double tout, double *x, int nx, double *y, int ny, double *v, int nv);
 
