@@ -551,6 +551,10 @@ static void options(void)
     CHECK(regdae_get_options(s, &opts) == REGDAE_SUCCESS);
     CHECK(opts.rtol == 1e-8 && opts.atol == 1e-8); /* exactly: 17 digits through the parser */
     CHECK(opts.eps == REGDAE_AUTO && opts.method == REGDAE_METHOD_TRUST_REGION && opts.max_steps == 100000);
+    CHECK(opts.atol_v == REGDAE_AUTO && opts.resolution_tol == 1e4);
+    CHECK(regdae_set_real_option(s, "atol_v", 1e-6) == REGDAE_SUCCESS && regdae_get_options(s, &opts) == 0 &&
+          opts.atol_v == 1e-6);
+    CHECK(regdae_set_real_option(s, "atol_v", REGDAE_AUTO) == REGDAE_SUCCESS);
     CHECK(regdae_set_rtol(s, 0.1 + 0.2) == REGDAE_SUCCESS); /* 0.30000000000000004 */
     regdae_get_options(s, &opts);
     CHECK(opts.rtol == 0.1 + 0.2);
