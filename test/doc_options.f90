@@ -27,17 +27,11 @@ program doc_options_tester
     use regdae_c_records, only: c_options, to_c_options
     implicit none
 
-    !> A line of text (of a file, or a value).
-    type :: text_line
-        character(len=:), allocatable :: s
-    end type text_line
-
-    !> The components of a record as its namelist output gives them, in order.
-    type :: record_dump
-        type(text_line), allocatable :: names(:)    !! lower case
-        type(text_line), allocatable :: values(:)   !! as written
-    end type record_dump
-
+    ! Plain character arrays throughout: gfortran 12 leaks the allocatable components of
+    ! derived types grown by array constructors (LeakSanitizer in the sanitized build).
+    integer, parameter :: word_len = 64      ! a key, a component's name, a default, a field
+    integer, parameter :: value_len = 256    ! a component's value as its namelist output writes it
+    integer, parameter :: line_len = 4096    ! a line of doc/api.md or include/regdae.h (longer: the test fails)
     character(len=*), parameter :: table_header = '| key / component | values | default | meaning |'
     character(len=4096) :: mode, path
     integer :: passed, failed
@@ -68,16 +62,16 @@ contains
 
     subroutine check_table(file)
         character(len=*), intent(in) :: file
-        type(text_line), allocatable :: lines(:), keys(:), defaults(:), documented(:)
-        type(record_dump) :: code
+        character(len=line_len), allocatable :: lines(:)
+        character(len=word_len), allocatable :: names(:), keys(:), defaults(:), documented(:)
+        character(len=value_len), allocatable :: values(:)
         integer :: i, k, first
 
-        allocate (lines(0))   ! (gfortran 12 -Wall warns of an unallocated intent(out) array otherwise)
         call read_lines(file, lines)
-        code = options_dump(solver_options())
+        call record_components(names, values, opts=solver_options())
         first = 0
         do i = 1, size(lines)
-            if (trim(adjustl(lines(i)%s)) == table_header) then
+            if (trim(adjustl(lines(i))) == table_header) then
                 first = i + 2   ! after the header and the |---| line
                 exit
             end if
@@ -86,37 +80,38 @@ contains
         if (first == 0) return
         allocate (documented(0))
         do i = first, size(lines)
-            if (index(adjustl(lines(i)%s), '|') /= 1) exit
-            call table_row(lines(i)%s, keys, defaults)
+            if (index(adjustl(lines(i)), '|') /= 1) exit
+            call table_row(lines(i), keys, defaults)
             call check(size(keys) > 0 .and. size(keys) == size(defaults), file//': the row "'// &
-                       shortened(lines(i)%s)//'" must name its keys in backquotes and give one default per key')
+                       shortened(lines(i))//'" must name its keys in backquotes and give one default per key')
             if (size(keys) == 0 .or. size(keys) /= size(defaults)) cycle
             do k = 1, size(keys)
-                call check(.not. listed(keys(k)%s, documented), file//': the options table has two rows for `'// &
-                           keys(k)%s//'`')
-                documented = [documented, keys(k)]
-                call check_default(keys(k)%s, defaults(k)%s, code, file)
+                call check(.not. any(documented == keys(k)), file//': the options table has two rows for `'// &
+                           trim(keys(k))//'`')
+                documented = [character(len=word_len) :: documented, keys(k)]
+                call check_default(trim(keys(k)), trim(defaults(k)), names, values, file)
             end do
         end do
-        do i = 1, size(code%names)
-            call check(listed(code%names(i)%s, documented), 'the option `'//code%names(i)%s//'` (solver_options%'// &
-                       code%names(i)%s//') has no row in the options table of '//file// &
+        do i = 1, size(names)
+            call check(any(documented == names(i)), 'the option `'//trim(names(i))//'` (solver_options%'// &
+                       trim(names(i))//') has no row in the options table of '//file// &
                        ' (section 2): document its values, default and meaning')
         end do
     end subroutine check_table
 
-    ! The documented default of one key, given to set_option on a default record,
-    ! must leave the record as it is.
-    subroutine check_default(key, default, code, file)
+    ! The documented default of one key, given to set_option on a default record
+    ! (whose components are names and values), must leave the record as it is.
+    subroutine check_default(key, default, names, values, file)
         character(len=*), intent(in) :: key, default, file
-        type(record_dump), intent(in) :: code
+        character(len=*), intent(in) :: names(:), values(:)
         type(solver_options) :: opts
-        type(record_dump) :: changed
+        character(len=word_len), allocatable :: changed_names(:)
+        character(len=value_len), allocatable :: changed(:)
         character(len=:), allocatable :: msg
         integer :: stat, j
         logical :: same
 
-        if (.not. listed(key, code%names)) then
+        if (.not. any(names == key)) then
             call check(.false., file//': the options table has a row for `'//key// &
                        '`, which is not an option (no component of solver_options)')
             return
@@ -128,13 +123,13 @@ contains
                        '", is refused by set_option: '//msg)
             return
         end if
-        changed = options_dump(opts)
+        call record_components(changed_names, changed, opts=opts)
         same = .true.
-        do j = 1, size(code%names)
-            if (changed%values(j)%s == code%values(j)%s) cycle
+        do j = 1, size(names)
+            if (changed(j) == values(j)) cycle
             same = .false.
             call check(.false., file//': `'//key//'`: the documented default is "'//default//'", the code''s is '// &
-                       readable(code%values(j)%s)//' (solver_options%'//code%names(j)%s//')')
+                       readable(trim(values(j)))//' (solver_options%'//trim(names(j))//')')
         end do
         if (same) call check(.true., '')
     end subroutine check_default
@@ -143,53 +138,56 @@ contains
     ! without backquotes and remarks in parentheses) of a table row.
     subroutine table_row(row, keys, defaults)
         character(len=*), intent(in) :: row
-        type(text_line), allocatable, intent(out) :: keys(:), defaults(:)
-        type(text_line), allocatable :: cells(:)
+        character(len=word_len), allocatable, intent(out) :: keys(:), defaults(:)
         character(len=:), allocatable :: cell
         integer :: i, open_quote
 
         allocate (keys(0), defaults(0))
-        call table_cells(row, cells)
-        if (size(cells) < 4) return
-        cell = cells(1)%s
+        cell = table_cell(row, 1)
         open_quote = 0
         do i = 1, len(cell)
             if (cell(i:i) /= '`') cycle
             if (open_quote == 0) then
                 open_quote = i
             else
-                keys = [keys, text_line(cell(open_quote + 1:i - 1))]
+                keys = [character(len=word_len) :: keys, cell(open_quote + 1:i - 1)]
                 open_quote = 0
             end if
         end do
-        cell = without_remarks(cells(3)%s)
+        cell = without_remarks(table_cell(row, 3))
         do
             i = index(cell, ',')
             if (i == 0) exit
-            defaults = [defaults, text_line(trim(adjustl(cell(1:i - 1))))]
+            defaults = [character(len=word_len) :: defaults, adjustl(cell(1:i - 1))]
             cell = cell(i + 1:)
         end do
-        defaults = [defaults, text_line(trim(adjustl(cell)))]
+        defaults = [character(len=word_len) :: defaults, adjustl(cell)]
     end subroutine table_row
 
-    ! The cells of a Markdown table row (`\|` is a | inside a cell).
-    subroutine table_cells(row, cells)
+    ! Cell k (1-based) of a Markdown table row (`\|` is a | inside a cell); '' if none.
+    function table_cell(row, k) result(cell)
         character(len=*), intent(in) :: row
-        type(text_line), allocatable, intent(out) :: cells(:)
+        integer, intent(in) :: k
+        character(len=:), allocatable :: cell
         character(len=:), allocatable :: r
-        integer :: i, start
-        allocate (cells(0))
+        integer :: i, start, found
+        cell = ''
         r = trim(adjustl(row))
         start = 0
+        found = 0
         do i = 1, len(r)
             if (r(i:i) /= '|') cycle
             if (i > 1) then
                 if (r(i - 1:i - 1) == '\') cycle
             end if
-            if (start > 0) cells = [cells, text_line(trim(adjustl(r(start + 1:i - 1))))]
+            if (start > 0) found = found + 1
+            if (found == k) then
+                cell = trim(adjustl(r(start + 1:i - 1)))
+                return
+            end if
             start = i
         end do
-    end subroutine table_cells
+    end function table_cell
 
     ! The text without what is in parentheses and without backquotes.
     pure function without_remarks(text) result(plain)
@@ -215,54 +213,54 @@ contains
 
     subroutine check_header(file)
         character(len=*), intent(in) :: file
-        type(text_line), allocatable :: lines(:), fields(:)
-        type(record_dump) :: code, record
+        character(len=line_len), allocatable :: lines(:)
         character(len=:), allocatable :: kind
+        character(len=word_len), allocatable :: names(:), record(:), fields(:)
+        character(len=value_len), allocatable :: values(:), record_values(:)
         logical :: real_key, int_key
         integer :: i
 
-        allocate (lines(0), fields(0))   ! (as in check_table)
         call read_lines(file, lines)
-        code = options_dump(solver_options())
-        record = c_record_dump(to_c_options(solver_options()))
+        call record_components(names, values, opts=solver_options())
+        call record_components(record, record_values, c=to_c_options(solver_options()))
         ! the C record: the header's struct is c_options, which is solver_options
-        fields = struct_fields(lines, 'regdae_options')
+        call struct_fields(lines, 'regdae_options', fields)
         call check(size(fields) > 0, file//': no "typedef struct regdae_options {"')
-        do i = 1, max(size(fields), size(record%names))
+        do i = 1, max(size(fields), size(record))
             if (i > size(fields)) then
-                call check(.false., file//': regdae_options lacks the field `'//record%names(i)%s// &
+                call check(.false., file//': regdae_options lacks the field `'//trim(record(i))// &
                            '` of c_options (src/regdae_c_records.f90), field '//format_int(i))
-            else if (i > size(record%names)) then
-                call check(.false., file//': regdae_options has the field `'//fields(i)%s// &
+            else if (i > size(record)) then
+                call check(.false., file//': regdae_options has the field `'//trim(fields(i))// &
                            '`, which c_options (src/regdae_c_records.f90) does not have')
             else
-                call check(fields(i)%s == record%names(i)%s, file//': field '//format_int(i)//' of regdae_options is `'// &
-                           fields(i)%s//'`, of c_options (src/regdae_c_records.f90) `'//record%names(i)%s//'`')
+                call check(fields(i) == record(i), file//': field '//format_int(i)//' of regdae_options is `'// &
+                           trim(fields(i))//'`, of c_options (src/regdae_c_records.f90) `'//trim(record(i))//'`')
             end if
         end do
-        do i = 1, size(code%names)
-            call check(listed(code%names(i)%s, record%names), 'src/regdae_c_records.f90: c_options (and '//file// &
-                       ': regdae_options) has no field `'//code%names(i)%s//'` of solver_options: '// &
+        do i = 1, size(names)
+            call check(any(record == names(i)), 'src/regdae_c_records.f90: c_options (and '//file// &
+                       ': regdae_options) has no field `'//trim(names(i))//'` of solver_options: '// &
                        'regdae_get_options cannot return it')
         end do
-        do i = 1, size(record%names)
-            call check(listed(record%names(i)%s, code%names), 'src/regdae_c_records.f90: c_options has the field `'// &
-                       record%names(i)%s//'`, which solver_options does not have')
+        do i = 1, size(record)
+            call check(any(names == record(i)), 'src/regdae_c_records.f90: c_options has the field `'// &
+                       trim(record(i))//'`, which solver_options does not have')
         end do
         ! the keys each setter's comment lists
-        do i = 1, size(code%names)
-            kind = value_kind(code%values(i)%s)
+        do i = 1, size(names)
+            kind = value_kind(trim(values(i)))
             real_key = (kind == 'real')
             int_key = (kind == 'integer' .or. kind == 'logical')
-            call check_key_listed(lines, 'regdae_set_option', code%names(i)%s, .true., file)
-            call check_key_listed(lines, 'regdae_set_real_option', code%names(i)%s, real_key, file)
-            call check_key_listed(lines, 'regdae_set_int_option', code%names(i)%s, int_key, file)
+            call check_key_listed(lines, 'regdae_set_option', trim(names(i)), .true., file)
+            call check_key_listed(lines, 'regdae_set_real_option', trim(names(i)), real_key, file)
+            call check_key_listed(lines, 'regdae_set_int_option', trim(names(i)), int_key, file)
         end do
     end subroutine check_header
 
     ! The comment of `function` names `key` if and only if `expected`.
     subroutine check_key_listed(lines, function, key, expected, file)
-        type(text_line), intent(in) :: lines(:)
+        character(len=*), intent(in) :: lines(:)
         character(len=*), intent(in) :: function, key, file
         logical, intent(in) :: expected
         character(len=:), allocatable :: comment
@@ -279,42 +277,42 @@ contains
     end subroutine check_key_listed
 
     ! The field names of `typedef struct name { ... } name;`, in order.
-    function struct_fields(lines, name) result(fields)
-        type(text_line), intent(in) :: lines(:)
+    subroutine struct_fields(lines, name, fields)
+        character(len=*), intent(in) :: lines(:)
         character(len=*), intent(in) :: name
-        type(text_line), allocatable :: fields(:)
+        character(len=word_len), allocatable, intent(out) :: fields(:)
         character(len=:), allocatable :: declaration
         integer :: i, semicolon, blank
         logical :: inside
         allocate (fields(0))
         inside = .false.
         do i = 1, size(lines)
-            if (index(lines(i)%s, 'typedef struct '//name//' {') == 1) then
+            if (index(lines(i), 'typedef struct '//name//' {') == 1) then
                 inside = .true.
-            else if (inside .and. index(lines(i)%s, '}') == 1) then
+            else if (inside .and. index(lines(i), '}') == 1) then
                 return
             else if (inside) then
-                semicolon = index(lines(i)%s, ';')
+                semicolon = index(lines(i), ';')
                 if (semicolon == 0) cycle
-                declaration = trim(lines(i)%s(1:semicolon - 1))
+                declaration = trim(lines(i)(1:semicolon - 1))
                 blank = index(declaration, ' ', back=.true.)
-                fields = [fields, text_line(declaration(blank + 1:))]
+                fields = [character(len=word_len) :: fields, declaration(blank + 1:)]
             end if
         end do
-    end function struct_fields
+    end subroutine struct_fields
 
     ! The /** ... */ comment right before the line that declares `int function(`.
     function comment_of(lines, function) result(comment)
-        type(text_line), intent(in) :: lines(:)
+        character(len=*), intent(in) :: lines(:)
         character(len=*), intent(in) :: function
         character(len=:), allocatable :: comment
         integer :: i, j
         comment = ''
         do i = 1, size(lines)
-            if (index(lines(i)%s, 'int '//function//'(') /= 1) cycle
+            if (index(lines(i), 'int '//function//'(') /= 1) cycle
             do j = i - 1, 1, -1
-                comment = lines(j)%s//' '//comment
-                if (index(adjustl(lines(j)%s), '/**') == 1) return
+                comment = trim(lines(j))//' '//comment
+                if (index(adjustl(lines(j)), '/**') == 1) return
             end do
             comment = ''
             return
@@ -346,54 +344,45 @@ contains
 
     ! --- records through their namelist output ---------------------------------------
 
-    function options_dump(opts) result(dump)
-        type(solver_options), intent(in) :: opts
-        type(record_dump) :: dump
+    ! The components of a solver_options (opts) or a c_options (c) record, names (lower
+    ! case) and values: the lines `NAME%COMPONENT=value,` of its namelist output.
+    subroutine record_components(names, values, opts, c)
+        character(len=word_len), allocatable, intent(out) :: names(:)
+        character(len=value_len), allocatable, intent(out) :: values(:)
+        type(solver_options), intent(in), optional :: opts
+        type(c_options), intent(in), optional :: c
         type(solver_options) :: options
-        namelist /options_record/ options
-        integer :: unit
-        options = opts
-        open (newunit=unit, status='scratch', action='readwrite')
-        write (unit, nml=options_record)
-        dump = dump_from(unit)
-    end function options_dump
-
-    function c_record_dump(c) result(dump)
-        type(c_options), intent(in) :: c
-        type(record_dump) :: dump
         type(c_options) :: record
+        namelist /options_record/ options
         namelist /c_record/ record
-        integer :: unit
-        record = c
+        character(len=value_len) :: line
+        character(len=:), allocatable :: value
+        integer :: percent, equals, unit, ios
+        allocate (names(0), values(0))
         open (newunit=unit, status='scratch', action='readwrite')
-        write (unit, nml=c_record)
-        dump = dump_from(unit)
-    end function c_record_dump
-
-    ! The lines `NAME%COMPONENT=value,` of a namelist output on `unit` (closed after).
-    function dump_from(unit) result(dump)
-        integer, intent(in) :: unit
-        type(record_dump) :: dump
-        type(text_line), allocatable :: lines(:)
-        character(len=:), allocatable :: name, value
-        integer :: i, percent, equals
+        if (present(opts)) then
+            options = opts
+            write (unit, nml=options_record)
+        else if (present(c)) then
+            record = c
+            write (unit, nml=c_record)
+        end if
         rewind (unit)
-        call read_unit(unit, lines)
-        close (unit)
-        allocate (dump%names(0), dump%values(0))
-        do i = 1, size(lines)
-            percent = index(lines(i)%s, '%')
-            equals = index(lines(i)%s, '=')
+        do
+            read (unit, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            percent = index(line, '%')
+            equals = index(line, '=')
             if (percent == 0 .or. equals < percent) cycle
-            value = trim(adjustl(lines(i)%s(equals + 1:)))
+            value = trim(adjustl(line(equals + 1:)))
             if (len(value) > 0) then
                 if (value(len(value):) == ',') value = trim(value(1:len(value) - 1))
             end if
-            name = lower(trim(adjustl(lines(i)%s(percent + 1:equals - 1))))
-            dump%names = [dump%names, text_line(name)]
-            dump%values = [dump%values, text_line(value)]
+            names = [character(len=word_len) :: names, lower(trim(adjustl(line(percent + 1:equals - 1))))]
+            values = [character(len=value_len) :: values, value]
         end do
-    end function dump_from
+        close (unit)
+    end subroutine record_components
 
     ! logical (T, F), integer, real or text: what a namelist value is.
     function value_kind(value) result(kind)
@@ -440,47 +429,33 @@ contains
         end if
     end subroutine check
 
-    logical function listed(word, list)
-        character(len=*), intent(in) :: word
-        type(text_line), intent(in) :: list(:)
-        integer :: i
-        listed = .false.
-        do i = 1, size(list)
-            if (list(i)%s == word) listed = .true.
-        end do
-    end function listed
-
+    ! Every line of a file; a line longer than line_len fails the test.
     subroutine read_lines(file, lines)
         character(len=*), intent(in) :: file
-        type(text_line), allocatable, intent(out) :: lines(:)
-        integer :: unit, ios
+        character(len=line_len), allocatable, intent(out) :: lines(:)
+        integer :: unit, ios, k
         open (newunit=unit, file=file, status='old', action='read', iostat=ios)
         if (ios /= 0) then
             write (*, '(a)') 'doc_options_tester: cannot open '//file
             stop 2
         end if
-        call read_unit(unit, lines)
+        k = 0
+        do
+            read (unit, '(a)', iostat=ios)
+            if (ios /= 0) exit
+            k = k + 1
+        end do
+        allocate (lines(k))
+        rewind (unit)
+        do k = 1, size(lines)
+            read (unit, '(a)', advance='no', iostat=ios) lines(k)
+            if (ios /= 0) cycle   ! the end of the line (iostat_eor): it fitted
+            call check(.false., file//': line '//format_int(k)//' has more than '//format_int(line_len)// &
+                       ' characters (raise line_len in test/doc_options.f90)')
+            read (unit, '(a)')    ! the rest of that line
+        end do
         close (unit)
     end subroutine read_lines
-
-    ! Every line of `unit`, of any length.
-    subroutine read_unit(unit, lines)
-        integer, intent(in) :: unit
-        type(text_line), allocatable, intent(out) :: lines(:)
-        character(len=256) :: chunk
-        character(len=:), allocatable :: line
-        integer :: ios, got
-        allocate (lines(0))
-        line = ''
-        do
-            read (unit, '(a)', advance='no', iostat=ios, size=got) chunk
-            if (is_iostat_end(ios)) exit
-            line = line//chunk(1:got)
-            if (ios == 0) cycle      ! more of the same line
-            lines = [lines, text_line(line)]   ! end of record
-            line = ''
-        end do
-    end subroutine read_unit
 
     pure function lower(text) result(low)
         character(len=*), intent(in) :: text

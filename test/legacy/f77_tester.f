@@ -637,10 +637,10 @@ C     not the failure's (X(1) = 0.5 at T = -1 violates G = 0)
 C
 C     One DREGDAE call on Example 5.1, RTOL = ATOL = 1E-8, to TOUT.
       SUBROUTINE E51RUN(T, X, Y, TOUT, INFO, IDID, RWORK, IWORK)
-      EXTERNAL E51F, E51B, E51G, E51GX, E51GT
+      EXTERNAL E51F, E51G, E51GX, E51GT
       INTEGER INFO(20), IDID, IWORK(22), IPAR(1)
       DOUBLE PRECISION T, X(1), Y(1), TOUT, RWORK(20), RPAR(1)
-      CALL DREGDAE(E51F, E51B, E51G, E51GX, E51GT, 1, 1, T, X, Y, TOUT,
+      CALL DREGDAE(E51F, E51GX, E51G, E51GX, E51GT, 1, 1, T, X, Y, TOUT,
      *     INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
       END
 C
@@ -650,18 +650,13 @@ C
       FX(1) = 2.0D0
       END
 C
-      SUBROUTINE E51B(T, X, BX, IRES, RPAR, IPAR)
-      INTEGER IRES, IPAR(*)
-      DOUBLE PRECISION T, X(1), BX(1, 1), RPAR(*)
-      BX(1, 1) = T
-      END
-C
       SUBROUTINE E51G(T, X, GV, IRES, RPAR, IPAR)
       INTEGER IRES, IPAR(*)
       DOUBLE PRECISION T, X(1), GV(1), RPAR(*)
       GV(1) = T * X(1) - T * (T + 1.0D0)
       END
 C
+C     G_X = T, and B = T too (E51RUN passes this routine as B)
       SUBROUTINE E51GX(T, X, GM, IRES, RPAR, IPAR)
       INTEGER IRES, IPAR(*)
       DOUBLE PRECISION T, X(1), GM(1, 1), RPAR(*)
