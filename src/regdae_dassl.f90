@@ -62,7 +62,8 @@ module regdae_dassl
 
     ! IDID (DASSL's meanings; the other failures are regdae's status codes). Each
     ! warning has its own positive IDID: 4 (regdae_warn_multiplier_undefined) and 6
-    ! (regdae_warn_unresolved; DDASKR's 5 is a root found), the call succeeded otherwise.
+    ! (regdae_warn_unresolved), the call succeeded otherwise. DDASKR's 4 (the initial
+    ! values alone, INFO(14) = 1, refused here) and 5 (a root) cannot occur.
     integer, parameter :: idid_exact = 2, idid_interpolated = 3, idid_multiplier_undefined = 4, idid_unresolved = 6
     integer, parameter :: idid_user_stop = -11, idid_initial_values = -12, idid_bad_input = -33
 

@@ -214,10 +214,9 @@ contains
     subroutine check_header(file)
         character(len=*), intent(in) :: file
         character(len=line_len), allocatable :: lines(:)
-        character(len=:), allocatable :: kind
+        character(len=:), allocatable :: kind, any_key, real_key, int_key
         character(len=word_len), allocatable :: names(:), record(:), fields(:)
         character(len=value_len), allocatable :: values(:), record_values(:)
-        logical :: real_key, int_key
         integer :: i
 
         call read_lines(file, lines)
@@ -247,24 +246,24 @@ contains
             call check(any(names == record(i)), 'src/regdae_c_records.f90: c_options has the field `'// &
                        trim(record(i))//'`, which solver_options does not have')
         end do
-        ! the keys each setter's comment lists
+        ! the keys each setter's comment lists (the comments: any, real, integer keys)
+        any_key = comment_of(lines, 'regdae_set_option')
+        real_key = comment_of(lines, 'regdae_set_real_option')
+        int_key = comment_of(lines, 'regdae_set_int_option')
         do i = 1, size(names)
             kind = value_kind(trim(values(i)))
-            real_key = (kind == 'real')
-            int_key = (kind == 'integer' .or. kind == 'logical')
-            call check_key_listed(lines, 'regdae_set_option', trim(names(i)), .true., file)
-            call check_key_listed(lines, 'regdae_set_real_option', trim(names(i)), real_key, file)
-            call check_key_listed(lines, 'regdae_set_int_option', trim(names(i)), int_key, file)
+            call check_key_listed(any_key, 'regdae_set_option', trim(names(i)), .true., file)
+            call check_key_listed(real_key, 'regdae_set_real_option', trim(names(i)), kind == 'real', file)
+            call check_key_listed(int_key, 'regdae_set_int_option', trim(names(i)), &
+                                  kind == 'integer' .or. kind == 'logical', file)
         end do
     end subroutine check_header
 
     ! The comment of `function` names `key` if and only if `expected`.
-    subroutine check_key_listed(lines, function, key, expected, file)
-        character(len=*), intent(in) :: lines(:)
+    subroutine check_key_listed(comment, function, key, expected, file)
+        character(len=*), intent(in) :: comment    !! the comment of `function`
         character(len=*), intent(in) :: function, key, file
         logical, intent(in) :: expected
-        character(len=:), allocatable :: comment
-        comment = comment_of(lines, function)
         if (len(comment) == 0) then
             call check(.false., file//': no comment before "int '//function//'("')
         else if (expected) then
