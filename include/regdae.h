@@ -186,6 +186,7 @@ typedef struct regdae_options {
     int linear_solver;         /**< REGDAE_LINEAR_SOLVER_* */
     int check_jacobians;       /**< 1: check G (and the Newton matrix) at init */
     double resolution_tol;     /**< warn (REGDAE_WARN_UNRESOLVED) above this ratio (0: off) */
+    double atol_v;             /**< second order: absolute tolerance on the velocities, or REGDAE_AUTO (atol) */
 } regdae_options;
 
 /** The statistics (solver_stats of the Fortran API, field for field; doc/api.md section 3). */
@@ -322,12 +323,13 @@ int regdae_set_pattern_values(regdae_solver *solver, int which, regdae_point_fn 
 /**
  * Set an option from its key and value as text, through the same parser as the
  * drivers' key=value arguments (doc/api.md section 2: method, formulation, lsq,
- * exclusion, gamma, eps, rtol, atol, stop_at_output, max_steps, h_init, h_max,
- * ic_tol, index, gamma0, gamma1, curvature, excluded, singular_threshold,
- * jump_tol, drift_tol, invariant_tol, work_tol, taylor_h, mass_damping,
- * integrator, linear_solver, check_jacobians). Numbers are read strictly
- * ("1e-3", ".5"; not "1-3"). An unknown key or a bad value gives
- * REGDAE_ERR_BAD_INPUT, a message naming it, and leaves the options unchanged.
+ * exclusion, gamma, eps, rtol, atol, atol_v, stop_at_output, max_steps, h_init,
+ * h_max, ic_tol, index, gamma0, gamma1, curvature, excluded, singular_threshold,
+ * jump_tol, drift_tol, invariant_tol, resolution_tol, work_tol, taylor_h,
+ * mass_damping, integrator, linear_solver, check_jacobians; a test checks this
+ * list against the options). Numbers are read strictly ("1e-3", ".5"; not "1-3").
+ * An unknown key or a bad value gives REGDAE_ERR_BAD_INPUT, a message naming it,
+ * and leaves the options unchanged.
  */
 int regdae_set_option(regdae_solver *solver, const char *key, const char *value);
 
@@ -341,10 +343,11 @@ int regdae_set_option(regdae_solver *solver, const char *key, const char *value)
 int regdae_set_atol_vector(regdae_solver *solver, const double *atol, int n);
 
 /**
- * Set a real option by its key (gamma, eps, rtol, atol, h_init, h_max, ic_tol,
- * gamma0, gamma1, singular_threshold, jump_tol, drift_tol, invariant_tol,
- * work_tol, taylor_h, mass_damping); REGDAE_AUTO is "auto". The value goes
- * through the same parser and checks as regdae_set_option, exactly.
+ * Set a real option by its key (gamma, eps, rtol, atol, atol_v, h_init, h_max,
+ * ic_tol, gamma0, gamma1, singular_threshold, jump_tol, drift_tol, invariant_tol,
+ * resolution_tol, work_tol, taylor_h, mass_damping); REGDAE_AUTO is "auto".
+ * The value goes through the same parser and checks as regdae_set_option,
+ * exactly.
  */
 int regdae_set_real_option(regdae_solver *solver, const char *key, double value);
 
@@ -448,8 +451,12 @@ int regdae_init(regdae_solver *solver, double t0, const double *x0, int nx0, con
  * and on request y(tout) (length ny = m; lambda for a mechanical problem,
  * recomputed from the state at tout) and v(tout) (length nv = n, second-order
  * and mechanical problems). Pass NULL and 0 for what is not wanted (no y: no
- * multiplier is computed at tout). REGDAE_WARN_MULTIPLIER_UNDEFINED: x (and v)
- * valid, y NaN; the solver can go on.
+ * multiplier is computed at tout). A warning is a status of its own, > 0, with
+ * its message in regdae_message; the solver can go on after it:
+ * REGDAE_WARN_MULTIPLIER_UNDEFINED: x (and v) valid, y NaN;
+ * REGDAE_WARN_UNRESOLVED: x is the integrator's, but near a singular configuration
+ * passed during this call it may miss the tolerance (once per pass; the option
+ * resolution_tol, 0: off).
  */
 int regdae_advance(regdae_solver *solver, double tout, double *x, int nx, double *y, int ny, double *v, int nv);
 

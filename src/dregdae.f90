@@ -39,7 +39,8 @@ subroutine dregdae(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid,
     real(wp), intent(in) :: tout                      !! the next output time (> T)
     integer, intent(inout) :: info(*)                 !! INFO(20): the options (doc/api.md)
     real(wp), intent(in) :: rtol(*), atol(*)          !! relative and absolute tolerance (INFO(2) = 1: vectors of length N)
-    integer, intent(out) :: idid                      !! 2 or 3: success; 4: x valid, y undefined; < 0: failure
+    integer, intent(out) :: idid                      !! 2 or 3: success; 4: x valid, y undefined; 6: success with
+                                                      !! the warning regdae_warn_unresolved; < 0: failure
     real(wp), intent(inout) :: rwork(*)               !! RWORK(LRW), LRW >= 20
     integer, intent(in) :: lrw                        !! declared length of RWORK
     integer, intent(inout) :: iwork(*)                !! IWORK(LIW), LIW >= 22; holds the solver between calls

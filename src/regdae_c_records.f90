@@ -39,6 +39,7 @@ module regdae_c_records
         integer(c_int) :: linear_solver       !! REGDAE_LINEAR_SOLVER_*
         integer(c_int) :: check_jacobians     !! 0 or 1
         real(c_double) :: resolution_tol
+        real(c_double) :: atol_v              !! REGDAE_AUTO (atol) or the value
     end type c_options
 
     !> `regdae_stats` (include/regdae.h): the statistics, as `solver_stats`.
@@ -81,7 +82,7 @@ contains
                       drift_tol=opts%drift_tol, work_tol=opts%work_tol, invariant_tol=opts%invariant_tol, &
                       taylor_h=opts%taylor_h, mass_damping=opts%mass_damping, integrator=opts%integrator, &
                       linear_solver=opts%linear_solver, check_jacobians=merge(1, 0, opts%check_jacobians), &
-                      resolution_tol=opts%resolution_tol)
+                      resolution_tol=opts%resolution_tol, atol_v=opts%atol_v)
     end function to_c_options
 
     !> The statistics as the C record.

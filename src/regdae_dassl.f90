@@ -60,8 +60,11 @@ module regdae_dassl
     ! IWORK(iwork_mark) of an IWORK that holds a session (and a check word next to it).
     integer, parameter :: session_mark = 1997018
 
-    ! IDID (DASSL's meanings; the other failures are regdae's status codes).
-    integer, parameter :: idid_exact = 2, idid_interpolated = 3, idid_multiplier_undefined = 4
+    ! IDID (DASSL's meanings; the other failures are regdae's status codes). Each
+    ! warning has its own positive IDID: 4 (regdae_warn_multiplier_undefined) and 6
+    ! (regdae_warn_unresolved), the call succeeded otherwise. DDASKR's 4 (the initial
+    ! values alone, INFO(14) = 1, refused here) and 5 (a root) cannot occur.
+    integer, parameter :: idid_exact = 2, idid_interpolated = 3, idid_multiplier_undefined = 4, idid_unresolved = 6
     integer, parameter :: idid_user_stop = -11, idid_initial_values = -12, idid_bad_input = -33
 
     integer, parameter :: kind_first_order = 1, kind_mechanical = 2
@@ -212,6 +215,7 @@ contains
         type(dassl_session), pointer, intent(out) :: s
         type(solver_options), intent(out) :: opts
         character(len=:), allocatable :: msg
+        logical :: held
 
         ok = .false.
         idid = idid_bad_input
@@ -225,18 +229,22 @@ contains
             s%kind = kind
             s%n = n
             s%m = m
-        else if (info(info_start) == 1) then
-            if (.not. session_in(iwork, liw, s)) then
+        else
+            ! A continuation, or a refused INFO(1): the session IWORK holds (if any) keeps
+            ! this call's message for DREGDAEMSG, not the one of the call before
+            held = session_in(iwork, liw, s)
+            if (info(info_start) == 1 .and. .not. held) then
                 msg = 'INFO(1) = 1 but IWORK holds no solver: start a problem with INFO(1) = 0 (IWORK must not '// &
                       'change between the calls of a problem)'
-            else if (s%kind /= kind .or. s%n /= n .or. s%m /= m) then
-                msg = 'INFO(1) = 1 but IWORK holds another problem ('//trim(merge('DREGDAE ', 'DREGDAEM', &
-                      s%kind == kind_first_order))//', N = '//format_int(s%n)//', M = '//format_int(s%m)//')'
+            else if (info(info_start) == 1) then
+                if (s%kind /= kind .or. s%n /= n .or. s%m /= m) &
+                    msg = 'INFO(1) = 1 but IWORK holds another problem ('//trim(merge('DREGDAE ', 'DREGDAEM', &
+                          s%kind == kind_first_order))//', N = '//format_int(s%n)//', M = '//format_int(s%m)//')'
+            else if (info(info_start) == -1) then
+                msg = 'INFO(1) = -1: the last call failed; set INFO(1) = 1 to try to continue, or 0 to restart'
+            else
+                msg = 'INFO(1) = '//format_int(info(info_start))//' must be 0 (start) or 1 (continue)'
             end if
-        else if (info(info_start) == -1) then
-            msg = 'INFO(1) = -1: the last call failed; set INFO(1) = 1 to try to continue, or 0 to restart'
-        else
-            msg = 'INFO(1) = '//format_int(info(info_start))//' must be 0 (start) or 1 (continue)'
         end if
         if (len(msg) == 0) then
             if (lrw < min_lrw) then
@@ -292,10 +300,12 @@ contains
         if (stat == regdae_err_user_callback .and. allocated(s%routines%failure)) &
             s%message = s%message//' ('//s%routines%failure//')'
         select case (stat)
-        case (regdae_success, regdae_warn_unresolved)   ! the warning: IWORK(status) = 2 and the message
+        case (regdae_success)
             idid = merge(idid_exact, idid_interpolated, s%exact_stops)
         case (regdae_warn_multiplier_undefined)
             idid = idid_multiplier_undefined
+        case (regdae_warn_unresolved)
+            idid = idid_unresolved
         case (regdae_err_bad_input, regdae_err_not_initialized)
             idid = idid_bad_input
         case (regdae_err_inconsistent_ic)
@@ -312,8 +322,7 @@ contains
             t = st%t
             info(info_start) = -1
         end if
-        if (idid < 0 .or. idid == idid_multiplier_undefined .or. stat == regdae_warn_unresolved) &
-            call report(info, s%kind, s%message)
+        if (stat /= regdae_success) call report(info, s%kind, s%message)   ! a failure or a warning
         if (allocated(s%routines%failure)) deallocate (s%routines%failure)
     end subroutine close_call
 

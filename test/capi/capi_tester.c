@@ -11,6 +11,9 @@
  *   callbacks  user_data passed through; a callback's < 0 and > 0 reported like a
  *              Fortran routine's stat
  *   options    typed setters, text options, resolved options, statistics
+ *   warnings   a warning is a status of its own (> 0) with its message, and the
+ *              integration goes on after it: REGDAE_WARN_UNRESOLVED on Example 5.1's
+ *              approach to t = 0, REGDAE_WARN_MULTIPLIER_UNDEFINED at t = 0
  */
 #include <math.h>
 #include <stdio.h>
@@ -548,6 +551,10 @@ static void options(void)
     CHECK(regdae_get_options(s, &opts) == REGDAE_SUCCESS);
     CHECK(opts.rtol == 1e-8 && opts.atol == 1e-8); /* exactly: 17 digits through the parser */
     CHECK(opts.eps == REGDAE_AUTO && opts.method == REGDAE_METHOD_TRUST_REGION && opts.max_steps == 100000);
+    CHECK(opts.atol_v == REGDAE_AUTO && opts.resolution_tol == 1e4);
+    CHECK(regdae_set_real_option(s, "atol_v", 1e-6) == REGDAE_SUCCESS && regdae_get_options(s, &opts) == 0 &&
+          opts.atol_v == 1e-6);
+    CHECK(regdae_set_real_option(s, "atol_v", REGDAE_AUTO) == REGDAE_SUCCESS);
     CHECK(regdae_set_rtol(s, 0.1 + 0.2) == REGDAE_SUCCESS); /* 0.30000000000000004 */
     regdae_get_options(s, &opts);
     CHECK(opts.rtol == 0.1 + 0.2);
@@ -601,13 +608,116 @@ static void atol_vector(void)
     regdae_destroy(&s);
 }
 
+/* ---- warnings ------------------------------------------------------------------- */
+
+/* Example 5.1 (drivers/example_ex51.f): x' = 2 - t y, g = t x - t (t + 1), singular at
+   t = 0; x = t + 1, y = 1/t. */
+static int e51_f(double t, const double *x, double *out, void *u)
+{
+    (void)t;
+    (void)x;
+    (void)u;
+    out[0] = 2.0;
+    return 0;
+}
+
+static int e51_t(double t, const double *x, double *out, void *u) /* B = G = t */
+{
+    (void)x;
+    (void)u;
+    out[0] = t;
+    return 0;
+}
+
+static int e51_g(double t, const double *x, double *out, void *u)
+{
+    (void)u;
+    out[0] = t * x[0] - t * (t + 1.0);
+    return 0;
+}
+
+static int e51_gt(double t, const double *x, double *out, void *u)
+{
+    (void)u;
+    out[0] = x[0] - 2.0 * t - 1.0;
+    return 0;
+}
+
+/* Example 5.1 from t = -1 through t = 0 to 1 in steps of 0.1 with IDA and the option
+   resolution_tol = `tol`: the number of advances that returned REGDAE_WARN_UNRESOLVED
+   (each with the warning's message), -1 if any other returned anything but
+   REGDAE_SUCCESS with an empty message; *x1 = x(1). */
+static int e51_warnings(regdae_solver *s, const char *tol, double *x1)
+{
+    const double x0[1] = {0.0};
+    double x[1] = {0.0}, y[1];
+    int k, status, warned = 0, other = 0;
+    regdae_set_first_order(s, 1, 1, e51_f, e51_t, e51_g, e51_t, e51_gt, NULL);
+    regdae_set_integrator(s, REGDAE_INTEGRATOR_IDA);
+    regdae_set_option(s, "resolution_tol", tol);
+    if (regdae_init(s, -1.0, x0, 1, NULL, 0) != REGDAE_SUCCESS) return -1;
+    for (k = 1; k <= 20; k++) {
+        status = regdae_advance(s, -1.0 + 0.1 * k, x, 1, y, 1, NULL, 0);
+        if (status == REGDAE_WARN_UNRESOLVED && says(s, "approaching the singular configuration") &&
+            says(s, "resolution_tol")) {
+            warned++;
+        } else if (status != REGDAE_SUCCESS || strlen(regdae_message(s)) > 0) {
+            printf("  t = %g: status %d: %s\n", -1.0 + 0.1 * k, status, regdae_message(s));
+            other++;
+        }
+    }
+    *x1 = x[0];
+    return other > 0 ? -1 : warned;
+}
+
+static void warnings(void)
+{
+    const double x0[1] = {0.0};
+    double x[1], y[1], x1;
+    regdae_stats st;
+    regdae_solver *s = regdae_create();
+
+    /* REGDAE_WARN_UNRESOLVED: the ratio resolution_tol is compared with is >= 1 by
+       construction at every sample of a singular interval before the layer (here
+       t = -0.2, -0.1), so resolution_tol = 1e-6 warns, once (one pass); with 0 (off)
+       nothing warns. The run goes on after the warning and ends at x(1) = 2 (rtol =
+       atol = 1e-5: the error measured is 2e-10; 1e-4 means a bug). */
+    CHECK(e51_warnings(s, "1e-6", &x1) == 1);
+    CHECK(fabs(x1 - 2.0) < 1e-4);
+    CHECK(regdae_get_statistics(s, &st) == REGDAE_SUCCESS && st.unresolved_passes == 1 && st.t == 1.0);
+    CHECK(e51_warnings(s, "0", &x1) == 0);
+    CHECK(fabs(x1 - 2.0) < 1e-4);
+    CHECK(regdae_get_statistics(s, &st) == REGDAE_SUCCESS && st.unresolved_passes == 0);
+    /* the message is the last call's: the warning's (the sample at t = -0.1), then a
+       refusal's, then "" */
+    regdae_set_option(s, "resolution_tol", "1e-6");
+    CHECK(regdae_init(s, -1.0, x0, 1, NULL, 0) == REGDAE_SUCCESS);
+    CHECK(regdae_advance(s, -0.5, x, 1, y, 1, NULL, 0) == REGDAE_SUCCESS && strlen(regdae_message(s)) == 0);
+    CHECK(regdae_advance(s, -0.1, x, 1, y, 1, NULL, 0) == REGDAE_WARN_UNRESOLVED && says(s, "resolution_tol"));
+    CHECK(regdae_advance(s, -0.2, x, 1, y, 1, NULL, 0) == REGDAE_ERR_BAD_INPUT && says(s, "before the current time") &&
+          !says(s, "resolution_tol"));
+    CHECK(regdae_advance(s, 1.0, x, 1, y, 1, NULL, 0) == REGDAE_SUCCESS && strlen(regdae_message(s)) == 0);
+
+    /* REGDAE_WARN_MULTIPLIER_UNDEFINED: Baumgarte's multiplier equation t^2 y = ... is
+       singular at t = 0: x valid, y NaN; then on to t = 1, x = 2 and y = 1 */
+    regdae_set_method(s, REGDAE_METHOD_BAUMGARTE);
+    CHECK(regdae_init(s, -1.0, x0, 1, NULL, 0) == REGDAE_SUCCESS);
+    CHECK(regdae_advance(s, 0.0, x, 1, y, 1, NULL, 0) == REGDAE_WARN_MULTIPLIER_UNDEFINED &&
+          says(s, "the multiplier at t = 0.000000E+00 is undefined"));
+    CHECK(fabs(x[0] - 1.0) < 1e-4 && isnan(y[0]));
+    CHECK(regdae_advance(s, 1.0, x, 1, y, 1, NULL, 0) == REGDAE_SUCCESS && strlen(regdae_message(s)) == 0);
+    CHECK(fabs(x[0] - 2.0) < 1e-4 && fabs(y[0] - 1.0) < 1e-4);
+    regdae_destroy(&s);
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
         const char *name;
         void (*run)(void);
     } suites[] = {{"bad_input", bad_input}, {"problems", problems}, {"handles", handles},
-                  {"callbacks", callbacks}, {"options", options}, {"atol_vector", atol_vector}};
+                  {"callbacks", callbacks}, {"options", options}, {"atol_vector", atol_vector},
+                  {"warnings", warnings}};
     const int n_suites = (int)(sizeof suites / sizeof suites[0]);
     int i, ran = 0;
     for (i = 0; i < n_suites; i++) {
@@ -617,7 +727,9 @@ int main(int argc, char **argv)
         ran++;
     }
     if (ran == 0) {
-        printf("capi_tester: unknown suite \"%s\" (bad_input, problems, handles, callbacks, options, atol_vector)\n", argv[1]);
+        printf("capi_tester: unknown suite \"%s\" (bad_input, problems, handles, callbacks, options, atol_vector, "
+               "warnings)\n",
+               argv[1]);
         return 2;
     }
     printf("%d passed, %d failed\n", checks_passed, checks_failed);

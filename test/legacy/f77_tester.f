@@ -15,6 +15,11 @@ C               IDID = -11, IRES = -1 beyond a time fails with -108
 C     VECTOR    INFO(2) = 1 (ATOL per component): equal entries give the
 C               scalar run bit for bit, unequal ones a different one;
 C               unequal RTOL entries are refused (IDID = -33)
+C     WARN      a warning has an IDID of its own: 6 (the approach to
+C               Example 5.1's singularity unresolved), 4 (Baumgarte's
+C               multiplier undefined at T = 0); the run goes on after
+C               it; DREGDAEMSG gives the last call's message, also after
+C               a refused call
       PROGRAM F77TST
       IMPLICIT NONE
       CHARACTER*16 SUITE
@@ -28,10 +33,11 @@ C               unequal RTOL entries are refused (IDID = -33)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'MECH') CALL MECH(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'IRES') CALL IRESTS(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'VECTOR') CALL VECTOR(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'WARN') CALL WARN(NCHK)
       IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
          WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
      *        SUITE(1:LEN_TRIM(SUITE)),
-     *        '" (BADINPUT, TWO, MECH, IRES, VECTOR)'
+     *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN)'
          STOP 2
       END IF
       WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
@@ -497,4 +503,168 @@ C
       CALL CHECK(IDID .EQ. -33 .AND.
      *     INDEX(MSG, 'one relative tolerance') .GT. 0,
      *     'unequal RTOL(i) refused', NCHK)
+      END
+C
+C     ---- WARN --------------------------------------------------------
+C     Example 5.1 (drivers/example_ex51.f: X' = 2 - T*Y, G = T*X -
+C     T*(T+1), singular at T = 0, X = T + 1) from T = -1 to 1 with IDA.
+      SUBROUTINE WARN(NCHK)
+      INTEGER NCHK(2), INFO(20), IWORK(22), IDID, K, NWARN, NOTHER
+      DOUBLE PRECISION RWORK(20), T, X(1), Y(1), TOUT(16), TWARN, TT
+      CHARACTER*300 MSG, LINE
+      LOGICAL PRINTD
+      DATA TOUT /-0.9D0, -0.8D0, -0.7D0, -0.6D0, -0.5D0, -0.4D0,
+     *     -0.3D0, -0.2D0, -0.1D0, -1.0D-2, -1.0D-3, -1.0D-4, -1.0D-5,
+     *     -2.0D-6, 0.5D0, 1.0D0/
+C     regdae_warn_unresolved with the default resolution_tol (1E4):
+C     the direct method (INFO(16) = 3) with eps = 1E-14 (RWORK(11))
+C     and gamma = 10 (RWORK(12)). G = T is independent of X, so the
+C     ratio the solver tests depends on the sample times alone: at
+C     T = -2E-6, the last output before the layer (T**2 < 100 eps),
+C     it is 0.1 EXP(-10*0.1) / 2E-6 = 1.84E4 (the memory of |G| at
+C     T = -0.1), at T = -1E-5 3.7E3: the call to T = -2E-6 warns.
+      CALL CLEAR(INFO, RWORK, IWORK)
+      INFO(16) = 3
+      INFO(17) = 1
+      INFO(19) = 1
+      RWORK(11) = 1.0D-14
+      RWORK(12) = 10.0D0
+      OPEN (UNIT=22, STATUS='SCRATCH')
+      INFO(20) = 22
+      T = -1.0D0
+      X(1) = 0.0D0
+      NWARN = 0
+      NOTHER = 0
+      TWARN = 0.0D0
+      DO 10 K = 1, 16
+         CALL E51RUN(T, X, Y, TOUT(K), INFO, IDID, RWORK, IWORK)
+         CALL DREGDAEMSG(IWORK, 22, MSG)
+         IF (IDID .EQ. 6) THEN
+            NWARN = NWARN + 1
+            TWARN = TOUT(K)
+            CALL CHECK(T .EQ. TOUT(K) .AND. INFO(1) .EQ. 1 .AND.
+     *           IWORK(18) .EQ. 2, 'IDID 6: T = TOUT, INFO(1) = 1, '//
+     *           'IWORK(18) = 2', NCHK)
+            CALL CHECK(INDEX(MSG, 'approaching the singular '//
+     *           'configuration') .GT. 0 .AND.
+     *           INDEX(MSG, 'resolution_tol') .GT. 0,
+     *           'IDID 6: DREGDAEMSG says why', NCHK)
+         ELSE IF (IDID .NE. 3 .OR. MSG .NE. ' ' .OR.
+     *           IWORK(18) .NE. 0) THEN
+            NOTHER = NOTHER + 1
+            WRITE (*, '(A, 1P, E10.2, A, I5, 2A)') '    TOUT', TOUT(K),
+     *           ' IDID', IDID, ': ', MSG(1:LEN_TRIM(MSG))
+         END IF
+   10 CONTINUE
+      CALL CHECK(NWARN .EQ. 1 .AND. TWARN .LT. 0.0D0,
+     *     'one IDID 6, on the approach', NCHK)
+      CALL CHECK(NOTHER .EQ. 0, 'the other calls: IDID 3, no '//
+     *     'message', NCHK)
+C     the integration went on to T = 1 (RTOL = ATOL = 1E-8: the error
+C     measured is 4E-15; 1E-6 means a bug)
+      CALL CHECK(T .EQ. 1.0D0 .AND. ABS(X(1) - 2.0D0) .LT. 1.0D-6,
+     *     'after IDID 6: on to T = 1', NCHK)
+C     the warning was printed on the unit of INFO(20) too
+      REWIND (22)
+      PRINTD = .FALSE.
+      DO 20 K = 1, 100
+         READ (22, '(A)', END=30) LINE
+         IF (INDEX(LINE, 'DREGDAE-- approaching the singular') .GT. 0)
+     *        PRINTD = .TRUE.
+   20 CONTINUE
+   30 CLOSE (22)
+      CALL CHECK(PRINTD, 'IDID 6: the message printed', NCHK)
+C     a refused call after the warning: its own message, then on
+      INFO(20) = -1
+      TT = T
+      CALL E51RUN(T, X, Y, TT, INFO, IDID, RWORK, IWORK)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'is equal to T') .GT. 0
+     *     .AND. IWORK(18) .EQ. -101, 'TOUT = T refused: its message',
+     *     NCHK)
+      INFO(1) = 2
+      CALL E51RUN(T, X, Y, 1.5D0, INFO, IDID, RWORK, IWORK)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'INFO(1) = 2 must be')
+     *     .GT. 0, 'INFO(1) = 2 refused: its message', NCHK)
+      INFO(1) = 1
+      CALL E51RUN(T, X, Y, 1.5D0, INFO, IDID, RWORK, IWORK)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. 3 .AND. MSG .EQ. ' ' .AND. T .EQ. 1.5D0,
+     *     'INFO(1) = 1 after the refusals: IDID 3, no message', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+C     regdae_warn_multiplier_undefined: Baumgarte (INFO(16) = 1),
+C     whose multiplier equation T**2 Y = ... is singular at T = 0
+      CALL CLEAR(INFO, RWORK, IWORK)
+      INFO(16) = 1
+      INFO(17) = 1
+      INFO(19) = 1
+      T = -1.0D0
+      X(1) = 0.0D0
+      CALL E51RUN(T, X, Y, -0.5D0, INFO, IDID, RWORK, IWORK)
+      CALL CHECK(IDID .EQ. 3, 'Baumgarte to T = -0.5: IDID 3', NCHK)
+      CALL E51RUN(T, X, Y, 0.0D0, INFO, IDID, RWORK, IWORK)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. 4 .AND. IWORK(18) .EQ. 1 .AND.
+     *     INFO(1) .EQ. 1 .AND. T .EQ. 0.0D0 .AND. Y(1) .NE. Y(1),
+     *     'T = 0: IDID 4, Y = NaN', NCHK)
+      CALL CHECK(INDEX(MSG, 'the multiplier at t = 0.000000E+00 is '//
+     *     'undefined') .GT. 0, 'IDID 4: DREGDAEMSG says why', NCHK)
+      CALL E51RUN(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. 3 .AND. MSG .EQ. ' ' .AND.
+     *     ABS(X(1) - 2.0D0) .LT. 1.0D-6 .AND.
+     *     ABS(Y(1) - 1.0D0) .LT. 1.0D-6, 'after IDID 4: on to T = 1',
+     *     NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+C     a refusal after a failure: DREGDAEMSG gives the refusal's text,
+C     not the failure's (X(1) = 0.5 at T = -1 violates G = 0)
+      CALL CLEAR(INFO, RWORK, IWORK)
+      T = -1.0D0
+      X(1) = 0.5D0
+      CALL E51RUN(T, X, Y, 0.0D0, INFO, IDID, RWORK, IWORK)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -12 .AND. INDEX(MSG, 'ic_tol') .GT. 0,
+     *     'X0 inconsistent: IDID -12', NCHK)
+      CALL E51RUN(T, X, Y, 0.0D0, INFO, IDID, RWORK, IWORK)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND.
+     *     INDEX(MSG, 'INFO(1) = -1: the last call failed') .GT. 0
+     *     .AND. INDEX(MSG, 'ic_tol') .EQ. 0 .AND. IWORK(18) .EQ. -101,
+     *     'INFO(1) = -1 refused: its message, not -12''s', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+C     One DREGDAE call on Example 5.1, RTOL = ATOL = 1E-8, to TOUT.
+      SUBROUTINE E51RUN(T, X, Y, TOUT, INFO, IDID, RWORK, IWORK)
+      EXTERNAL E51F, E51G, E51GX, E51GT
+      INTEGER INFO(20), IDID, IWORK(22), IPAR(1)
+      DOUBLE PRECISION T, X(1), Y(1), TOUT, RWORK(20), RPAR(1)
+      CALL DREGDAE(E51F, E51GX, E51G, E51GX, E51GT, 1, 1, T, X, Y, TOUT,
+     *     INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
+      END
+C
+      SUBROUTINE E51F(T, X, FX, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(1), FX(1), RPAR(*)
+      FX(1) = 2.0D0
+      END
+C
+      SUBROUTINE E51G(T, X, GV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(1), GV(1), RPAR(*)
+      GV(1) = T * X(1) - T * (T + 1.0D0)
+      END
+C
+C     G_X = T, and B = T too (E51RUN passes this routine as B)
+      SUBROUTINE E51GX(T, X, GM, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(1), GM(1, 1), RPAR(*)
+      GM(1, 1) = T
+      END
+C
+      SUBROUTINE E51GT(T, X, GTV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(1), GTV(1), RPAR(*)
+      GTV(1) = X(1) - 2.0D0 * T - 1.0D0
       END
