@@ -187,6 +187,9 @@ typedef struct regdae_options {
     int check_jacobians;       /**< 1: check G (and the Newton matrix) at init */
     double resolution_tol;     /**< warn (REGDAE_WARN_UNRESOLVED) above this ratio (0: off) */
     double atol_v;             /**< second order: absolute tolerance on the velocities, or REGDAE_AUTO (atol) */
+    int pass_check;            /**< 1: each singular pass re-integrated at rtol/10^k and compared */
+    double pass_tol;           /**< agreement of two levels of a pass check, in error weights */
+    int error_estimate;        /**< 1: a companion at rtol/10 estimates the error of x (regdae_error_estimate) */
 } regdae_options;
 
 /** The statistics (solver_stats of the Fortran API, field for field; doc/api.md section 3). */
@@ -210,6 +213,14 @@ typedef struct regdae_stats {
     double work_defect;       /**< mechanical: largest work-energy defect, relative */
     int unresolved_passes;    /**< singular passes approached with more error than resolution_tol allows */
     double resolution_ratio;  /**< largest x error implied by the residual on an approach, over the tolerance */
+    int pass_checks;          /**< singular passes re-integrated at tighter tolerances (pass_check) */
+    int passes_resolved;      /**< of those, passes where a tighter level's state was taken */
+    int passes_unresolved;    /**< of those, passes where no two levels agreed (a warning each) */
+    double pass_error;        /**< largest difference of the solution from the first tighter level, in error weights */
+    int64_t companion_steps;  /**< steps of the companions (pass checks, error estimate) */
+    double error_estimate;    /**< error_estimate: the estimated error of x at the last output in error weights; -1: none */
+    int weight_changes;       /**< automatic Baumgarte weights changed along the run */
+    int eps_changes;          /**< automatic eps changed along the run */
 } regdae_stats;
 
 /* ---- Handles and messages --------------------------------------------------- */
@@ -326,7 +337,8 @@ int regdae_set_pattern_values(regdae_solver *solver, int which, regdae_point_fn 
  * exclusion, gamma, eps, rtol, atol, atol_v, stop_at_output, max_steps, h_init,
  * h_max, ic_tol, index, gamma0, gamma1, curvature, excluded, singular_threshold,
  * jump_tol, drift_tol, invariant_tol, resolution_tol, work_tol, taylor_h,
- * mass_damping, integrator, linear_solver, check_jacobians; a test checks this
+ * mass_damping, integrator, linear_solver, check_jacobians, pass_check, pass_tol,
+ * error_estimate; a test checks this
  * list against the options). Numbers are read strictly ("1e-3", ".5"; not "1-3").
  * An unknown key or a bad value gives REGDAE_ERR_BAD_INPUT, a message naming it,
  * and leaves the options unchanged.
@@ -345,7 +357,7 @@ int regdae_set_atol_vector(regdae_solver *solver, const double *atol, int n);
 /**
  * Set a real option by its key (gamma, eps, rtol, atol, atol_v, h_init, h_max,
  * ic_tol, gamma0, gamma1, singular_threshold, jump_tol, drift_tol, invariant_tol,
- * resolution_tol, work_tol, taylor_h, mass_damping); REGDAE_AUTO is "auto".
+ * resolution_tol, work_tol, taylor_h, mass_damping, pass_tol); REGDAE_AUTO is "auto".
  * The value goes through the same parser and checks as regdae_set_option,
  * exactly.
  */
@@ -355,7 +367,7 @@ int regdae_set_real_option(regdae_solver *solver, const char *key, double value)
  * Set an integer option by its key: a number (index, max_steps), a code
  * (method: REGDAE_METHOD_*, formulation, lsq, exclusion, excluded, integrator,
  * linear_solver) or a switch, 0 or 1 (stop_at_output, curvature,
- * check_jacobians). A value that is no code of the key: REGDAE_ERR_BAD_INPUT.
+ * check_jacobians, pass_check, error_estimate). A value that is no code of the key: REGDAE_ERR_BAD_INPUT.
  */
 int regdae_set_int_option(regdae_solver *solver, const char *key, int value);
 
@@ -462,6 +474,14 @@ int regdae_advance(regdae_solver *solver, double tout, double *x, int nx, double
 
 /** The statistics of the integration so far (stats->t: the time reached). */
 int regdae_get_statistics(const regdae_solver *solver, regdae_stats *stats);
+
+/**
+ * With the option error_estimate (1): e = x_companion - x at the last output, the
+ * estimated global error of x (a companion solution at rtol/10, atol/10); n: the size
+ * of x. REGDAE_ERR_BAD_INPUT, e filled with NaN, when there is no estimate (the option
+ * off, no output yet, another n, or the companion failed).
+ */
+int regdae_error_estimate(regdae_solver *solver, double *e, int n);
 
 #ifdef __cplusplus
 }

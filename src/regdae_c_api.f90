@@ -58,7 +58,7 @@ module regdae_c_api
               regdae_pattern_position
     public :: regdae_set_option, regdae_set_real_option, regdae_set_int_option, regdae_get_options, &
               regdae_set_atol_vector
-    public :: regdae_init, regdae_advance, regdae_get_statistics
+    public :: regdae_init, regdae_advance, regdae_get_statistics, regdae_error_estimate
 
 contains
 
@@ -295,7 +295,7 @@ contains
     !> `int regdae_set_int_option(solver, key, value)`: an integer option (index,
     !! max_steps), a code (method, formulation, lsq, exclusion, excluded, integrator,
     !! linear_solver: REGDAE_*) or a switch (stop_at_output, curvature,
-    !! check_jacobians: 0 or 1) by its key.
+    !! check_jacobians, pass_check, error_estimate: 0 or 1) by its key.
     integer(c_int) function regdae_set_int_option(handle, key, value) bind(C, name='regdae_set_int_option')
         type(c_ptr), value :: handle, key
         integer(c_int), value :: value
@@ -317,7 +317,7 @@ contains
         case ('excluded'); text = excluded_name(value)
         case ('integrator'); text = integrator_name(value)
         case ('linear_solver'); text = linear_solver_name(value)
-        case ('stop_at_output', 'curvature', 'check_jacobians')
+        case ('stop_at_output', 'curvature', 'check_jacobians', 'pass_check', 'error_estimate')
             text = 'unknown'
             if (value == 0 .or. value == 1) text = trim(merge('yes', 'no ', value == 1))
         case default; text = format_int(value)
@@ -483,6 +483,29 @@ contains
         c = to_c_stats(s%solver%statistics())
         regdae_get_statistics = record(s, regdae_success, '')
     end function regdae_get_statistics
+
+    !> `int regdae_error_estimate(const regdae_solver *solver, double *e, int n)`: with the
+    !! option error_estimate, e = x_companion - x at the last output (n entries, the size of
+    !! x); REGDAE_ERR_BAD_INPUT (e filled with NaN) when there is no estimate.
+    integer(c_int) function regdae_error_estimate(handle, e, n) bind(C, name='regdae_error_estimate')
+        type(c_ptr), value :: handle, e
+        integer(c_int), value :: n
+        type(c_session), pointer :: s
+        real(c_double), pointer :: values(:)
+        regdae_error_estimate = regdae_err_bad_input
+        if (.not. open_session(handle, s)) return
+        if (.not. c_associated(e) .or. n < 1) then
+            regdae_error_estimate = refuse(s, 'regdae_error_estimate: e is NULL or n = '//format_int(n)//' < 1')
+            return
+        end if
+        call c_f_pointer(e, values, [n])
+        if (.not. s%solver%error_estimate(values)) then
+            regdae_error_estimate = refuse(s, 'regdae_error_estimate: no estimate (the option error_estimate is off, '// &
+                                           'no output yet, n is not the size of x, or the companion failed)')
+            return
+        end if
+        regdae_error_estimate = record(s, regdae_success, '')
+    end function regdae_error_estimate
 
     ! --- helpers ----------------------------------------------------------------------
 

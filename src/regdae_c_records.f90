@@ -40,6 +40,9 @@ module regdae_c_records
         integer(c_int) :: check_jacobians     !! 0 or 1
         real(c_double) :: resolution_tol
         real(c_double) :: atol_v              !! REGDAE_AUTO (atol) or the value
+        integer(c_int) :: pass_check          !! 0 or 1
+        real(c_double) :: pass_tol
+        integer(c_int) :: error_estimate      !! 0 or 1
     end type c_options
 
     !> `regdae_stats` (include/regdae.h): the statistics, as `solver_stats`.
@@ -63,6 +66,14 @@ module regdae_c_records
         real(c_double) :: work_defect
         integer(c_int) :: unresolved_passes
         real(c_double) :: resolution_ratio
+        integer(c_int) :: pass_checks
+        integer(c_int) :: passes_resolved
+        integer(c_int) :: passes_unresolved
+        real(c_double) :: pass_error
+        integer(c_int64_t) :: companion_steps
+        real(c_double) :: error_estimate
+        integer(c_int) :: weight_changes
+        integer(c_int) :: eps_changes
     end type c_stats
 
     public :: to_c_options, to_c_stats
@@ -82,7 +93,9 @@ contains
                       drift_tol=opts%drift_tol, work_tol=opts%work_tol, invariant_tol=opts%invariant_tol, &
                       taylor_h=opts%taylor_h, mass_damping=opts%mass_damping, integrator=opts%integrator, &
                       linear_solver=opts%linear_solver, check_jacobians=merge(1, 0, opts%check_jacobians), &
-                      resolution_tol=opts%resolution_tol, atol_v=opts%atol_v)
+                      resolution_tol=opts%resolution_tol, atol_v=opts%atol_v, &
+                      pass_check=merge(1, 0, opts%pass_check), pass_tol=opts%pass_tol, &
+                      error_estimate=merge(1, 0, opts%error_estimate))
     end function to_c_options
 
     !> The statistics as the C record.
@@ -94,7 +107,11 @@ contains
                     conv_fails=st%conv_fails, t=st%t, h_last=st%h_last, singular_passes=st%singular_passes, &
                     sigma_min=st%sigma_min, velocity_jump=st%velocity_jump, max_drift=st%max_drift, &
                     invariant_change=st%invariant_change, switches=st%switches, work_defect=st%work_defect, &
-                    unresolved_passes=st%unresolved_passes, resolution_ratio=st%resolution_ratio)
+                    unresolved_passes=st%unresolved_passes, resolution_ratio=st%resolution_ratio, &
+                    pass_checks=st%pass_checks, passes_resolved=st%passes_resolved, &
+                    passes_unresolved=st%passes_unresolved, pass_error=st%pass_error, &
+                    companion_steps=st%companion_steps, error_estimate=st%error_estimate, &
+                    weight_changes=st%weight_changes, eps_changes=st%eps_changes)
     end function to_c_stats
 
 end module regdae_c_records

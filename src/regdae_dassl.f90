@@ -46,6 +46,9 @@ module regdae_dassl
     integer, parameter :: rwork_tstop = 1, rwork_hmax = 2, rwork_h0 = 3   ! inputs (INFO(4), (7), (8))
     integer, parameter :: rwork_tn = 4, rwork_hold = 7                   ! outputs: time reached, last step
     integer, parameter :: rwork_eps = 11, rwork_gamma = 12, rwork_gamma0 = 13, rwork_gamma1 = 14
+    ! pass_tol (0: the default; < 0: pass_check off), error_estimate (1: on); outputs: the
+    ! error estimate (-1: none) and the largest pass error (solver_stats)
+    integer, parameter :: rwork_pass_tol = 15, rwork_error_estimate = 16, rwork_estimate = 17, rwork_pass_error = 18
     !> The smallest LRW.
     integer, parameter, public :: min_lrw = 20
 
@@ -295,6 +298,8 @@ contains
         iwork(iwork_status) = stat
         rwork(rwork_tn) = st%t
         rwork(rwork_hold) = st%h_last
+        rwork(rwork_estimate) = st%error_estimate
+        rwork(rwork_pass_error) = st%pass_error
         s%message = ''
         if (stat /= regdae_success) s%message = s%solver%message()
         if (stat == regdae_err_user_callback .and. allocated(s%routines%failure)) &
@@ -386,8 +391,16 @@ contains
         if (rwork(rwork_gamma) /= 0.0_wp) opts%gamma = rwork(rwork_gamma)
         if (rwork(rwork_gamma0) /= 0.0_wp) opts%gamma0 = rwork(rwork_gamma0)
         if (rwork(rwork_gamma1) /= 0.0_wp) opts%gamma1 = rwork(rwork_gamma1)
+        if (rwork(rwork_pass_tol) > 0.0_wp) opts%pass_tol = rwork(rwork_pass_tol)
+        if (rwork(rwork_pass_tol) < 0.0_wp) opts%pass_check = .false.
+        opts%error_estimate = (rwork(rwork_error_estimate) == 1.0_wp)
         call validate_options(opts, stat, msg)
-        if (stat /= regdae_success) msg = 'RTOL, ATOL or RWORK(11..14): '//msg
+        if (stat == regdae_success .and. .not. (rwork(rwork_error_estimate) == 0.0_wp .or. &
+                                                rwork(rwork_error_estimate) == 1.0_wp)) then
+            stat = regdae_err_bad_input
+            msg = 'RWORK(16) (error estimate) must be 0 or 1, got '//format_real(rwork(rwork_error_estimate))
+        end if
+        if (stat /= regdae_success) msg = 'RTOL, ATOL or RWORK(11..16): '//msg
     end subroutine options_from
 
     ! ATOL for each of the k components of the state: ATOL(1:k) with INFO(2) = 1, else ATOL(1).

@@ -118,10 +118,15 @@ module regdae_monitor
         real(wp) :: checkpoint_t = 0.0_wp        !! its time
         logical :: checkpoint_frozen = .false.   !! a pass began since the checkpoint
         logical :: checkpoint_valid = .false.    !! a checkpoint exists
+        logical :: defer_in_pass = .false.       !! a pass check is on: an alarm inside a pass (checkpoint
+                                                 !! frozen) does not stop the run; the pass check decides
+        integer :: deferred_alarms = 0           !! alarms inside passes left to the pass check
+        character(len=:), allocatable :: deferred_message   !! the last of them
         logical :: alarm = .false.               !! a jump above jump_tol or a drift above drift_tol
         integer :: alarm_kind = alarm_none       !! alarm_jump or alarm_drift
         character(len=:), allocatable :: alarm_message   !! what, where and how much
         logical, private :: have_regular = .false., have_invariant = .false., in_layer = .false., have_work = .false.
+        real(wp), private :: kinetic_last = 0.0_wp
         real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
                              t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
         integer, private :: work_samples = 0
@@ -141,6 +146,9 @@ module regdae_monitor
         procedure :: reset => monitor_reset
         !> Sample the kinetic energy and the power of the applied forces at t (work-energy balance).
         procedure :: sample_work => monitor_sample_work
+        !> The solution goes on from another state at the last sample's time (a pass
+        !! check's): its kinetic energy and power; the balance starts again there.
+        procedure :: rebase_work => monitor_rebase_work
         !> Sample the model's last evaluation, made at time t on the solution.
         procedure :: sample => monitor_sample
         !> Sample given values: the drift max |g|, sigma_min(GB), the invariant
@@ -190,6 +198,7 @@ contains
         self%pass_ended = .false.
         self%checkpoint_frozen = .false.
         self%checkpoint_valid = .false.
+        self%deferred_alarms = 0
         self%invariant_tol = invariant_tol
         self%invariant_change = 0.0_wp
         self%have_invariant = .false.
@@ -491,6 +500,7 @@ contains
         self%in_layer = (self%sigma_last < self%layer_threshold)
         if (self%np > 0 .and. self%jump_tol > 0.0_wp .and. .not. self%in_layer) &
             call regular_sample(self, t, v, a, was_in_layer)
+        call settle_alarm(self)
     end subroutine monitor_sample_values
 
     subroutine monitor_sample_work(self, t, kinetic, power, stat)
@@ -499,6 +509,7 @@ contains
         integer, intent(in) :: stat   !! the user routines' status (nonzero: the sample is skipped)
         real(wp) :: defect, h, trapezoid, quadratic, d2
         if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
+        self%kinetic_last = kinetic
         if (.not. self%have_work) then
             self%kinetic0 = kinetic
             self%work = 0.0_wp
@@ -543,7 +554,33 @@ contains
                                  ' of the energy scale '//format_real(self%work_scale)//' > work_tol = '// &
                                  format_real(self%work_tol)//')'
         end if
+        call settle_alarm(self)
     end subroutine monitor_sample_work
+
+    ! An alarm inside a singular pass while a pass check is on: left to the pass check
+    ! (which re-integrates the pass and takes a state that tighter tolerances agree on).
+    subroutine settle_alarm(self)
+        type(solution_monitor), intent(inout) :: self
+        if (.not. (self%alarm .and. self%defer_in_pass .and. self%checkpoint_frozen)) return
+        self%alarm = .false.
+        self%deferred_alarms = self%deferred_alarms + 1
+        self%deferred_message = self%alarm_message
+        self%alarm_kind = alarm_none
+    end subroutine settle_alarm
+
+    subroutine monitor_rebase_work(self, kinetic, power)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: kinetic, power   !! of the new state
+        if (.not. self%have_work) return
+        ! the balance starts again from the verified state: D = 0 there (the path the
+        ! solution took through the pass is not the one it goes on from)
+        self%kinetic0 = kinetic
+        self%work = 0.0_wp
+        self%quadrature_error = 0.0_wp
+        self%kinetic_last = kinetic
+        self%power_last = power
+        self%work_samples = 1
+    end subroutine monitor_rebase_work
 
     ! The invariant at t: the first sample sets I(t0).
     subroutine invariant_sample(self, t, val, stat)

@@ -165,7 +165,7 @@ module regdae_solver_front
         !> Start `other` on the same problem from (t, z) with the tolerances divided by
         !! kappa (eps too when automatic), the weights in force, no checks.
         procedure :: start_companion => engine_start_companion
-        !> max_i |za_i - zb_i| / (rtol |zb_i| + atol_i) over the state's components in the error test.
+        !> max_i |za_i - zb_i| / (rtol |zb_i| + atol_i) over x, the positions of the state z.
         procedure :: state_distance => engine_state_distance
         !> Append a line to the events log.
         procedure :: note_event => engine_note_event
@@ -175,6 +175,8 @@ module regdae_solver_front
         procedure :: time => engine_time
         !> The size of x (0 before init).
         procedure :: x_size => engine_x_size
+        !> Is this the same engine as `other` (both initialized, one state)?
+        procedure :: same_engine => engine_same
         procedure, private :: record => solver_record
         !> `a = b` does not copy a solver (it owns IDA memory and its callbacks
         !! point at it): `a` is left uninitialized, `b` unchanged; `a%advance`
@@ -1921,7 +1923,9 @@ contains
     subroutine engine_stop_at_pass_ends(self, on)
         class(solver_engine), intent(inout) :: self
         logical, intent(in) :: on
-        if (associated(self%core)) self%core%stop_at_pass_end = on
+        if (.not. associated(self%core)) return
+        self%core%stop_at_pass_end = on
+        self%core%monitor%defer_in_pass = on
     end subroutine engine_stop_at_pass_ends
 
     logical function engine_take_pass_end(self) result(ended)
@@ -1967,6 +1971,12 @@ contains
             t = self%core%ida%current_time()
         end if
     end function engine_integrator_time
+
+    logical function engine_same(self, other) result(same)
+        class(solver_engine), intent(in) :: self, other
+        same = .false.
+        if (associated(self%core) .and. associated(other%core)) same = associated(self%core, other%core)
+    end function engine_same
 
     integer function engine_x_size(self) result(n)
         class(solver_engine), intent(in) :: self
@@ -2044,8 +2054,33 @@ contains
                     call core%ida%restart(t, z, zp, stat)
                 end if
             end if
+            if (stat == regdae_success .and. core%monitor%work_tol > 0.0_wp) call rebase_work(core, t, z)
         end associate
     end subroutine engine_restart_at
+
+    ! The work-energy balance goes on from the state z at t (engine_restart_at).
+    subroutine rebase_work(core, t, z)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, z(:)
+        real(c_double), pointer :: u(:), up(:)
+        real(wp) :: kinetic, power, y(core%m), q(core%nx), v(core%nx)
+        integer :: wstat
+        logical :: recoverable
+        wstat = -1
+        if (core%augmented) then
+            u => core%ida%state()
+            up => core%ida%slope()
+            select type (sys => core%ida%system)
+            type is (augmented_system)
+                call sys%unpack(u, up, q=q, v=v, y=y)
+                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass)
+            end select
+        else
+            call core%model%evaluate(t, z, wstat, recoverable)
+            if (wstat == regdae_success) call core%model%work_sample(t, z, kinetic, power, wstat)
+        end if
+        if (wstat == 0) call core%monitor%rebase_work(kinetic, power)
+    end subroutine rebase_work
 
     subroutine engine_start_companion(self, other, kappa, t, z, stat)
         class(solver_engine), intent(in) :: self
@@ -2054,7 +2089,7 @@ contains
         real(wp), intent(in) :: t, z(:)     !! the start: a state of self (x, v)
         integer, intent(out) :: stat
         type(solver_options) :: opts
-        real(wp) :: eps, zs(size(z))
+        real(wp) :: eps, zs(size(z)), ratio
         integer :: nx, pstat
         stat = regdae_err_not_initialized
         if (.not. associated(self%core)) return
@@ -2092,9 +2127,15 @@ contains
                     opts%gamma1 = core%model%w(2)
                 end if
             end if
-            ! an automatic eps shrinks with the tolerance as its rule says (rtol^2; direct: rtol)
+            ! an automatic eps shrinks with the tolerance as its rule says (rtol^2 within its
+            ! bounds; direct: the square root of that): below the rule's floor thinner layers
+            ! are not resolved in double precision, and the companion has the same eps
             opts%eps = eps
-            if (core%eps_factor > 0.0_wp) opts%eps = eps/kappa**merge(1, 2, opts%method == method_direct)
+            if (core%eps_factor > 0.0_wp) then
+                ratio = automatic_eps_factor(opts%rtol)/automatic_eps_factor(core%opts%rtol)
+                if (opts%method == method_direct) ratio = sqrt(ratio)
+                opts%eps = eps*ratio
+            end if
             ! the start projected onto the constraints: the solution's drift is within its
             ! tolerance, not within the companion's (with a thinner layer it can bounce off the branch)
             zs = z
@@ -2132,7 +2173,9 @@ contains
         d = 0.0_wp
         if (.not. associated(self%core)) return
         associate (core => self%core)
-            skip_v = core%second_order .and. core%opts%excluded == excluded_vy
+            ! the positions (x) only: the error the user reads; right after a pass the
+            ! velocities carry its layer's sensitivity, which the positions integrate away
+            skip_v = core%second_order
             do i = 1, min(size(za), size(zb), core%n)
                 if (skip_v .and. i > core%nx) cycle
                 d = max(d, abs(za(i) - zb(i))/(core%opts%rtol*abs(zb(i)) + core%atol_z(i)))

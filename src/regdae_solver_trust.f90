@@ -69,7 +69,9 @@ module regdae_solver_trust
     !> A regularized DAE solver (doc/api.md): `init`, `advance`, `statistics`, ...
     type, public :: regdae_solver
         private
-        type(solver_engine) :: main
+        ! the engine, through a pointer: gfortran 12 finalizes the components of the
+        ! temporary it makes for `b = b`, which would destroy a shared engine
+        type(solver_engine), pointer :: main => null()
         type(pass_ladder) :: ladder
         type(regdae_solver), pointer :: estimator => null()
         logical :: verify = .false.
@@ -133,6 +135,7 @@ contains
         integer, intent(out) :: stat
         real(wp), intent(in), optional :: atol_vector(:)
         call self%destroy()
+        call ensure_engine(self)
         call self%main%init(problem, t0, x0, opts, stat, atol_vector)
         call after_init(self, opts, stat)
         if (.not. new_estimator(self, opts, stat)) return
@@ -152,6 +155,7 @@ contains
         integer, intent(out) :: stat
         real(wp), intent(in), optional :: atol_vector(:)
         call self%destroy()
+        call ensure_engine(self)
         call self%main%init(problem, t0, x0, v0, opts, stat, atol_vector)
         call after_init(self, opts, stat)
         if (.not. new_estimator(self, opts, stat)) return
@@ -171,6 +175,7 @@ contains
         integer, intent(out) :: stat
         real(wp), intent(in), optional :: atol_vector(:)
         call self%destroy()
+        call ensure_engine(self)
         call self%main%init(problem, t0, xs0, opts, stat, atol_vector)
         call after_init(self, opts, stat)
         self%verify = .false.   ! order >= 3: the Taylor weights leave their own error; no pass check
@@ -183,6 +188,12 @@ contains
         end if
         call estimator_started(self, stat)
     end subroutine trust_init_higher
+
+    ! The engine allocated (once; init and destroy keep it).
+    subroutine ensure_engine(self)
+        type(regdae_solver), intent(inout) :: self
+        if (.not. associated(self%main)) allocate (self%main)
+    end subroutine ensure_engine
 
     ! After the engine's init: the status, and the pass check's settings.
     subroutine after_init(self, opts, stat)
@@ -263,6 +274,7 @@ contains
         real(wp), allocatable :: zc(:)
         warn = regdae_success
         warn_text = ''
+        call ensure_engine(self)
         do
             call self%main%advance(tout, x, y, stat, v, a)
             if (stat < 0) then
@@ -440,6 +452,7 @@ contains
         type(solver_stats) :: st
         type(solver_stats) :: other
         integer :: k
+        if (.not. associated(self%main)) return
         st = self%main%statistics()
         st%pass_checks = self%pass_checks
         st%passes_resolved = self%passes_resolved
@@ -481,39 +494,48 @@ contains
     function trust_events(self) result(text)
         class(regdae_solver), intent(in) :: self
         character(len=:), allocatable :: text
-        text = self%main%events()
+        text = ''
+        if (associated(self%main)) text = self%main%events()
     end function trust_events
 
     function trust_options(self) result(opts)
         class(regdae_solver), intent(in) :: self
         type(solver_options) :: opts
-        opts = self%main%options()
+        if (associated(self%main)) opts = self%main%options()
     end function trust_options
 
     integer function trust_formulation(self)
         class(regdae_solver), intent(in) :: self
-        trust_formulation = self%main%formulation()
+        trust_formulation = 0
+        if (associated(self%main)) trust_formulation = self%main%formulation()
     end function trust_formulation
 
     integer function trust_linear_solver(self)
         class(regdae_solver), intent(in) :: self
-        trust_linear_solver = self%main%linear_solver()
+        trust_linear_solver = 0
+        if (associated(self%main)) trust_linear_solver = self%main%linear_solver()
     end function trust_linear_solver
 
     integer function trust_lsq_method(self)
         class(regdae_solver), intent(in) :: self
-        trust_lsq_method = self%main%lsq_method()
+        trust_lsq_method = 0
+        if (associated(self%main)) trust_lsq_method = self%main%lsq_method()
     end function trust_lsq_method
 
     real(wp) function trust_sigma_min(self)
         class(regdae_solver), intent(in) :: self
-        trust_sigma_min = self%main%sigma_min()
+        trust_sigma_min = ieee_value(1.0_wp, ieee_quiet_nan)
+        if (associated(self%main)) trust_sigma_min = self%main%sigma_min()
     end function trust_sigma_min
 
     function trust_singular_intervals(self) result(intervals)
         class(regdae_solver), intent(in) :: self
         real(wp), allocatable :: intervals(:, :)
-        intervals = self%main%singular_intervals()
+        if (associated(self%main)) then
+            intervals = self%main%singular_intervals()
+        else
+            allocate (intervals(2, 0))
+        end if
     end function trust_singular_intervals
 
     ! The status and message of a call (stat, if present, gets the code).
@@ -529,7 +551,7 @@ contains
 
     recursive subroutine trust_destroy(self)
         class(regdae_solver), intent(inout) :: self
-        call self%main%destroy()
+        if (associated(self%main)) call self%main%destroy()
         self%ladder%levels = max_levels
         call retire(self, 1)
         self%ladder%active = .false.
@@ -551,8 +573,12 @@ contains
     subroutine trust_assign(lhs, rhs)
         class(regdae_solver), intent(inout) :: lhs
         class(regdae_solver), intent(in) :: rhs
+        if (associated(lhs%main) .and. associated(rhs%main)) then
+            if (lhs%main%same_engine(rhs%main)) return   ! a = a
+        end if
         call lhs%destroy()
-        lhs%main = rhs%main   ! the engine's assignment leaves it uninitialized, saying why
+        call ensure_engine(lhs)
+        if (associated(rhs%main)) lhs%main = rhs%main   ! the engine's assignment leaves it uninitialized, saying why
         lhs%assigned = .true.
         call record(lhs, regdae_err_not_initialized, 'a regdae_solver cannot be copied by assignment (it owns '// &
                     'IDA memory): this one is uninitialized; call init on it')
@@ -561,6 +587,7 @@ contains
     subroutine trust_finalize(self)
         type(regdae_solver), intent(inout) :: self
         call self%destroy()
+        if (associated(self%main)) deallocate (self%main)
     end subroutine trust_finalize
 
 end module regdae_solver_trust

@@ -252,9 +252,10 @@ contains
         type(regdae_solver) :: solver
         real(wp), parameter :: gammas(4) = [1.0e1_wp, 1.0e3_wp, 1.0e5_wp, 1.0e7_wp]
         real(wp) :: dev
-        integer :: i, stat, silent_with, silent_without, stopped
+        integer :: i, stat, silent_with, silent_without, silent_passes, stopped
         logical :: named
         silent_with = 0
+        silent_passes = 0
         silent_without = 0
         stopped = 0
         named = .true.
@@ -273,14 +274,20 @@ contains
             call solver%destroy()
             opts%jump_tol = 0.0_wp
             opts%drift_tol = 0.0_wp
+            call run_crank(opts, stat, dev, solver)   ! the pass check alone
+            if (stat == regdae_success .and. dev > 0.1_wp) silent_passes = silent_passes + 1
+            call solver%destroy()
+            opts%pass_check = .false.
             call run_crank(opts, stat, dev, solver)
             if (stat >= 0 .and. dev > 0.1_wp) silent_without = silent_without + 1
             call solver%destroy()
             opts = solver_options()
         end do
-        write (*, '(a,3i3)') '    silent with checks, silent without, stopped: ', silent_with, silent_without, stopped
+        write (*, '(a,4i3)') '    silent with checks, with the pass check alone, without any, stopped: ', &
+            silent_with, silent_passes, silent_without, stopped
         call chk%equal(silent_with, 0, 'no run ends ok off the branch with the checks')
-        call chk%true(silent_without > 0, 'without them some do (what the checks catch)')
+        call chk%equal(silent_passes, 0, 'nor with the pass check alone (no warning)')
+        call chk%true(silent_without > 0, 'without any check some do (what the checks catch)')
         call chk%true(stopped > 0 .and. named, 'stopped with regdae_err_branch, the message names the jump')
     end subroutine branch_checks
 

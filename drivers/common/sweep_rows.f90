@@ -17,7 +17,9 @@
 !!   <id> <problem> <status> t_end=... <errors> steps=... res_evals=... jac_evals=...
 !!       err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... [message=...]
 !!
-!! status: ok; failed (the solver stopped: message= its message); off_branch (crank2, crank3:
+!! status: ok; warning (the run ended, but an advance returned a warning, e.g. a singular pass
+!! the pass check did not resolve: message= the first one); failed (the solver stopped:
+!! message= its message); off_branch (crank2, crank3:
 !! the solver ended but |th1 + th2 - pi| exceeded branch_tol, as ex52's status=failed with its
 !! warning); bad_input (a row that cannot run: an unknown problem or key, a bad value, or
 !! init's regdae_err_bad_input; message= why). seconds: init and advances only (not the
@@ -372,6 +374,7 @@ contains
         class(row_hook), intent(inout), optional :: hook
         type(stopwatch) :: clock
         integer :: k, stat
+        character(len=:), allocatable :: warning
         call run%prepare(s, r)
         if (r%status == 'failed') return
         call clock%start()
@@ -383,6 +386,7 @@ contains
             call run%advance(k, stat)
             call clock%stop()
             if (stat < 0) exit   ! a warning (stat > 0) at an output time: x is valid, go on
+            if (stat > 0 .and. .not. allocated(warning)) warning = run%solver%message()
             call run%measure(k)
             if (present(hook)) call hook%poll()
         end do
@@ -396,6 +400,9 @@ contains
             r%status = trim(merge('bad_input', 'failed   ', stat == regdae_err_bad_input))
             r%message = run%solver%message()
             if (len(r%message) == 0) r%message = status_message(stat)
+        else if (allocated(warning)) then   ! x was returned, but the tolerance may not be met
+            r%status = 'warning'
+            r%message = warning
         end if
         call run%solver%destroy()
         call run%fields(s, r)
@@ -507,7 +514,7 @@ contains
         r%fields = r%fields//' max_err_th='//num(self%max_err)//' max_abs_g3='//num(self%max_g3)// &
                    ' max_energy_err='//num(self%max_de)//' max_branch_dev='//num(self%max_dev)// &
                    ' singular_passes='//format_int(r%st%singular_passes)
-        if (r%status == 'ok' .and. self%t_off >= 0.0_wp) then
+        if ((r%status == 'ok' .or. r%status == 'warning') .and. self%t_off >= 0.0_wp) then
             r%status = 'off_branch'
             r%message = 'left the physical branch th2 = pi - th1 at t = '//num(self%t_off)// &
                         ' (max |th1 + th2 - pi| = '//num(self%max_dev)//' > branch_tol = '//num(s%branch_tol)//')'
