@@ -165,6 +165,9 @@ module regdae_solver_front
         !> Start `other` on the same problem from (t, z) with the tolerances divided by
         !! kappa (eps too when automatic), the weights in force, no checks.
         procedure :: start_companion => engine_start_companion
+        !> Does the automatic eps of companions at rtol/kappa_a and rtol/kappa_b coincide (the
+        !! rule's floor)? False if eps is the user's.
+        procedure :: eps_floored => engine_eps_floored
         !> max_i |za_i - zb_i| / (rtol |zb_i| + atol_i) over x, the positions of the state z.
         procedure :: state_distance => engine_state_distance
         !> Append a line to the events log.
@@ -2082,12 +2085,14 @@ contains
         if (wstat == 0) call core%monitor%rebase_work(kinetic, power)
     end subroutine rebase_work
 
-    subroutine engine_start_companion(self, other, kappa, t, z, stat)
+    subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale)
         class(solver_engine), intent(in) :: self
         class(solver_engine), intent(inout) :: other
         real(wp), intent(in) :: kappa       !! the tolerances' divisor (> 1)
         real(wp), intent(in) :: t, z(:)     !! the start: a state of self (x, v)
         integer, intent(out) :: stat
+        real(wp), intent(in), optional :: eps_scale   !! the companion's eps times this (a probe of the
+                                                      !! regularization error)
         type(solver_options) :: opts
         real(wp) :: eps, zs(size(z)), ratio
         integer :: nx, pstat
@@ -2136,6 +2141,7 @@ contains
                 if (opts%method == method_direct) ratio = sqrt(ratio)
                 opts%eps = eps*ratio
             end if
+            if (present(eps_scale)) opts%eps = opts%eps*eps_scale
             ! the start projected onto the constraints: the solution's drift is within its
             ! tolerance, not within the companion's (with a thinner layer it can bounce off the branch)
             zs = z
@@ -2164,6 +2170,16 @@ contains
             end if
         end associate
     end subroutine engine_start_companion
+
+    logical function engine_eps_floored(self, kappa_a, kappa_b) result(floored)
+        class(solver_engine), intent(in) :: self
+        real(wp), intent(in) :: kappa_a, kappa_b
+        floored = .false.
+        if (.not. associated(self%core)) return
+        if (.not. (self%core%eps_factor > 0.0_wp)) return
+        floored = abs(automatic_eps_factor(self%core%opts%rtol/kappa_a) - automatic_eps_factor(self%core%opts%rtol/ &
+                      kappa_b)) <= 1.0e-6_wp*automatic_eps_factor(self%core%opts%rtol/kappa_a)
+    end function engine_eps_floored
 
     real(wp) function engine_state_distance(self, za, zb) result(d)
         class(solver_engine), intent(in) :: self

@@ -44,6 +44,9 @@ module regdae_solver_trust
     real(wp), parameter :: kappa = 10.0_wp
     !> At most this many companion levels per pass.
     integer, parameter :: max_levels = 3
+    !> The eps probe's eps over its level's: where consecutive levels share the automatic
+    !! eps (its floor), their agreement says nothing about the regularization error.
+    real(wp), parameter :: eps_probe = 10.0_wp
     !> No companion below this rtol (the integrators' own floor).
     real(wp), parameter :: rtol_floor = 1.0e-13_wp
 
@@ -57,6 +60,9 @@ module regdae_solver_trust
     ! the checkpoint (t_start, z_start).
     type :: pass_ladder
         type(engine_slot) :: level(max_levels)
+        type(engine_slot) :: probe     ! the eps probe: level probe_level's tolerance, eps_probe x its eps
+        integer :: probe_level = -1
+        real(wp) :: d_probe = 0.0_wp
         integer :: levels = 0          ! levels started
         logical :: active = .false.
         logical :: warned = .false.    ! this pass has warned already
@@ -371,6 +377,14 @@ contains
             end do
             agreed = (answer >= 0)
             if (.not. agreed) answer = lad%levels   ! the finest level that ran
+            if (agreed .and. answer < lad%levels) then
+                ! the answer and the next level share the eps floor: a probe at 10 eps tells
+                ! whether the regularization error is within the tolerance
+                if (self%main%eps_floored(kappa**answer, kappa**(answer + 1))) then
+                    call probe_regularization(self, t, answer, lstat)
+                    if (lstat == regdae_success .and. lad%d_probe > self%pass_tol) agreed = .false.
+                end if
+            end if
             if (answer > 0) then   ! its values at t are the outputs
                 call lad%level(answer)%engine%advance(t, x, y, lstat, v, a)
             end if
@@ -382,6 +396,8 @@ contains
                 do k = 1, lad%levels
                     text = text//' '//format_real(lad%d(k))
                 end do
+                if (lad%probe_level == answer) text = text//', and 10 eps moves the answer by '// &
+                                                      format_real(lad%d_probe)//' (the regularization error)'
                 text = text//' error weights (> pass_tol = '//format_real(self%pass_tol)//'); x is the finest '// &
                        'level''s (rtol/'//format_real(kappa**answer)//'); a smaller rtol, or another eps, may '// &
                        'resolve it; pass_check=no skips this check'
@@ -406,9 +422,54 @@ contains
             end if
             call self%main%release_checkpoint(t, lad%z(:, answer))
             call retire(self, 1)
+            call retire_probe(self)
             lad%active = .false.
         end associate
     end subroutine check_pass
+
+    ! The eps probe of level `level` (started from the checkpoint if it is not running for
+    ! that level) brought to t: lad%d_probe, its distance from the level's state there.
+    subroutine probe_regularization(self, t, level, stat)
+        type(regdae_solver), intent(inout) :: self
+        real(wp), intent(in) :: t
+        integer, intent(in) :: level
+        integer, intent(out) :: stat
+        real(wp), allocatable :: zp(:)
+        allocate (zp(self%main%state_size()))
+        associate (lad => self%ladder)
+            if (lad%probe_level /= level) call retire_probe(self)
+            if (.not. associated(lad%probe%engine)) then
+                allocate (lad%probe%engine)
+                lad%probe_level = level
+                call self%main%start_companion(lad%probe%engine, kappa**level, lad%t_start, lad%z_start, stat, &
+                                               eps_scale=eps_probe)
+                if (stat < 0) then
+                    call retire_probe(self)
+                    return
+                end if
+            end if
+            call bring_to(lad%probe%engine, t, zp, stat)
+            if (stat < 0) then
+                call retire_probe(self)
+                return
+            end if
+            lad%d_probe = self%main%state_distance(lad%z(:, level), zp)
+        end associate
+    end subroutine probe_regularization
+
+    subroutine retire_probe(self)
+        type(regdae_solver), intent(inout) :: self
+        type(solver_engine), pointer :: engine
+        type(solver_stats) :: st
+        engine => self%ladder%probe%engine
+        self%ladder%probe_level = -1
+        if (.not. associated(engine)) return
+        st = engine%statistics()
+        self%retired_steps = self%retired_steps + st%steps
+        call engine%destroy()
+        deallocate (engine)
+        self%ladder%probe%engine => null()
+    end subroutine retire_probe
 
     ! Bring a companion to time t (if it is behind) and read its state.
     subroutine bring_to(engine, t, z, stat)
@@ -463,6 +524,10 @@ contains
             other = self%ladder%level(k)%engine%statistics()
             st%companion_steps = st%companion_steps + other%steps
         end do
+        if (associated(self%ladder%probe%engine)) then
+            other = self%ladder%probe%engine%statistics()
+            st%companion_steps = st%companion_steps + other%steps
+        end if
         if (associated(self%estimator)) then
             other = self%estimator%statistics()
             st%companion_steps = st%companion_steps + other%steps + other%companion_steps
@@ -554,6 +619,7 @@ contains
         if (associated(self%main)) call self%main%destroy()
         self%ladder%levels = max_levels
         call retire(self, 1)
+        call retire_probe(self)
         self%ladder%active = .false.
         if (associated(self%estimator)) then
             call self%estimator%destroy()
