@@ -1166,8 +1166,13 @@ contains
                 ! the work-energy check's floor of the energy scale: the kinetic energy of the
                 ! velocities that the accelerations at t0 reach in one time scale 1/rate (a start
                 ! from rest has no energy of its own to compare the defect with)
+                ! (the larger of the constrained and the applied forces' accelerations: a start at
+                ! rest in an equilibrium has none of the first, and the rounding moves it)
                 zc = z0
-                zc(core%nx + 1:2*core%nx) = zp(core%nx + 1:2*core%nx)/merge(rate, 1.0_wp, rate > 0.0_wp)
+                zc(core%nx + 1:2*core%nx) = zp(core%nx + 1:2*core%nx)
+                if (rms(model%f(size(model%f) - core%nx + 1:)) > rms(zp(core%nx + 1:2*core%nx))) &
+                    zc(core%nx + 1:2*core%nx) = model%f(size(model%f) - core%nx + 1:)
+                zc(core%nx + 1:2*core%nx) = zc(core%nx + 1:2*core%nx)/merge(rate, 1.0_wp, rate > 0.0_wp)
                 call model%work_sample(t0, zc, kinetic, power, wstat)
                 if (wstat == 0) core%work_floor = kinetic
             end if
