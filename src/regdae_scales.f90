@@ -48,6 +48,8 @@ module regdae_scales
         procedure :: drift_bound => scales_drift_bound
     end type running_scales
 
+    !> The drift bound's tolerances are at least this (its floor at very tight tolerances).
+    real(wp), parameter, public :: drift_rtol_min = 1.0e-12_wp
     !> A predicted sigma_reg gives way to the measured one when a sample reaches this fraction of it.
     real(wp), parameter, public :: release_fraction = 0.05_wp
 
@@ -99,7 +101,9 @@ contains
         class(running_scales), intent(in) :: self
         real(wp), intent(in) :: eps   !! the eps in force
         real(wp) :: eps_auto
-        bound = self%drift_factor*self%g*(self%rtol*self%x + self%atol)
+        ! (the tolerances at least drift_rtol_min: the automatic eps's regularization leaves a
+        ! constraint error of about 1e-10 whatever rtol; rtol 1e-13 stopped correct runs)
+        bound = self%drift_factor*self%g*(max(self%rtol, drift_rtol_min)*self%x + max(self%atol, drift_rtol_min))
         ! a user's eps above the automatic one: the regularization's own constraint error
         ! grows like eps, beyond what the tolerances allow
         eps_auto = self%eps_target()

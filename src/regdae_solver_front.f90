@@ -43,6 +43,7 @@ module regdae_solver_front
     use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, &
                                  motion_rate, constraint_length, rms, degenerate_row, predict_shift
     use regdae_work_energy, only: kinetic_energy_and_power
+    use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
     implicit none
     private
@@ -1121,7 +1122,8 @@ contains
             if (opts%drift_tol == option_auto) then
                 core%drift_factor = drift_factor
                 opts%drift_tol = drift_factor*maxval(sqrt(sum(model%gx**2, dim=2)), 1, mask=.true.)* &
-                                 (opts%rtol*maxval(abs(z0(1:core%nx))) + maxval(core%atol_z(1:core%nx)))
+                                 (max(opts%rtol, drift_rtol_min)*maxval(abs(z0(1:core%nx))) + &
+                                  max(maxval(core%atol_z(1:core%nx)), drift_rtol_min))
                 ! off without constraints, for first-order problems, and for order >= 3, whose
                 ! Taylor weights leave a constraint error O(taylor_h^2) by design (doc/methods.md)
                 if (core%m == 0 .or. .not. core%second_order .or. model%order >= 3) then
@@ -1246,7 +1248,8 @@ contains
             end if
             if (opts%drift_tol == option_auto) then
                 core%drift_factor = drift_factor
-                opts%drift_tol = drift_factor*gmax*(opts%rtol*maxval(abs(q0)) + maxval(core%atol_z(1:size(q0))))
+                opts%drift_tol = drift_factor*gmax*(max(opts%rtol, drift_rtol_min)*maxval(abs(q0)) + &
+                                                    max(maxval(core%atol_z(1:size(q0))), drift_rtol_min))
             end if
             weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
             work_check = resolved_work_tol(opts) > 0.0_wp
