@@ -43,7 +43,7 @@ module regdae_auto_rules
     real(wp), parameter, public :: eps_round = 1.0e3_wp
 
     public :: constraint_length, motion_rate, baumgarte_weights, automatic_eps_factor, automatic_eps, rms
-    public :: dense_motion_scales, row_curvatures
+    public :: dense_motion_scales, row_curvatures, generic_direction
 
     !> The Baumgarte weights along the run: the rate behind the weights in force,
     !! and the running length of the constraints (it only grows: a singular pass,
@@ -81,22 +81,37 @@ contains
         if (.not. (ell > 0.0_wp)) ell = ell_x
     end function constraint_length
 
-    !> The rate of the motion (1/time) at a state: rms(vel)/ell + sqrt(max(rms(acc),
-    !! rms(free))/ell) for order 2 (vel = v, acc = v', free = the acceleration of the
-    !! applied forces), max(rms(vel), rms(free))/ell for order 1 (vel = x', free = f).
-    !! 0 for a problem at rest without forces.
-    pure real(wp) function motion_rate(order2, vel, acc, free, ell) result(rate)
+    !> The rate of the motion (1/time) at a state: the larger of
+    !! rms(vel)/ell + sqrt(max(rms(acc), rms(free))/ell) and sqrt(stiff) for order 2 (vel = v,
+    !! acc = v', free = the acceleration of the applied forces, stiff = |d free/dx| along a
+    !! generic direction: the frequency of the forces, which a start at rest in an
+    !! equilibrium still has), of max(rms(vel), rms(free))/ell and stiff for order 1
+    !! (vel = x', free = f, stiff = |df/dx|). 0 for a problem at rest without forces.
+    pure real(wp) function motion_rate(order2, vel, acc, free, ell, stiff) result(rate)
         logical, intent(in) :: order2
         real(wp), intent(in) :: vel(:), acc(:), free(:), ell
+        real(wp), intent(in) :: stiff
         rate = 0.0_wp
-        if (.not. (ell > 0.0_wp .and. ell < huge(1.0_wp))) return
-        if (order2) then
-            rate = rms(vel)/ell + sqrt(max(rms(acc), rms(free))/ell)
-        else
-            rate = max(rms(vel), rms(free))/ell
+        if (ell > 0.0_wp .and. ell < huge(1.0_wp)) then
+            if (order2) then
+                rate = rms(vel)/ell + sqrt(max(rms(acc), rms(free))/ell)
+            else
+                rate = max(rms(vel), rms(free))/ell
+            end if
         end if
+        if (stiff > 0.0_wp .and. stiff < huge(1.0_wp)) rate = max(rate, merge(sqrt(stiff), stiff, order2))
         if (.not. (rate == rate .and. rate < huge(1.0_wp))) rate = 0.0_wp
     end function motion_rate
+
+    !> A fixed direction of max-norm 1 with no symmetry a mechanism is likely to share
+    !! (for the force stiffness of motion_rate): w_i = cos(1.3 i).
+    pure function generic_direction(n) result(w)
+        integer, intent(in) :: n
+        real(wp) :: w(n)
+        integer :: i
+        w = [(cos(1.3_wp*i), i=1, n)]
+        w = w/maxval(abs(w))
+    end function generic_direction
 
     !> The Baumgarte weights for a rate of the motion (rate 0: 1, a problem with
     !! no motion of its own has no time scale but its unit).
@@ -247,8 +262,24 @@ contains
             ell = ell_x
         end if
         ell = max(ell, ell_before)
-        rate = motion_rate(order2, vel, acc, free, ell)
+        rate = motion_rate(order2, vel, acc, free, ell, force_stiffness())
     contains
+        ! |d free/dx| along the generic direction (central differences of the model's f)
+        real(wp) function force_stiffness() result(k)
+            real(wp) :: fp(size(model%f)), fm(size(model%f)), zp(size(z)), w(nx), d
+            integer :: s1, s2
+            k = 0.0_wp
+            w = generic_direction(nx)
+            d = central_difference_step(maxval(abs(x)))
+            zp = z
+            zp(1:nx) = x + d*w
+            call model%free_slope(t, zp, fp, s1)
+            zp(1:nx) = x - d*w
+            call model%free_slope(t, zp, fm, s2)
+            if (s1 /= 0 .or. s2 /= 0) return
+            k = rms(fp(size(fp) - nx + 1:) - fm(size(fm) - nx + 1:))/(2.0_wp*d)
+            if (.not. (k*d > 1.0e3_wp*epsilon(1.0_wp)*max(rms(free), tiny(1.0_wp)))) k = 0.0_wp
+        end function force_stiffness
         subroutine add_direction(w)
             real(wp), intent(in) :: w(:)
             real(wp) :: big

@@ -89,6 +89,9 @@ module regdae_regularization
         procedure :: is_mechanical
         !> G = dg/dx of the user's position constraint at (t, x).
         procedure :: position_jacobian
+        !> f alone at (t, z) (order 2: the acceleration of the applied forces, M^-1 f for a
+        !! mechanical problem; order 1: x' without the multiplier), the model's pieces untouched.
+        procedure :: free_slope
         !> sigma_min(GB) at the last evaluated point with G replaced by a given
         !! position Jacobian (B from it, as the problem builds B from G).
         procedure :: conditioning_with
@@ -442,6 +445,21 @@ contains
             end select
         end if
     end subroutine position_jacobian
+
+    subroutine free_slope(self, t, z, f, stat)
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:)
+        real(wp), intent(out) :: f(:)    !! length n (the model's f)
+        integer, intent(out) :: stat
+        stat = 0
+        if (allocated(self%second)) then
+            call self%second%rhs(t, z(1:self%n), z(self%n + 1:2*self%n), f, stat)
+        else if (allocated(self%higher)) then
+            call self%higher%rhs(t, reshape(z(1:self%order*self%n), [self%n, self%order]), f, stat)
+        else
+            call self%first%rhs(t, z, f, stat)
+        end if
+    end subroutine free_slope
 
     function conditioning_with(self, t, z, gx, stat) result(sigma)
         class(regularized_dae), intent(inout) :: self

@@ -41,7 +41,8 @@ module regdae_solver_front
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant, alarm_work
     use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, &
-                                 motion_rate, constraint_length, rms, degenerate_row, predict_shift
+                                 motion_rate, constraint_length, rms, degenerate_row, predict_shift, &
+                                 generic_direction
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
@@ -1382,7 +1383,7 @@ contains
                 end do
             end do
             ell = max(constraint_length(gnorm, hnorm, ell_x), ell_before)
-            rate = motion_rate(.true., v, acc, free, ell)
+            rate = motion_rate(.true., v, acc, free, ell, force_stiffness())
             if (.not. predict .or. sys%m == 0) return
             call sys%problem%constraint_jacobian_values(t, q, gp, g0, stat)
             if (stat /= 0) return
@@ -1405,6 +1406,23 @@ contains
                 sigma_pred = max(sigma_pred, row)
             end do
         end associate
+    contains
+        ! |d (M_kk^-1 f)/dq| along the generic direction (central differences of the forces)
+        real(wp) function force_stiffness() result(k)
+            real(wp) :: fp(sys%n), fm(sys%n), md(sys%n), wg(sys%n), dq
+            integer :: s1, s2
+            k = 0.0_wp
+            wg = generic_direction(sys%n)
+            dq = central_difference_step(maxval(abs(q)))
+            s1 = 0
+            s2 = 0
+            call sys%problem%forces(t, q + dq*wg, v, fp, s1)
+            call sys%problem%forces(t, q - dq*wg, v, fm, s2)
+            if (s1 /= 0 .or. s2 /= 0) return
+            call mass_diagonal(sys, md)
+            k = rms((fp - fm)/md)/(2.0_wp*dq)
+            if (.not. (k*dq > 1.0e3_wp*epsilon(1.0_wp)*max(rms(free), tiny(1.0_wp)))) k = 0.0_wp
+        end function force_stiffness
     end subroutine augmented_motion_scales
 
     ! Can an integrator take a first step from (t0, z0) with slope zp0? The
