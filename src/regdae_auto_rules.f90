@@ -205,15 +205,19 @@ contains
     !! ell_before), the rate of the motion, and, if some row of G vanishes here (a
     !! start on a singular configuration), `sigma_pred`: sigma_min(GB) with those rows
     !! moved by the scale of x along their curvature (-1 if no row vanishes, or
-    !! predict is false). nx: the size of x; order2: z = (x, v, ...).
-    subroutine dense_motion_scales(model, t, z, dz, nx, order2, ell_before, predict, ell, rate, sigma_pred, stat)
+    !! predict is false). nx: the size of x; order2: z = (x, v, ...). With `stiffness`,
+    !! the rate counts the frequency of the applied forces too (motion_rate).
+    subroutine dense_motion_scales(model, t, z, dz, nx, order2, ell_before, predict, ell, rate, sigma_pred, stat, &
+                                   stiffness)
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: t, z(:), dz(:), ell_before
         integer, intent(in) :: nx
         logical, intent(in) :: order2, predict
         real(wp), intent(out) :: ell, rate, sigma_pred
         integer, intent(out) :: stat
-        real(wp) :: x(nx), vel(nx), acc(nx), free(nx), ell_x
+        logical, intent(in), optional :: stiffness   !! the forces' frequency counts (at t0; along the run
+                                                     !! the weights follow the motion alone)
+        real(wp) :: x(nx), vel(nx), acc(nx), free(nx), ell_x, stiff
         real(wp), allocatable :: dirs(:, :), gnorm(:), hnorm(:), dg(:, :), gx(:, :)
         integer :: ndir, i
         logical :: degenerate
@@ -262,7 +266,11 @@ contains
             ell = ell_x
         end if
         ell = max(ell, ell_before)
-        rate = motion_rate(order2, vel, acc, free, ell, force_stiffness())
+        stiff = 0.0_wp
+        if (present(stiffness)) then
+            if (stiffness) stiff = force_stiffness()
+        end if
+        rate = motion_rate(order2, vel, acc, free, ell, stiff)
     contains
         ! |d free/dx| along the generic direction (central differences of the model's f)
         real(wp) function force_stiffness() result(k)

@@ -827,7 +827,7 @@ contains
             if (stat /= 0) return
             call mass_diagonal(sys, mdiag)
             call augmented_motion_scales(sys, t, q, v, a, f/mdiag, core%monitor%weights%ell, .false., ell, rate, &
-                                         sigma_pred, stat)
+                                         sigma_pred, stat, .false.)
             if (stat /= 0) return
             core%monitor%weights%ell = ell
             if (.not. core%monitor%new_rate(t, rate)) return
@@ -1147,7 +1147,7 @@ contains
                 call model%dynamics_slope(z0, y, zp)
                 order2 = core%second_order .and. size(z0) >= 2*core%nx
                 call dense_motion_scales(model, t0, z0, zp, core%nx, order2, 0.0_wp, eps_auto, ell, rate, &
-                                         sigma_pred, stat)
+                                         sigma_pred, stat, stiffness=.true.)
                 if (stat /= 0) then
                     msg = 'choosing the automatic parameters: user routine constraint_jacobian reported failure '// &
                           '(stat = '//format_int(stat)//') at t0'
@@ -1256,7 +1256,7 @@ contains
             work_check = resolved_work_tol(opts) > 0.0_wp
             acc = f/mdiag
             call augmented_motion_scales(sys, t0, q0, v0, acc, acc, 0.0_wp, opts%eps == option_auto .or. &
-                                         core%eps_factor > 0.0_wp, ell, rate, sigma_pred, stat)
+                                         core%eps_factor > 0.0_wp, ell, rate, sigma_pred, stat, .true.)
             if (stat /= 0) then
                 ustat = stat
                 call user_routine_failure(ustat, 'constraint_jacobian_values', t0, stat, msg, recoverable)
@@ -1343,14 +1343,16 @@ contains
     ! (at least ell_before), the rate, and at a singular start (predict) the
     ! predicted GB scale max_i sum_k G_pred,ik^2 / M_kk (-1: no row vanishes).
     ! stat: the user's constraint_jacobian_values.
-    subroutine augmented_motion_scales(sys, t, q, v, acc, free, ell_before, predict, ell, rate, sigma_pred, stat)
+    subroutine augmented_motion_scales(sys, t, q, v, acc, free, ell_before, predict, ell, rate, sigma_pred, stat, &
+                                       stiffness)
         type(augmented_system), intent(inout) :: sys
         real(wp), intent(in) :: t, q(:), v(:), acc(:), free(:), ell_before
         logical, intent(in) :: predict
+        logical, intent(in) :: stiffness   ! the forces' frequency counts (t0)
         real(wp), intent(out) :: ell, rate, sigma_pred
         integer, intent(out) :: stat
         real(wp) :: g0(sys%st%constraint%nnz()), g1(sys%st%constraint%nnz()), dg(sys%st%constraint%nnz()), &
-                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, d, change, row
+                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, d, change, row, k_force
         integer :: i, k, pass
         logical :: degenerate
         stat = 0
@@ -1383,7 +1385,9 @@ contains
                 end do
             end do
             ell = max(constraint_length(gnorm, hnorm, ell_x), ell_before)
-            rate = motion_rate(.true., v, acc, free, ell, force_stiffness())
+            k_force = 0.0_wp
+            if (stiffness) k_force = force_stiffness()
+            rate = motion_rate(.true., v, acc, free, ell, k_force)
             if (.not. predict .or. sys%m == 0) return
             call sys%problem%constraint_jacobian_values(t, q, gp, g0, stat)
             if (stat /= 0) return

@@ -271,7 +271,10 @@ contains
         opts%rtol = 1.0e-4_wp
         opts%atol = 1.0e-4_wp
         call run_crank(opts, stat, dev)
-        call chk%equal(stat, regdae_err_branch, 'the explicit run that leaves the branch stops with a status')
+        ! (the branch check, or the work-energy check: with the pass check, an alarm inside a
+        ! pass is left to it, and the run that goes wrong is caught by the next check outside)
+        call chk%true(stat == regdae_err_branch .or. stat == regdae_err_work, &
+                      'the explicit run that leaves the branch stops with a status')
         opts%jump_tol = 0.0_wp
         opts%work_tol = 0.0_wp
         opts%drift_tol = 0.0_wp
