@@ -562,6 +562,9 @@ contains
     subroutine settle_alarm(self)
         type(solution_monitor), intent(inout) :: self
         if (.not. (self%alarm .and. self%defer_in_pass .and. self%checkpoint_frozen)) return
+        ! without a regularization (eps = 0, Baumgarte) the branch at a bifurcation is not the
+        ! damped multiplier's: every level takes the same, and the jump check decides
+        if (self%alarm_kind == alarm_jump .and. .not. (self%layer_eps > 0.0_wp)) return
         self%alarm = .false.
         self%deferred_alarms = self%deferred_alarms + 1
         self%deferred_message = self%alarm_message
