@@ -93,14 +93,14 @@ heat() {   # heat PROBLEM FILE NAME TITLE: doc/figures/perf_NAME.png from the gr
     for r in 1.0000E-03 1.0000E-05 1.0000E-07 1.0000E-10; do
         awk -v p="$1" -v r="$r" '$1 == p && $4 == r {
             e = ($3 + 0 == 0) ? -16 : log($3) / log(10)
-            c = ($6 == "ok") ? 0 : (($6 == "failed") ? 1 : (($6 == "silent") ? 2 : 3))
+            c = ($6 == "ok") ? 0 : (($6 == "failed") ? 1 : (($6 == "silent") ? 2 : (($6 == "warned") ? 4 : 3)))
             print log($2) / log(10), e, c }' "$2" >"$tmp/heat_$3_$r.dat"
     done
     gnuplot <<GP
 set terminal png noenhanced size 1000,300
 set output '$tmp/perf_$3.png'
-set multiplot layout 1,4 title "$4: ok (green), failed (orange), silent (red), false alarm (blue); eps = 0 drawn at -16"
-set palette defined (0 '#2ca02c', 1 '#ff7f0e', 2 '#d62728', 3 '#1f77b4'); set cbrange [0:3]; unset colorbox
+set multiplot layout 1,4 title "$4: ok (green), failed (orange), silent (red), false alarm (blue), warned (purple); eps = 0 drawn at -16"
+set palette defined (0 '#2ca02c', 1 '#ff7f0e', 2 '#d62728', 3 '#1f77b4', 4 '#9467bd'); set cbrange [0:4]; unset colorbox
 set xlabel 'log10 gamma'; set ylabel 'log10 eps'; set xrange [0.5:8.5]; set yrange [-17:-1]
 do for [r in "1.0000E-03 1.0000E-05 1.0000E-07 1.0000E-10"] {
     set title 'rtol = '.r
