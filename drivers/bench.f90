@@ -18,8 +18,11 @@
 !! at 1e-11 and 1e-12; the explicit integrator and its paired oracle also at the
 !! half-decades 10^(-k-1/2).)
 !! Output: '#' lines and rows 'problem config rtol max_err seconds steps res_evals jac_evals status',
-!! status ok, failed, or off_branch (a slider-crank run with max |th1 + th2 - pi| > 0.1), and the last
-!! line 'summary rows=... ok=... failed=... off_branch=...' (failed rows are results, not errors: exit 0).
+!! status ok, warning (a regdae run that ended but whose advances returned a warning: x valid, the
+!! tolerance maybe not met; neither ok nor failed), failed, or off_branch (a slider-crank run with
+!! max |th1 + th2 - pi| > 0.1, also after a warning), and the last line
+!! 'summary rows=... ok=... failed=... off_branch=... warned=...' (failed and warning rows are
+!! results, not errors: exit 0).
 program bench_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use regdae
@@ -34,11 +37,13 @@ program bench_driver
     use massless_problem, only: new_massless_carrier
     use pendulum_problem, only: pendulum_angle
     use theory_problems, only: theory_cases, new_theory_problem, theory_problem
-    use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number, read_count
+    use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number, read_count, &
+                              warning_log
     implicit none
     character(len=*), parameter :: prog = 'bench'
     real(wp), parameter :: pi = acos(-1.0_wp)
     integer, parameter :: branch_left = 1000   ! status of a run off the physical branch
+    integer, parameter :: run_warned = 1001    ! status of a run that ended after warnings (x valid)
     integer, parameter :: max_reps = 201
     real(wp) :: crank_times(1001), ex51_times(201), ref(2, 1001), tol, min_time
     real(wp) :: mass_times(501), mass_ref(2, 501)
@@ -47,7 +52,7 @@ program bench_driver
     type(pendulum_angle) :: angle
     integer :: im, jf, ic
     integer :: i, k, reps, stat, tol_from, tol_to
-    integer :: row_counts(3) = 0   ! rows ok, failed, off_branch
+    integer :: row_counts(4) = 0   ! rows ok, failed, off_branch, warning
     character(len=:), allocatable :: key, value, which
     logical :: ok
     type(slider_crank_reduced) :: reduced
@@ -149,7 +154,7 @@ program bench_driver
         end do
     end if
     write (*, '(a)') 'summary rows='//format_int(sum(row_counts))//' ok='//format_int(row_counts(1))//' failed='// &
-        format_int(row_counts(2))//' off_branch='//format_int(row_counts(3))
+        format_int(row_counts(2))//' off_branch='//format_int(row_counts(3))//' warned='//format_int(row_counts(4))
     ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
     if (allocated(key)) deallocate (key, value)
     deallocate (which)
@@ -176,6 +181,7 @@ contains
         type(solver_stats) :: st
         character(len=:), allocatable :: msg
         type(slider_crank) :: crank_problem
+        type(warning_log) :: warnings   ! the advances' warnings (of the last repetition)
         real(wp) :: th(2), w(2), err, dev, seconds(max_reps), oracle_seconds(max_reps), states(2, 1001)
         integer(int64) :: c0, c1, rate
         integer :: r, j, stat, o_steps, o_evals
@@ -215,11 +221,12 @@ contains
         do r = 1, max_reps
             call system_clock(c0, rate)
             err = 0.0_wp
+            warnings = warning_log()
             call solver%init(crank_problem, 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
             do j = 1, size(crank_times)
-                if (stat /= regdae_success) exit
+                if (stat < 0) exit
                 call solver%advance(crank_times(j), th, stat=stat, v=w)   ! x only: no multiplier at the outputs
-                if (stat > 0) stat = regdae_success
+                call warnings%note(solver, stat, crank_times(j))
                 err = max(err, abs(th(1) - ref(1, j)), abs(th(2) - (pi - ref(1, j))))
                 dev = max(dev, abs(modulo(th(1) + th(2), 2*pi) - pi))
             end do
@@ -235,8 +242,9 @@ contains
             end if
             if (enough(r, seconds)) exit
         end do
-        ! A run that left the physical branch (|th1 + th2 - pi| > 0.1) is not a good run.
-        if (stat == regdae_success .and. dev > 0.1_wp) stat = branch_left
+        ! A run that left the physical branch (|th1 + th2 - pi| > 0.1) is not a good run, warned or not.
+        stat = ended_status(stat, warnings)
+        if ((stat == regdae_success .or. stat == run_warned) .and. dev > 0.1_wp) stat = branch_left
         call row(name, config, tol, err, median(seconds(1:r)), st, stat)
         if (paired) then
             o_st%steps = o_steps
@@ -287,6 +295,7 @@ contains
         integer, intent(out) :: stat
         type(solver_options) :: opts
         type(regdae_solver) :: solver
+        type(warning_log) :: warnings   ! the advances' warnings
         real(wp) :: x1(1), xs(1, 3), ye, th(2), q(3), t
         real(wp), allocatable :: x(:)
         integer :: j
@@ -299,6 +308,7 @@ contains
             do j = 1, size(ex51_times)
                 if (stat < 0) exit
                 call solver%advance(ex51_times(j), x1, stat=stat)
+                call warnings%note(solver, stat, ex51_times(j))
                 if (stat >= 0) err = max(err, abs(x1(1) - (ex51_times(j) + 1.0_wp)))
             end do
         case ('order3')
@@ -309,6 +319,7 @@ contains
                 if (stat < 0) exit
                 t = -1.0_wp + 0.01_wp*j
                 call solver%advance(t, x1, stat=stat)
+                call warnings%note(solver, stat, t)
                 call order3_exact(t, xs, ye)
                 if (stat >= 0) err = max(err, abs(x1(1) - xs(1, 1)))
             end do
@@ -317,6 +328,7 @@ contains
             do j = 1, size(crank_times)
                 if (stat < 0) exit
                 call solver%advance(crank_times(j), th, stat=stat)
+                call warnings%note(solver, stat, crank_times(j))
                 if (stat >= 0) err = max(err, abs(th(1) - ref(1, j)), abs(th(2) - (pi - ref(1, j))))
             end do
         case ('singular_mass')
@@ -326,6 +338,7 @@ contains
             do j = 1, size(mass_times)
                 if (stat < 0) exit
                 call solver%advance(mass_times(j), q, stat=stat)
+                call warnings%note(solver, stat, mass_times(j))
                 if (stat >= 0) err = max(err, abs(q(1) - sin(mass_ref(1, j))), abs(q(2) + cos(mass_ref(1, j))))
             end do
         case default   ! linear_<case>
@@ -339,12 +352,13 @@ contains
                     if (stat < 0) exit
                     t = -1.0_wp + 0.01_wp*j
                     call solver%advance(t, x, stat=stat)
+                    call warnings%note(solver, stat, t)
                     if (stat >= 0) err = max(err, maxval(abs(x - lin%x_exact(t))))
                 end do
             end block
         end select
-        if (stat > 0) stat = regdae_success
-        if (stat /= regdae_success) stat = regdae_err_integration
+        stat = ended_status(stat, warnings)
+        if (stat < 0) stat = regdae_err_integration
         st = solver%statistics()
         call solver%destroy()
     end subroutine one_run
@@ -431,6 +445,8 @@ contains
             row_counts(1) = row_counts(1) + 1
         else if (stat == branch_left) then
             row_counts(3) = row_counts(3) + 1
+        else if (stat == run_warned) then
+            row_counts(4) = row_counts(4) + 1
         else
             row_counts(2) = row_counts(2) + 1
         end if
@@ -443,10 +459,25 @@ contains
             w = 'ok'
         else if (stat == branch_left) then
             w = 'off_branch'
+        else if (stat == run_warned) then
+            w = 'warning'
         else
             w = 'failed'
         end if
     end function status_word
+
+    ! The status of a regdae run that ended with `stat` after the advances' `warnings`: the
+    ! failure (stat < 0), run_warned if any advance warned, else regdae_success.
+    pure integer function ended_status(stat, warnings)
+        integer, intent(in) :: stat
+        type(warning_log), intent(in) :: warnings
+        ended_status = regdae_success
+        if (stat < 0) then
+            ended_status = stat
+        else if (warnings%count > 0) then
+            ended_status = run_warned
+        end if
+    end function ended_status
 
     ! Enough repetitions: at least `reps` and `min_time` seconds in all, or max_reps.
     logical function enough(r, seconds)

@@ -15,11 +15,13 @@
 !! Rows 'problem method gamma eps m_C m_CB k status rtol change converged err_inside err_after
 !! err_end', then 'slope problem=... method=... gamma=... eps_from=... eps_to=... p=... converged=...'
 !! lines: the local order of the after error over two decades of eps ('-' where an error is
-!! below 1e3 rtol, the integration noise), and the summary with unconverged=.
+!! below 1e3 rtol, the integration noise), and the summary with unconverged= (and warned_runs=,
+!! last: the rows whose tightest run warned).
 !!
 !! With study=trace: one run (problem=, method=, gamma=, eps=, rtol=, integrator=, ...), the
 !! error |x - x*| at the output times within 1e-2 of t* (rows 'trace t err steps'), every
-!! warning of advance ('# warning: t ...'), and 'summary ... unresolved_passes=... resolution_ratio=...'.
+!! warning of advance ('# warning: t ...'), and 'summary status=ok|warning|failed steps=...
+!! unresolved_passes=... resolution_ratio=...'.
 !!
 !! Usage: rates [key=value ...]
 !!   study=orders|after|trace (orders)   eps=<one value> (study=trace: 1e-14)   eps_to=1e-18 (study=after: the smallest eps, 1e-30 .. 1e-3)
@@ -27,10 +29,14 @@
 !!   i.e. (3.2), only where B = C^T; trust_region (3.3) everywhere)   gamma=<one value> (default: the grid)
 !!   refine=1 (output grid density)   delta=0.1   rtol=1e-11 atol=1e-11   lsq (stacked), other solver options
 !! Output: '#' lines; rows 'problem method gamma eps status err_before err_inside err_after err_end'
-!!   (a failed row follows a line '# error: problem method gamma eps: <the solver's message>');
+!!   (status ok, warning or failed; a failed row follows a line '# error: problem method gamma eps:
+!!   <the solver's message>', a warning row (an advance returned a warning: x valid, the tolerance
+!!   maybe not met; its errors count in the fits) a line '# warning: problem method gamma eps: ...');
 !!   'fit problem=... method=... gamma=... region=... p=... eps_from=... eps_to=... points=...' lines (fit
 !!   over the eps whose error exceeds 1e3 rtol, the integration noise); and the last line
-!!   summary status=ok|failed runs=... failed_runs=... seconds=...
+!!   summary status=ok|warning|failed runs=... failed_runs=... seconds=... warned_runs=...
+!! (status=warning: no run failed, warned_runs did.) Exit status: 0 ok or warning, 1 a failed run,
+!! 2 bad arguments.
 program rates_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
@@ -38,7 +44,7 @@ program rates_driver
     use theory_problems, only: theory_problem, new_theory_problem, theory_cases
     use rates_measure, only: output_grid, measure_errors, converged_errors, vanishing_orders
     use driver_support, only: format_int, common_argument, argument, split_key_value, num, clock_start, &
-                              elapsed_seconds, die_usage, read_number
+                              elapsed_seconds, die_usage, read_number, warning_log, run_status
     implicit none
     character(len=*), parameter :: prog = 'rates'
     character(len=*), parameter :: regions(4) = ['before', 'inside', 'after ', 'end   ']
@@ -48,10 +54,11 @@ program rates_driver
     real(wp), allocatable :: times(:), gammas(:), epss(:), err(:, :)
     real(wp) :: delta, refine_r, gamma_one, seconds, errors_run(4), first_run(4), eps_to, eps_one
     character(len=:), allocatable :: study
-    integer :: i, ip, im, ig, ie, nmethods, nout_unused, runs, failed_runs, refine, stat
+    integer :: i, ip, im, ig, ie, nmethods, nout_unused, runs, failed_runs, warned_runs, refine, stat
     logical :: ok
     integer(int64) :: start
     type(theory_problem) :: problem
+    type(warning_log) :: run_warnings   ! the warnings of a cell's (reported) run
 
     which_problem = 'all'
     which_method = 'both'
@@ -120,6 +127,7 @@ program rates_driver
     start = clock_start()
     runs = 0
     failed_runs = 0
+    warned_runs = 0
     allocate (err(size(epss), 4))
     do ip = 1, size(theory_cases)
         if (which_problem /= 'all' .and. which_problem /= trim(theory_cases(ip))) cycle
@@ -130,11 +138,10 @@ program rates_driver
             do ig = 1, size(gammas)
                 do ie = 1, size(epss)
                     run_opts = cell_options(im, ig, ie)
-                    call measure_errors(problem, run_opts, times, delta, errors_run, stat, msg)
+                    call measure_errors(problem, run_opts, times, delta, errors_run, stat, msg, warnings=run_warnings)
                     call count_run(ie)
                     write (*, '(a,1x,a,1x,a,1x,a,1x,a,4(1x,a))') trim(theory_cases(ip)), trim(methods(im)), &
-                        num(gammas(ig)), num(epss(ie)), trim(merge('ok    ', 'failed', stat == regdae_success)), &
-                        (num(err(ie, i)), i=1, 4)
+                        num(gammas(ig)), num(epss(ie)), row_status(), (num(err(ie, i)), i=1, 4)
                 end do
                 do i = 1, 4
                     call fit(trim(theory_cases(ip)), trim(methods(im)), gammas(ig), trim(regions(i)), epss, err(:, i))
@@ -143,8 +150,8 @@ program rates_driver
         end do
     end do
     seconds = elapsed_seconds(start)
-    write (*, '(a)') 'summary status='//trim(merge('ok    ', 'failed', failed_runs == 0))//' runs='//format_int(runs)// &
-        ' failed_runs='//format_int(failed_runs)//' seconds='//num(seconds)
+    write (*, '(a)') 'summary status='//summary_status()//' runs='//format_int(runs)// &
+        ' failed_runs='//format_int(failed_runs)//' seconds='//num(seconds)//' warned_runs='//format_int(warned_runs)
     ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
     if (allocated(key)) deallocate (key, value)
     deallocate (which_problem, which_method, times, gammas, epss, err, study)
@@ -153,18 +160,45 @@ program rates_driver
 
 contains
 
-    ! A cell's run done (errors_run, stat, msg): its errors into err(ie, :), the counts,
-    ! and a '# error:' line when it failed.
+    ! A cell's run done (errors_run, stat, msg, run_warnings): its errors into err(ie, :), the
+    ! counts, and a '# error:' line when it failed, a '# warning:' line when it warned.
     subroutine count_run(ie)
         integer, intent(in) :: ie
+        character(len=:), allocatable :: cell
         err(ie, :) = errors_run
         runs = runs + 1
+        cell = trim(theory_cases(ip))//' '//trim(methods(im))//' gamma='//num(gammas(ig))//' eps='//num(epss(ie))
         if (stat /= regdae_success) then
             failed_runs = failed_runs + 1
-            write (*, '(a)') '# error: '//trim(theory_cases(ip))//' '//trim(methods(im))//' gamma='// &
-                num(gammas(ig))//' eps='//num(epss(ie))//': '//msg
+            write (*, '(a)') '# error: '//cell//': '//msg
+        else if (run_warnings%count > 0) then
+            warned_runs = warned_runs + 1
+            write (*, '(a)') '# warning: '//cell//': '//format_int(run_warnings%count)// &
+                ' advance(s) returned a warning; the first, at t = '//num(run_warnings%t_first)//': '//run_warnings%first
         end if
     end subroutine count_run
+
+    ! The status word of a cell's row: failed, warning (the run warned) or ok.
+    function row_status() result(word)
+        character(len=:), allocatable :: word
+        word = 'ok'
+        if (stat /= regdae_success) then
+            word = 'failed'
+        else if (run_warnings%count > 0) then
+            word = 'warning'
+        end if
+    end function row_status
+
+    ! The summary's status word: failed if a run failed, else warning if one warned, else ok.
+    function summary_status() result(word)
+        character(len=:), allocatable :: word
+        word = 'ok'
+        if (failed_runs > 0) then
+            word = 'failed'
+        else if (warned_runs > 0) then
+            word = 'warning'
+        end if
+    end function summary_status
 
     ! The options of one cell: opts with methods(im), gammas(ig), epss(ie).
     function cell_options(im, ig, ie) result(o)
@@ -194,8 +228,9 @@ contains
     subroutine trace_run()
         type(regdae_solver) :: solver
         type(solver_stats) :: st
+        type(warning_log) :: warnings
         real(wp), allocatable :: x(:), y(:)
-        character(len=:), allocatable :: method
+        character(len=:), allocatable :: method, status_text
         integer :: k
         if (which_problem == 'all') which_problem = 'S1'
         method = merge('direct      ', 'trust_region', which_method == 'direct')
@@ -214,17 +249,17 @@ contains
         do k = 2, size(times)
             if (times(k) <= times(k - 1)) cycle
             call solver%advance(times(k), x, y, stat)
-            if (stat < 0) then
-                write (*, '(a)') '# error: '//solver%message()
-                exit
-            end if
+            if (stat < 0) exit
             if (stat > 0) write (*, '(a)') '# warning: t = '//num(times(k))//': '//solver%message()
+            call warnings%note(solver, stat, times(k))
             st = solver%statistics()
             if (abs(times(k)) <= 1.0e-2_wp) write (*, '(a)') 'trace '//num(times(k))//' '// &
                 num(maxval(abs(x - problem%x_exact(times(k)))))//' '//format_int(st%steps)
         end do
+        if (stat > 0) stat = regdae_success   ! the last warning is in the log too
         st = solver%statistics()
-        write (*, '(a)') 'summary status='//trim(merge('ok    ', 'failed', stat >= 0))//' steps='//format_int(st%steps)// &
+        status_text = run_status(solver, stat, warnings)   ! '# error:' or the warnings' line, then the word
+        write (*, '(a)') 'summary status='//status_text//' steps='//format_int(st%steps)// &
             ' unresolved_passes='//format_int(st%unresolved_passes)//' resolution_ratio='//num(st%resolution_ratio)
         call solver%destroy()
         if (stat < 0) stop 1
@@ -260,6 +295,7 @@ contains
         start = clock_start()
         runs = 0
         failed_runs = 0
+        warned_runs = 0
         unconverged = 0
         do ip = 1, size(theory_cases)
             if (which_problem /= 'all' .and. which_problem /= trim(theory_cases(ip))) cycle
@@ -273,14 +309,14 @@ contains
                         run_opts = cell_options(im, ig, ie)
                         call converged_errors(problem, run_opts, times, delta, opts%rtol, 1.0e-14_wp, 0.02_wp, &
                                               errors_run, first_run, rtols(ie), changes(ie), done(ie), stat, msg, &
-                                              warned(ie), ratios(ie))
+                                              warned(ie), ratios(ie), run_warnings)
                         first(ie) = first_run(2)
                         call count_run(ie)
                         if (stat /= regdae_success) done(ie) = .false.
                         if (.not. done(ie)) unconverged = unconverged + 1
                         write (*, '(a,1x,a,1x,a,1x,a,3(1x,a),1x,a,1x,a,1x,a,1x,a,6(1x,a))') trim(theory_cases(ip)), &
                             trim(methods(im)), num(gammas(ig)), num(epss(ie)), format_int(m_c), format_int(m_cb), &
-                            format_int(k), trim(merge('ok    ', 'failed', stat == regdae_success)), num(rtols(ie)), &
+                            format_int(k), row_status(), num(rtols(ie)), &
                             num(min(changes(ie), 9.99e99_wp)), trim(merge('yes', 'no ', done(ie))), (num(err(ie, i)), i=2, 4), &
                             num(first(ie)), trim(merge('yes', 'no ', warned(ie))), num(ratios(ie))
                     end do
@@ -300,8 +336,9 @@ contains
             end do
         end do
         seconds = elapsed_seconds(start)
-        write (*, '(a)') 'summary status='//trim(merge('ok    ', 'failed', failed_runs == 0))//' runs='//format_int(runs)// &
-            ' failed_runs='//format_int(failed_runs)//' unconverged='//format_int(unconverged)//' seconds='//num(seconds)
+        write (*, '(a)') 'summary status='//summary_status()//' runs='//format_int(runs)// &
+            ' failed_runs='//format_int(failed_runs)//' unconverged='//format_int(unconverged)//' seconds='//num(seconds)// &
+            ' warned_runs='//format_int(warned_runs)
         if (failed_runs > 0) stop 1
     end subroutine after_study
 

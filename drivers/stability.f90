@@ -6,7 +6,9 @@
 !!   failed       status failed (with the time reached),
 !!   silent       status ok but off the physical branch or error above the bound,
 !!   false_alarm  stopped by one of regdae's checks (branch, drift, invariant, work)
-!!                although the same run without the checks ends within the bound.
+!!                although the same run without the checks ends within the bound,
+!!   warned       status warning: the run ended, but an advance returned a warning (x valid,
+!!                the tolerance maybe not met; code: the first warning), whatever its error.
 !! Bounds: Example 5.1, max|x - (t+1)| <= 3 eps^(1/4) + 100 rtol (the layer estimate
 !! 1.311 eps^(1/4) of doc/ex51.md with margin, plus the integration error); slider crank,
 !! on the branch (max |th1 + th2 - pi| <= 0.1) and max theta error <=
@@ -36,10 +38,12 @@
 !! (R, G: one value of the grid; checks=off: without regdae's jump, drift, invariant and
 !! work checks; problem=all: the first three)
 !! Output: rows 'problem gamma eps rtol status class max_err t_end code velocity_jump
-!!   max_drift invariant_change work_defect switches' (code: regdae's status; the last five
+!!   max_drift invariant_change work_defect switches' (status ok, warning or failed; code: regdae's
+!!   status, after warnings the first warning's; the last five
 !!   from the solver's statistics; for crank_near the gamma column holds th1 and the eps
 !!   column w1, for chain_slider the gamma column holds N) and a last line
-!!   summary cells=... ok=... failed=... silent=... false_alarms=...
+!!   summary cells=... ok=... failed=... silent=... false_alarms=... warned=...
+!! (failed and warned cells are results, not errors: exit 0)
 program stability_driver
     use regdae
     use ex51_problem, only: new_ex51, orientation_psd
@@ -59,7 +63,7 @@ program stability_driver
     character(len=*), parameter :: usage = 'usage: stability [problem=all|ex51|crank2|crank3|crank_near|chain_slider] '// &
                                            '[rtol=R] [gamma=G] [checks=on|off] [defaults=yes|no]'
     real(wp) :: crank_times(501), ref(2, 501)
-    integer :: counts(4) = 0   ! ok, failed, silent, false alarms
+    integer :: counts(5) = 0   ! ok, failed, silent, false alarms, warned
     logical :: checks = .true., defaults = .false.
 
     call run_grid()
@@ -119,7 +123,8 @@ contains
             end do
         end do
         write (*, '(a)') 'summary cells='//format_int(sum(counts))//' ok='//format_int(counts(1))//' failed='// &
-            format_int(counts(2))//' silent='//format_int(counts(3))//' false_alarms='//format_int(counts(4))
+            format_int(counts(2))//' silent='//format_int(counts(3))//' false_alarms='//format_int(counts(4))// &
+            ' warned='//format_int(counts(5))
     end subroutine run_grid
 
     ! The options of a cell: the grid's values over the tuned or the default options.
@@ -180,15 +185,18 @@ contains
         type(solver_stats), intent(out) :: st
         type(regdae_solver) :: solver
         real(wp) :: x(1), y(1), t
-        integer :: k
+        integer :: k, first_warning
         err = 0.0_wp
+        first_warning = 0
         call solver%init(new_ex51(orientation_psd), -1.0_wp, [0.0_wp], opts, stat)
         do k = 0, 200
             if (stat < 0) exit
             t = -1.0_wp + 0.01_wp*k
             call solver%advance(t, x, y, stat)
+            call note_warning(first_warning, stat)
             if (stat >= 0) err = max(err, abs(x(1) - (t + 1.0_wp)))
         end do
+        if (stat >= 0) stat = first_warning
         st = solver%statistics()
         call solver%destroy()
     end subroutine run_ex51
@@ -232,13 +240,15 @@ contains
         type(solver_stats), intent(out) :: st
         type(regdae_solver) :: solver
         real(wp) :: th(2)
-        integer :: k
+        integer :: k, first_warning
         err = 0.0_wp
         dev = 0.0_wp
+        first_warning = 0
         call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [start(1), pi - start(1)], [start(2), -start(2)], opts, stat)
         do k = 1, size(times)
             if (stat < 0) exit
             call solver%advance(times(k), th, stat=stat)
+            call note_warning(first_warning, stat)
             if (stat >= 0) then
                 err = max(err, abs(th(1) - reference(1, k)), abs(th(2) - (pi - reference(1, k))))
                 dev = max(dev, abs(modulo(th(1) + th(2), 2*pi) - pi))
@@ -246,6 +256,7 @@ contains
                 if (st%steps > run_budget) stat = regdae_err_integration
             end if
         end do
+        if (stat >= 0) stat = first_warning
         st = solver%statistics()
         call solver%destroy()
     end subroutine run_crank
@@ -333,18 +344,29 @@ contains
         type(regdae_solver) :: solver
         type(chain) :: p
         real(wp) :: q0(2*links), v0(2*links)
-        integer :: k
+        integer :: k, first_warning
         q = huge(1.0_wp)
+        first_warning = 0
         p = new_chain(links, .true., 9.81_wp)
         call chain_start(p, q0, v0)
         call solver%init(p, 0.0_wp, q0, v0, opts, stat)
         do k = 1, size(times)
             if (stat < 0) exit
             call solver%advance(times(k), q(:, k), stat=stat)
+            call note_warning(first_warning, stat)
         end do
+        if (stat >= 0) stat = first_warning
         st = solver%statistics()
         call solver%destroy()
     end subroutine run_chain
+
+    ! Keep the first warning (stat > 0) of a run's advances in `first` (0: none yet): a run that
+    ! ends without failure returns it as its status (`if (stat >= 0) stat = first`).
+    subroutine note_warning(first, stat)
+        integer, intent(inout) :: first
+        integer, intent(in) :: stat
+        if (first == 0 .and. stat > 0) first = stat
+    end subroutine note_warning
 
     ! max |q - reference| over the outputs reached (t <= t_reached)
     real(wp) function chain_error(q, reference, t_reached, times) result(err)
@@ -373,6 +395,10 @@ contains
                 counts(2) = counts(2) - 1
                 counts(4) = counts(4) + 1
             end if
+        else if (stat > 0) then   ! ended after a warning: neither ok nor silent, whatever the error
+            status = 'warning'
+            class = 'warned'
+            counts(5) = counts(5) + 1
         else if (within) then
             status = 'ok'
             class = 'ok'

@@ -29,20 +29,22 @@ for key in method status t_end max_err_x steps res_evals jac_evals err_test_fail
     [ -n "$(field tr6 $key)" ] || { bad "summary field $key"; continue; }
 done
 
-# 3. Direct: passes with B = t (GB = t^2 >= 0); refuses B = -t with a clear message.
+# 3. Direct: passes with B = t (GB = t^2 >= 0); refuses B = -t with a clear message. Passing may
+#    end in status=warning (the pass check could not resolve the pass at t = 0 to the tolerance).
 run dpsd method=direct orientation=psd
-[ "$(rc dpsd)" = 0 ] && [ "$(field dpsd status)" = ok ] && le 1 "$(field dpsd t_end)"
-check "direct, orientation=psd reaches t = 1" $?
+[ "$(rc dpsd)" = 0 ] && usable dpsd && le 1 "$(field dpsd t_end)"
+check "direct, orientation=psd reaches t = 1 (status=$(field dpsd status))" $?
 run dpaper method=direct orientation=paper
 [ "$(rc dpaper)" != 0 ] && [ "$(field dpaper status)" = failed ] && grep -q '^# error:.*positive semidefinite' "$tmp/dpaper.out"
 check "direct, orientation=paper stops: GB not positive semidefinite, non-zero exit" $?
 
-# 4. Baumgarte: whatever happens at t = 0 is reported truthfully.
+# 4. Baumgarte: whatever happens at t = 0 is reported truthfully (a warning, e.g. the multiplier
+#    undefined at t = 0, is a run that goes on: exit 0, and a '# warning:' line).
 for form in multiplier eliminated; do
     run bg_$form method=baumgarte formulation=$form
     st=$(field bg_$form status); r=$(rc bg_$form); te=$(field bg_$form t_end)
-    if [ "$st" = ok ]; then
-        [ "$r" = 0 ] && le 1 "$te" && le "$(field bg_$form max_err_x)" 1e-3
+    if [ "$st" = ok ] || [ "$st" = warning ]; then
+        [ "$r" = 0 ] && usable bg_$form && le 1 "$te" && le "$(field bg_$form max_err_x)" 1e-3
     else
         [ "$st" = failed ] && [ "$r" != 0 ] && lt "$te" 1 && grep -q '^# error:' "$tmp/bg_$form.out"
     fi

@@ -14,6 +14,8 @@ run() {
 }
 field() { tail -n 1 "$tmp/$1.out" | tr ' ' '\n' | sed -n "s/^$2=//p"; }   # field NAME KEY
 rc() { cat "$tmp/$1.rc"; }
+# usable NAME: status ok, or warning (x valid, the tolerance maybe not met) with its '# warning:' line
+usable() { case $(field "$1" status) in ok) true ;; warning) grep -q '^# warning:' "$tmp/$1.out" ;; *) false ;; esac; }
 le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 <= b + 0) }'; }   # le A B: A <= B
 lt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 < b + 0) }'; }    # lt A B: A < B
 finish() { echo "$passed passed, $failed failed"; [ "$failed" = 0 ]; }

@@ -39,10 +39,11 @@ run smf carrier=follower
 [ "$(rc smf)" = 1 ] && [ "$(field smf status)" = failed ] && grep -q '^# warning:' "$tmp/smf.out"
 check "singular_mass carrier=follower: flagged as outside (4.11)" $?
 
-# Rates: Example 5.1 at gamma = 1e3.
+# Rates: Example 5.1 at gamma = 1e3. Most runs warn that the pass at t = 0 is not resolved to
+# rtol (the pass check): status=warning, with a '# warning:' line per warned run; no run fails.
 driver=$bin/rates
 run rates problem=EX51 gamma=1e3
 p=$(grep '^fit problem=EX51 method=direct gamma=1.0000E+03 region=inside' "$tmp/rates.out" | sed 's/.* p=\([^ ]*\).*/\1/')
-[ "$(field rates status)" = ok ] && le 0.3 "$p" && le "$p" 0.42
+[ "$(rc rates)" = 0 ] && usable rates && [ "$(field rates failed_runs)" = 0 ] && le 0.3 "$p" && le "$p" 0.42
 check "rates EX51 (3.2): inside order p=$p in [0.30, 0.42]" $?
 finish

@@ -6,6 +6,7 @@ module rates_measure
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use regdae
     use theory_problems, only: theory_problem
+    use driver_support, only: warning_log
     implicit none
     private
     public :: output_grid, measure_errors, converged_errors, vanishing_orders
@@ -41,8 +42,9 @@ contains
     !> One run from x*(-1): errors(1:4) = max |x - x*| for t < -delta, |t| <= delta,
     !! t > delta, and at t = 1. NaN and stat < 0 if the run fails; then `message`,
     !! if present, is the solver's message (empty after success). unresolved: an
-    !! advance warned regdae_warn_unresolved; ratio: the statistic resolution_ratio.
-    subroutine measure_errors(problem, opts, times, delta, errors, stat, message, unresolved, ratio)
+    !! advance warned regdae_warn_unresolved; ratio: the statistic resolution_ratio;
+    !! warnings: every warning of the advances (stat stays 0 after them: x is valid).
+    subroutine measure_errors(problem, opts, times, delta, errors, stat, message, unresolved, ratio, warnings)
         type(theory_problem), intent(in) :: problem
         type(solver_options), intent(in) :: opts   !! method, gamma, eps, tolerances
         real(wp), intent(in) :: times(:)           !! sorted output times in [-1, 1]
@@ -52,8 +54,10 @@ contains
         character(len=:), allocatable, intent(out), optional :: message
         logical, intent(out), optional :: unresolved
         real(wp), intent(out), optional :: ratio
+        type(warning_log), intent(out), optional :: warnings
         type(regdae_solver) :: solver
         type(solver_stats) :: st
+        type(warning_log) :: log
         logical :: warned
         real(wp) :: x(problem%n), y(problem%m), e, t
         integer :: k, region
@@ -75,6 +79,7 @@ contains
             end if
             call solver%advance(t, x, y, stat)
             if (stat < 0) exit
+            call log%note(solver, stat, t)
             if (stat == regdae_warn_unresolved) warned = .true.
             stat = regdae_success
             e = maxval(abs(x - problem%x_exact(t)))
@@ -91,6 +96,7 @@ contains
         st = solver%statistics()
         if (present(unresolved)) unresolved = warned
         if (present(ratio)) ratio = st%resolution_ratio
+        if (present(warnings)) warnings = log
         call solver%destroy()
     end subroutine measure_errors
 
@@ -101,9 +107,10 @@ contains
     !! the largest relative change of the inside and after errors between the last two
     !! runs; converged: change <= change_tol; first: the errors at rtol_start. Errors
     !! below 1e3 rtol (the integration error) count as equal. stat < 0 (and message)
-    !! if a run fails.
+    !! if a run fails. warnings: those of the tightest run (the one whose errors are returned).
     subroutine converged_errors(problem, opts, times, delta, rtol_start, rtol_floor, change_tol, errors, &
-                                first, rtol_used, change, converged, stat, message, first_unresolved, first_ratio)
+                                first, rtol_used, change, converged, stat, message, first_unresolved, first_ratio, &
+                                warnings)
         type(theory_problem), intent(in) :: problem
         type(solver_options), intent(in) :: opts
         real(wp), intent(in) :: times(:), delta, rtol_start, rtol_floor, change_tol
@@ -113,6 +120,7 @@ contains
         character(len=:), allocatable, intent(out) :: message
         logical, intent(out) :: first_unresolved   !! the run at rtol_start warned regdae_warn_unresolved
         real(wp), intent(out) :: first_ratio       !! its resolution_ratio
+        type(warning_log), intent(out), optional :: warnings
         type(solver_options) :: run_opts
         real(wp) :: previous(4), ratio
         logical :: unresolved
@@ -127,7 +135,7 @@ contains
         do
             run_opts%rtol = rtol_used
             run_opts%atol = rtol_used
-            call measure_errors(problem, run_opts, times, delta, errors, stat, message, unresolved, ratio)
+            call measure_errors(problem, run_opts, times, delta, errors, stat, message, unresolved, ratio, warnings)
             if (rtol_used >= rtol_start) then
                 first_unresolved = unresolved
                 first_ratio = ratio

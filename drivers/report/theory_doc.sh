@@ -49,12 +49,12 @@ row() {   # row CASE METHOD THEOREM PRED_BEFORE PRED_IN_CB PRED_IN_CCT
         "$(p_range "$1" "$2" after)" "$(eps_range "$1" "$2" inside)"
 }
 
-plot() {   # plot CASE METHODS...
+plot() {   # plot CASE METHODS... (rows ok or warning: a warned run's x is valid, and the fits use it too)
     c=$1; shift
     cmd=""
     for m in "$@"; do
         for r in before inside after; do
-            awk -v c="$c" -v m="$m" -v r="$r" '$1 == c && $2 == m && $3 == "1.0000E+03" && $5 == "ok" {
+            awk -v c="$c" -v m="$m" -v r="$r" '$1 == c && $2 == m && $3 == "1.0000E+03" && ($5 == "ok" || $5 == "warning") {
                 i = (r == "before" ? 6 : (r == "inside" ? 7 : 8)); print $4, $i }' "$tmp/rates.out" >"$tmp/$c.$m.$r.dat"
             cmd="$cmd${cmd:+, }'$tmp/$c.$m.$r.dat' using 1:2 with linespoints title '$m $r'"
         done

@@ -2,6 +2,7 @@
 !! psd, B = t) with the same options (trust_region, rtol = atol = 1e-8, the
 !! analytic g_t) and the same output times and table, so that
 !! check_same_output.sh can require both outputs to be the same digit for digit.
+!! A warning (stat > 0) goes on, as the FORTRAN 77 program does after IDID > 0.
 program ex51_fortran2008
     use regdae, only: wp, solver_options, regdae_solver, solver_stats, method_trust_region, regdae_success
     use ex51_problem, only: ex51, new_ex51, orientation_psd
@@ -23,7 +24,7 @@ program ex51_fortran2008
     do k = 1, 20
         t = -1.0_wp + real(k, wp)/10.0_wp
         call solver%advance(t, x, y, stat)
-        if (stat /= regdae_success) error stop 'advance failed'
+        if (stat < 0) error stop 'advance failed'
         err = max(err, abs(x(1) - (t + 1.0_wp)))
         write (*, '(f6.2, 1p, 2e25.16)') t, x(1), y(1)
     end do
