@@ -509,11 +509,12 @@ contains
         end if
     end function is_mechanical
 
-    subroutine work_sample(self, t, z, kinetic, power, stat)
+    subroutine work_sample(self, t, z, kinetic, power, stat, sums)
         class(regularized_dae), intent(inout) :: self
         real(wp), intent(in) :: t, z(:)     !! the last evaluated point
         real(wp), intent(out) :: kinetic, power
         integer, intent(out) :: stat
+        real(wp), intent(out), optional :: sums(2)   !! see kinetic_energy_and_power
         real(wp) :: y(self%m)
         kinetic = 0.0_wp
         power = 0.0_wp
@@ -524,14 +525,15 @@ contains
         if (allocated(self%second)) then
             select type (p => self%second)
             class is (mechanical_problem)
-                call kinetic_energy_and_power(p, t, z(1:p%n), z(p%n + 1:2*p%n), y, kinetic, power, stat)
+                call kinetic_energy_and_power(p, t, z(1:p%n), z(p%n + 1:2*p%n), y, kinetic, power, stat, sums=sums)
             end select
         else
             select type (p => self%first)
             type is (velocity_index2_problem)
                 select type (pp => p%second)
                 class is (mechanical_problem)
-                    call kinetic_energy_and_power(pp, t, z(1:pp%n), z(pp%n + 1:2*pp%n), y, kinetic, power, stat)
+                    call kinetic_energy_and_power(pp, t, z(1:pp%n), z(pp%n + 1:2*pp%n), y, kinetic, power, stat, &
+                                                  sums=sums)
                 end select
             end select
         end if

@@ -517,6 +517,7 @@ contains
         if (core%follow_weights) call core%monitor%follow_weights(core%nx, core%second_order .and. &
                                                                   size(z0) >= 2*core%nx, core%rate0, core%ell0, t0)
         core%monitor%work_floor = core%work_floor
+        core%monitor%work_rate = core%rate0
         call core%monitor%set_resolution(core%opts%resolution_tol)
         call core%monitor%sample(t0, core%model, z0, zp0)
         core%sampled_t = t0
@@ -651,6 +652,7 @@ contains
                                     core%sigma_pred0)
         if (core%follow_weights) call core%monitor%follow_weights(0, .true., core%rate0, core%ell0, t)
         core%monitor%work_floor = core%work_floor
+        core%monitor%work_rate = core%rate0
         call sample_augmented(core, t)
         core%sampled_t = t
     end subroutine start_monitor_augmented
@@ -779,7 +781,8 @@ contains
         type(solver_core), intent(inout) :: core
         real(wp), intent(in) :: t
         real(c_double), pointer :: u(:), up(:)
-        real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g
+        real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g, &
+                    sums(2)
         integer :: dstat, istat, wstat
         u => core%ida%state()
         up => core%ida%slope()
@@ -806,8 +809,8 @@ contains
             select type (sys => core%ida%system)
             type is (augmented_system)
                 call sys%unpack(u, up, y=y)
-                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass)
-                call core%monitor%sample_work(t, kinetic, power, wstat)
+                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums)
+                call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v))
             end select
         end if
     end subroutine sample_augmented

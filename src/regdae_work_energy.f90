@@ -27,12 +27,14 @@ contains
     !! with the multiplier y = -lambda. With `pattern`, M comes in pattern order
     !! from `mass_values` (O(nnz)); else dense from `mass_matrix`. stat: the user
     !! routines' (0 on success).
-    subroutine kinetic_energy_and_power(problem, t, q, v, y, kinetic, power, stat, pattern)
+    subroutine kinetic_energy_and_power(problem, t, q, v, y, kinetic, power, stat, pattern, sums)
         class(mechanical_problem), intent(inout) :: problem
         real(wp), intent(in) :: t, q(:), v(:), y(:)
         real(wp), intent(out) :: kinetic, power
         integer, intent(out) :: stat
         type(sparsity_pattern), intent(in), optional :: pattern
+        real(wp), intent(out), optional :: sums(2)   !! sum_i |(M v)_i| and sum_i |f_i|: the energy an error
+                                                     !! dv, dq moves by at most sums(1) max|dv| + sums(2) max|dq|
         real(wp) :: f(size(q)), gt(problem%m), mv(size(q)), mdot_v(size(q)), d, vmax
         stat = 0
         kinetic = 0.0_wp
@@ -56,6 +58,7 @@ contains
         if (problem%m > 0) call problem%constraint_dt(t, q, gt, stat)
         if (stat /= 0) return
         power = dot_product(v, f) + 0.5_wp*dot_product(v, mdot_v) + dot_product(y, gt)
+        if (present(sums)) sums = [sum(abs(mv)), sum(abs(f))]
     contains
         ! M(qq) x, dense or from the pattern's values
         subroutine mass_times(qq, tt, x, mx)
