@@ -5,7 +5,7 @@
 !! written in other units gets the same trajectory; the solver front gathers
 !! the scales (at t0 and at the samples along the run) and applies the rules.
 !!
-!! - The rate of the motion: omega = rms(v)/l + sqrt(max(rms(a), rms(f))/l) for
+!! - The rate of the motion: omega = max(rms(v)/l, sqrt(max(rms(a), rms(f))/l)) for
 !!   a problem of order 2 (f: the acceleration of the applied forces, a: the
 !!   constrained one), max(rms(x'), rms(f))/l for order 1, l the length over which
 !!   the constraint gradients turn (`constraint_length`). Continuous in the state:
@@ -81,8 +81,8 @@ contains
         if (.not. (ell > 0.0_wp)) ell = ell_x
     end function constraint_length
 
-    !> The rate of the motion (1/time) at a state: the larger of
-    !! rms(vel)/ell + sqrt(max(rms(acc), rms(free))/ell) and sqrt(stiff) for order 2 (vel = v,
+    !> The rate of the motion (1/time) at a state: the largest of rms(vel)/ell,
+    !! sqrt(max(rms(acc), rms(free))/ell) and sqrt(stiff) for order 2 (vel = v,
     !! acc = v', free = the acceleration of the applied forces, stiff = |d free/dx| along a
     !! generic direction: the frequency of the forces, which a start at rest in an
     !! equilibrium still has), of max(rms(vel), rms(free))/ell and stiff for order 1
@@ -94,7 +94,7 @@ contains
         rate = 0.0_wp
         if (ell > 0.0_wp .and. ell < huge(1.0_wp)) then
             if (order2) then
-                rate = rms(vel)/ell + sqrt(max(rms(acc), rms(free))/ell)
+                rate = max(rms(vel)/ell, sqrt(max(rms(acc), rms(free))/ell))
             else
                 rate = max(rms(vel), rms(free))/ell
             end if
