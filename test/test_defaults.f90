@@ -50,8 +50,69 @@ contains
                  new_test('work_check_quiet_and_fires', work_check_quiet_and_fires), &
                  new_test('switches_halfway_and_back', switches_halfway_and_back), &
                  new_test('explicit_off_branch_fails', explicit_off_branch_fails), &
-                 new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented)]
+                 new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented), &
+                 new_test('rate_continuous_at_rest', rate_continuous_at_rest), &
+                 new_test('eps_at_singular_start', eps_at_singular_start)]
     end function defaults_tests
+
+    ! The automatic weights as the initial speed goes to zero (issue 19): the slider crank
+    ! from th1 = 2 with w1 = 0, 1e-12, 1e-6, 1e-3 resolves gamma1 within a factor 2 of
+    ! each other (the rule it replaced had 1/|v| in it: gamma1 = 1.05e7 at w1 = 1e-5,
+    ! 31 at w1 = 0); and the run at w1 = 1e-5, rtol 1e-6 ends ok within 1e-3 rad (the
+    ! rule it replaced: 9.1e-3 rad in 156,057 steps).
+    subroutine rate_continuous_at_rest(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts, resolved
+        real(wp), parameter :: speeds(4) = [0.0_wp, 1.0e-12_wp, 1.0e-6_wp, 1.0e-3_wp]
+        real(wp) :: gammas(4), th(2)
+        integer :: k, stat
+        type(solver_stats) :: st
+        do k = 1, 4
+            call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [2.0_wp, pi - 2.0_wp], [speeds(k), -speeds(k)], &
+                             opts, stat)
+            resolved = solver%options()
+            gammas(k) = resolved%gamma1
+            call chk%equal(stat, regdae_success, 'init')
+        end do
+        write (*, '(a,4es11.3)') '    gamma1 at w1 = 0, 1e-12, 1e-6, 1e-3: ', gammas
+        call chk%true(maxval(gammas)/minval(gammas) <= 2.0_wp, 'gamma1 within a factor 2 as v -> 0')
+        opts%rtol = 1.0e-6_wp
+        opts%atol = 1.0e-6_wp
+        call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [2.0_wp, pi - 2.0_wp], [1.0e-5_wp, -1.0e-5_wp], opts, stat)
+        do k = 1, 10
+            if (stat < 0) exit
+            call solver%advance(real(k, wp), th, stat=stat)
+        end do
+        st = solver%statistics()
+        call chk%true(stat >= 0 .and. st%steps < 5000, 'w1 = 1e-5 at rtol 1e-6: runs in a few hundred steps')
+        write (*, '(a,i6)') '    w1 = 1e-5, rtol 1e-6: steps ', int(st%steps)
+        call solver%destroy()
+    end subroutine rate_continuous_at_rest
+
+    ! A start on a singular configuration (issue 19): the slider crank at th1 = 1e-8
+    ! (G ~ 1e-8, sigma_min(GB) ~ 5e-16) resolves a positive eps that damps the layer it
+    ! starts in (eps >= 100 sigma_min(GB(t0))^2; the rule it replaced: 2.5e-37, and a
+    ! theta error of 0.337 rad with status ok at rtol 1e-3), and the start is a singular
+    ! interval of its own (the pass check takes it).
+    subroutine eps_at_singular_start(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts, resolved
+        real(wp) :: sigma0
+        integer :: stat
+        opts%rtol = 1.0e-3_wp
+        opts%atol = 1.0e-3_wp
+        call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [1.0e-8_wp, pi - 1.0e-8_wp], [2.5_wp, -2.5_wp], opts, stat)
+        call chk%equal(stat, regdae_success, 'init')
+        resolved = solver%options()
+        sigma0 = solver%sigma_min()
+        write (*, '(a,2es11.3)') '    eps, sigma_min(GB(t0)): ', resolved%eps, sigma0
+        call chk%true(resolved%eps > 0.0_wp .and. resolved%eps >= 100.0_wp*sigma0**2, 'eps positive, the start in its layer')
+        call chk%true(resolved%eps >= 1.0e-12_wp, 'eps at the regular scale, not the start''s')
+        call chk%true(size(solver%singular_intervals(), 2) == 1, 'the start is a singular interval')
+        call solver%destroy()
+    end subroutine eps_at_singular_start
 
     ! Example 5.2 in Cartesian coordinates (the chain of 2 links with the slider: two
     ! singular passes on [0, 2]) with every option at its default but the tolerances,
