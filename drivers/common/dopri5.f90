@@ -14,7 +14,8 @@ contains
 
     !> Integrate y' = F(t, y) from (t0, y0) to the ascending `times`; states(:, k)
     !! at times(k) by the continuous extension of the step. `steps` counts
-    !! accepted steps, `evals` right-hand-side evaluations.
+    !! accepted steps, `evals` right-hand-side evaluations; where no step fits (h below
+    !! the rounding of t), the outputs from there on are huge and steps is negative.
     subroutine dopri5_integrate(system, t0, y0, times, states, rtol, atol, steps, evals)
         class(ode_system), intent(inout) :: system
         real(wp), intent(in) :: t0, y0(:), times(:), rtol, atol
@@ -40,6 +41,15 @@ contains
                 cycle
             end if
             h = min(h, tend - t)
+            if (tend - t <= 16*epsilon(1.0_wp)*max(1.0_wp, abs(tend))) then   ! at tend up to rounding
+                states(:, iout:) = spread(y, 2, size(times) - iout + 1)
+                exit
+            end if
+            if (h <= 16*epsilon(1.0_wp)*max(1.0_wp, abs(t))) then   ! no step fits: the method fails here
+                states(:, iout:) = huge(1.0_wp)
+                steps = -steps
+                exit
+            end if
             call system%rhs(t + c2*h, y + h*a21*k1, k2)
             call system%rhs(t + c3*h, y + h*(a31*k1 + a32*k2), k3)
             call system%rhs(t + c4*h, y + h*(a41*k1 + a42*k2 + a43*k3), k4)
@@ -50,6 +60,7 @@ contains
             evals = evals + 6
             err = h*(e1*k1 + e3*k3 + e4*k4 + e5*k5 + e6*k6 + e7*k7)
             e = sqrt(sum((err/(atol + rtol*max(abs(y), abs(ynew))))**2)/n)
+            if (.not. (e <= huge(1.0_wp))) e = huge(1.0_wp)   ! NaN or Inf (a step far too long): shrink it
             if (e <= 1.0_wp) then
                 ! Outputs in (t, t + h]: the continuous extension (regdae_dopri_tableau).
                 if (times(iout) <= t + h) then
