@@ -43,8 +43,9 @@
 !! (seconds: init and advances of the run; after a failure or a warning a '#' line with the first
 !! 80 characters of the solver's message), and the line
 !!   summary family=NAME cells=.. ok=.. warned=.. silent=.. false_alarm=.. failed=.. refused=.. no_reference=..
-!! The chain's peer runs in a child process of this program (`peer_job=...`) under coreutils'
-!! `timeout` (chain_peer has no wall budget of its own; some of its runs take minutes).
+!! The chain's peer and the Dormand-Prince reference method run in child processes of this program
+!! (`peer_job=...`, `oracle_job=...`) under coreutils' `timeout`: neither has a wall budget of its own
+!! (some peer runs take minutes; a Dormand-Prince run whose solution blows up loops on a NaN error).
 program trust_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -70,8 +71,13 @@ program trust_driver
     real(wp), parameter :: mech_rtols(6) = [1.0e-3_wp, 1.0e-4_wp, 1.0e-5_wp, 1.0e-6_wp, 1.0e-7_wp, 1.0e-8_wp]
     real(wp), parameter :: linear_rtols(8) = [1.0e-3_wp, 1.0e-4_wp, 1.0e-5_wp, 1.0e-6_wp, 1.0e-7_wp, 1.0e-8_wp, &
                                               1.0e-9_wp, 1.0e-10_wp]
-    !> The status of a peer run that `timeout` stopped.
-    integer, parameter :: peer_timed_out = -9124
+    !> The status of a child process (the peer, Dormand-Prince) that `timeout` stopped, or that failed.
+    integer, parameter :: child_timed_out = -9124, child_failed = -9125
+    !> Wall-clock limit (s) of a Dormand-Prince run (a normal one takes milliseconds).
+    integer, parameter :: oracle_timeout = 10
+    !> The problems' parameters: the slider crank's gravity (Example 5.2); the four-bar's r, L, g.
+    real(wp), parameter :: crank_gravity = 9.8_wp, fourbar_r = 1.0_wp, fourbar_l = 2.0_wp, fourbar_g = 9.81_wp
+    real(wp), parameter :: chain_gravity = 9.81_wp   !! chain_peer's, fixed there
     !> The tight tolerances of the references; the looser ones of their convergence checks.
     real(wp), parameter :: ref_tol = 1.0e-13_wp, ref_check_tol = 1.0e-12_wp
     real(wp), parameter :: chain_ref_tol = 1.0e-11_wp, chain_ref_eps = 1.0e-16_wp
@@ -139,6 +145,9 @@ contains
                 if (.not. (budget > 0.0_wp)) call die_usage(prog, 'budget must be > 0')
             case ('peer_job')
                 call peer_job(value)
+                return
+            case ('oracle_job')
+                call oracle_job(value)
                 return
             case default; call die_usage(prog, usage)
             end select
@@ -361,16 +370,18 @@ contains
                                              0.5_wp, 1.0_wp, 2.0_wp, 5.0_wp, 10.0_wp, 20.0_wp]
         type(tally) :: counts
         real(wp) :: angles(25), times(200)
-        integer :: i, ir, j, k, cell
+        integer :: i, ir, j, cell
         family_name = 'crank'
         angles = crank_angles()
-        times = [(0.05_wp*k, k=1, 200)]
+        times = output_times(10.0_wp, 200)
         write (*, '(a)') '# family=crank: the slider crank (Example 5.2, g = 9.8, index 3), p1 = th1, p2 = w1, '// &
             'th2 = pi - th1, w2 = -w1; tf = 10, 200 outputs; case thNN = the index of th1 (ascending)'
         write (*, '(a)') '#   reference: the reduced ODE by CVODE (Adams) at rtol = atol = 1e-13; reference method: '// &
             'Dormand-Prince on it at R; budget '//num(run_budget(30.0_wp))//' s per run'
         write (*, '(a)') '#   th1 values: '//list_text(angles)
-        write (*, '(a)') '#   extra column: ref_chk = the norm of (CVODE at 1e-12 - CVODE at 1e-13) at R'
+        write (*, '(a)') '#   extra columns: ref_chk = the norm of (CVODE at 1e-12 - CVODE at 1e-13) at R; '// &
+            'refm = the reference method: ok, diverged (err_ref over the outputs before a NaN/Inf), timeout '// &
+            '(no result in '//itext(oracle_timeout)//' s: err_ref = 0), failed'
         cell = 0
         do i = 1, size(angles)
             do ir = 1, size(mech_rtols)
@@ -408,10 +419,11 @@ contains
         type(run_record) :: rec, rerun
         real(wp) :: ref(2, size(times)), chk(2, size(times)), oracle(2, size(times))
         real(wp) :: xref(2, size(times)), err, err_ref, bound, ref_chk
-        integer :: rstat, cstat, steps, evals
+        integer :: rstat, cstat, ostat
         character(len=8) :: label
+        character(len=:), allocatable :: omessage
         write (label, '(a,i2.2)') 'th', ith
-        reduced%gravity = 9.8_wp
+        reduced%gravity = crank_gravity
         call integrate_reference(reduced, 0.0_wp, [th1, w1], times, ref, ref_tol, ref_tol, rstat)
         call integrate_reference(reduced, 0.0_wp, [th1, w1], times, chk, ref_check_tol, ref_check_tol, cstat)
         if (rstat /= 0 .or. cstat /= 0) then
@@ -422,19 +434,20 @@ contains
         xref(1, :) = ref(1, :)
         xref(2, :) = pi - ref(1, :)
         ref_chk = weighted_error(crank_positions(chk), xref, rtol, size(times))
-        call dopri5_integrate(reduced, 0.0_wp, [th1, w1], times, oracle, rtol, rtol, steps, evals)
-        err_ref = weighted_error(crank_positions(oracle), xref, rtol, size(times))
+        call oracle_run('crank', th1, w1, rtol, times, oracle, ostat, omessage, oracle_timeout)
+        err_ref = weighted_error(crank_positions(oracle), xref, rtol, finite_outputs(oracle))
         bound = 10.0_wp*max(1.0_wp, err_ref)
-        call run_mechanical(new_slider_crank(9.8_wp), [th1, pi - th1], [w1, -w1], times, cell_options(rtol), &
+        call run_mechanical(new_slider_crank(crank_gravity), [th1, pi - th1], [w1, -w1], times, cell_options(rtol), &
                             run_budget(30.0_wp), rec)
         err = weighted_error(rec%x, xref, rtol, rec%good)
         if (stopped_by_check(rec%stat)) then
-            call run_mechanical(new_slider_crank(9.8_wp), [th1, pi - th1], [w1, -w1], times, &
+            call run_mechanical(new_slider_crank(crank_gravity), [th1, pi - th1], [w1, -w1], times, &
                                 checks_off(cell_options(rtol)), run_budget(30.0_wp), rerun)
             rerun%err = weighted_error(rerun%x, xref, rtol, rerun%good)
         end if
         call judge_and_print(counts, cell, trim(label), th1, w1, rtol, rec, err, err_ref, bound, ref_chk, rerun, &
-                             ' '//etext(ref_chk))
+                             ' '//etext(ref_chk)//' '//oracle_text(ostat, oracle))
+        if (ostat /= 0) call write_note('reference method: ', omessage)
     end subroutine crank_cell
 
     ! (th1, pi - th1) from states (th1, w1) of the reduced ODE.
@@ -451,11 +464,11 @@ contains
         type(tally) :: counts
         real(wp) :: th(9), w(9), times(200)
         character(len=10) :: labels(9)
-        integer :: i, ir, ix, k, cell
+        integer :: i, ir, ix, cell
         integer, parameter :: indices(2) = [3, 2]
         family_name = 'fourbar'
         call fourbar_starts(th, w, labels)
-        times = [(0.025_wp*k, k=1, 200)]
+        times = output_times(5.0_wp, 200)
         write (*, '(a)') '# family=fourbar: the parallelogram four-bar (r = 1, L = 2, g = 9.81, unit masses at the '// &
             'moving joints), p1 = th1, p2 = w1, th2 = 0, th3 = th1, w2 = 0, w3 = w1; tf = 5, 200 outputs'
         write (*, '(a)') '#   case = start/index; fold+0.02: th1 = 0.02 at rest (passes both folds slowly); '// &
@@ -464,7 +477,8 @@ contains
         write (*, '(a)') '#   reference: th1'''' = -(g/r) cos th1 by CVODE (Adams) at 1e-13; reference method: '// &
             'Dormand-Prince on it at R; compared: th1, th2 (ref 0, weight 1/R), th3 (ref th1); budget '// &
             num(run_budget(30.0_wp))//' s per run'
-        write (*, '(a)') '#   extra column: ref_chk = the norm of (CVODE at 1e-12 - CVODE at 1e-13) at R'
+        write (*, '(a)') '#   extra columns: ref_chk = the norm of (CVODE at 1e-12 - CVODE at 1e-13) at R; '// &
+            'refm = the reference method: ok, diverged, timeout, failed (as for the crank)'
         cell = 0
         do ix = 1, size(indices)
             do ir = 1, size(mech_rtols)
@@ -513,9 +527,10 @@ contains
         type(solver_options) :: opts
         real(wp) :: ref(2, size(times)), chk(2, size(times)), oracle(2, size(times))
         real(wp) :: xref(3, size(times)), err, err_ref, bound, ref_chk, q0(3), v0(3)
-        integer :: rstat, cstat, steps, evals
-        reduced%crank = 1.0_wp
-        reduced%gravity = 9.81_wp
+        integer :: rstat, cstat, ostat
+        character(len=:), allocatable :: omessage
+        reduced%crank = fourbar_r
+        reduced%gravity = fourbar_g
         call integrate_reference(reduced, 0.0_wp, [th1, w1], times, ref, ref_tol, ref_tol, rstat)
         call integrate_reference(reduced, 0.0_wp, [th1, w1], times, chk, ref_check_tol, ref_check_tol, cstat)
         if (rstat /= 0 .or. cstat /= 0) then
@@ -525,21 +540,22 @@ contains
         end if
         xref = fourbar_positions(ref)
         ref_chk = weighted_error(fourbar_positions(chk), xref, rtol, size(times))
-        call dopri5_integrate(reduced, 0.0_wp, [th1, w1], times, oracle, rtol, rtol, steps, evals)
-        err_ref = weighted_error(fourbar_positions(oracle), xref, rtol, size(times))
+        call oracle_run('fourbar', th1, w1, rtol, times, oracle, ostat, omessage, oracle_timeout)
+        err_ref = weighted_error(fourbar_positions(oracle), xref, rtol, finite_outputs(oracle))
         bound = 10.0_wp*max(1.0_wp, err_ref)
         opts = cell_options(rtol)
         opts%index = index
         call fourbar_branch_start(th1, w1, q0, v0)
-        call run_mechanical(new_fourbar(1.0_wp, 2.0_wp, 9.81_wp), q0, v0, times, opts, run_budget(30.0_wp), rec)
+        call run_mechanical(new_fourbar(fourbar_r, fourbar_l, fourbar_g), q0, v0, times, opts, run_budget(30.0_wp), rec)
         err = weighted_error(rec%x, xref, rtol, rec%good)
         if (stopped_by_check(rec%stat)) then
-            call run_mechanical(new_fourbar(1.0_wp, 2.0_wp, 9.81_wp), q0, v0, times, checks_off(opts), &
+            call run_mechanical(new_fourbar(fourbar_r, fourbar_l, fourbar_g), q0, v0, times, checks_off(opts), &
                                 run_budget(30.0_wp), rerun)
             rerun%err = weighted_error(rerun%x, xref, rtol, rerun%good)
         end if
         call judge_and_print(counts, cell, label, th1, w1, rtol, rec, err, err_ref, bound, ref_chk, rerun, &
-                             ' '//etext(ref_chk))
+                             ' '//etext(ref_chk)//' '//oracle_text(ostat, oracle))
+        if (ostat /= 0) call write_note('reference method: ', omessage)
     end subroutine fourbar_cell
 
     ! (th1, 0, th1) on the parallelogram branch from states (th1, w1).
@@ -611,17 +627,17 @@ contains
         logical, intent(in) :: long
         type(tally) :: counts
         real(wp), allocatable :: times(:)
-        integer :: iv, in, ir, k, cell, nsizes, links
+        integer :: iv, in, ir, cell, nsizes, links
         logical :: slider
         character(len=:), allocatable :: name
         name = trim(merge('chain_long', 'chain     ', long))
         family_name = name
         if (long) then
             nsizes = 8
-            times = [(10.0_wp*real(k, wp)/100.0_wp, k=1, 100)]
+            times = output_times(10.0_wp, 100)
         else
             nsizes = 12
-            times = [(1.0_wp*real(k, wp)/10.0_wp, k=1, 10)]   ! as peer_job makes them
+            times = output_times(1.0_wp, 10)
         end if
         write (*, '(a)') '# family='//name//': the chain of N unit links, unit masses, g = 9.81, plain and with '// &
             'sliders (every even joint on y = 0), from the straight horizontal chain at rest (chain_start), t in [0, '// &
@@ -691,7 +707,7 @@ contains
         end if
         bound = 10.0_wp*max(1.0_wp, err_ref)
         ref_chk = weighted_error(cached%check, cached%x, rtol, size(times))
-        p = new_chain(links, slider, 9.81_wp)
+        p = new_chain(links, slider, chain_gravity)
         call chain_start(p, q0, v0)
         call run_mechanical(p, q0, v0, times, cell_options(rtol), run_budget(120.0_wp), rec)
         err = weighted_error(rec%x, cached%x, rtol, rec%good)
@@ -721,7 +737,7 @@ contains
         end if
         de_bound = 10.0_wp*cached%energy_change + 10.0_wp*rtol*cached%energy_scale
         viol_bound = 10.0_wp*cached%violation + 10.0_wp*rtol*(1.0_wp + cached%q_scale)
-        p = new_chain(links, slider, 9.81_wp)
+        p = new_chain(links, slider, chain_gravity)
         call chain_start(p, q0, v0)
         call run_mechanical(p, q0, v0, times, cell_options(rtol), run_budget(120.0_wp), rec)
         call energy_and_violation(rec, de, viol)
@@ -755,7 +771,7 @@ contains
         type(run_record) :: rec
         type(chain) :: p
         real(wp) :: q0(2*links), v0(2*links)
-        p = new_chain(links, slider, 9.81_wp)
+        p = new_chain(links, slider, chain_gravity)
         call chain_start(p, q0, v0)
         call run_mechanical(p, q0, v0, times, cell_options(rtol), run_budget(120.0_wp), rec)
         call counts%add(class_no_reference)
@@ -840,7 +856,7 @@ contains
         type(chain) :: p
         real(wp) :: q0(2*links), v0(2*links), v_ref(size(times))
         integer :: k
-        p = new_chain(links, slider, 9.81_wp)
+        p = new_chain(links, slider, chain_gravity)
         call chain_start(p, q0, v0)
         opts = solver_options()
         opts%formulation = formulation_augmented
@@ -868,7 +884,7 @@ contains
         cached%x = tight%x
         cached%check = loose%x
         do k = 1, size(times)
-            v_ref(k) = 9.81_wp*sum(tight%x(2::2, k))   ! potential energy (unit masses); 0 at the start
+            v_ref(k) = chain_gravity*sum(tight%x(2::2, k))   ! potential energy (unit masses); 0 at the start
         end do
         cached%energy_scale = maxval(abs(v_ref))
         cached%energy_change = maxval(abs(tight%energy - tight%energy0))
@@ -885,7 +901,7 @@ contains
         type(slider_crank_reduced) :: reduced
         real(wp) :: ref(2, size(times)), q(4, size(times))
         integer :: rstat
-        reduced%gravity = 9.81_wp
+        reduced%gravity = chain_gravity
         call integrate_reference(reduced, 0.0_wp, [pi/2, 0.0_wp], times, ref, ref_tol, ref_tol, rstat)
         q(1, :) = sin(ref(1, :))
         q(2, :) = -cos(ref(1, :))
@@ -894,6 +910,32 @@ contains
         norm = weighted_error(cached%x, q, 1.0e-8_wp, size(times))
         if (rstat /= 0) norm = -1.0_wp
     end function crank_cross_check
+
+    ! The outputs before the first one with a component that is NaN or infinite.
+    pure integer function finite_outputs(states) result(good)
+        real(wp), intent(in) :: states(:, :)
+        good = 0
+        do while (good < size(states, 2))
+            if (.not. all(abs(states(:, good + 1)) <= huge(1.0_wp))) exit
+            good = good + 1
+        end do
+    end function finite_outputs
+
+    ! The reference method's column: ok, timeout, failed, or diverged (a NaN or Inf output).
+    function oracle_text(stat, states) result(text)
+        integer, intent(in) :: stat
+        real(wp), intent(in) :: states(:, :)
+        character(len=:), allocatable :: text
+        if (stat == child_timed_out) then
+            text = 'timeout'
+        else if (stat /= 0) then
+            text = 'failed'
+        else if (finite_outputs(states) < size(states, 2)) then
+            text = 'diverged'
+        else
+            text = 'ok'
+        end if
+    end function oracle_text
 
     ! The outputs of a peer run before its first NaN.
     integer function peer_good(q) result(good)
@@ -905,8 +947,8 @@ contains
         end do
     end function peer_good
 
-    ! The plain chain by the peer at rtol = atol = `rtol`, outputs at 0 and `times`, in a child
-    ! process of this program stopped after `timeout` seconds (status peer_timed_out).
+    ! The plain chain by the peer at rtol = atol = `rtol`, outputs at 0 and `times` (output_times),
+    ! in a child process of this program stopped after `timeout` seconds (status child_timed_out).
     subroutine peer_run(links, rtol, times, q, stat, steps, seconds, message, timeout)
         integer, intent(in) :: links, timeout
         real(wp), intent(in) :: rtol, times(:)
@@ -914,14 +956,65 @@ contains
         integer, intent(out) :: stat, steps
         real(wp), intent(out) :: seconds
         character(len=:), allocatable, intent(out) :: message
-        character(len=:), allocatable :: exe, file, tmp
-        character(len=32) :: rtol_text
-        integer :: length, exit_stat, cmd_stat, unit, ios, nmsg
-        integer(int64) :: tick
+        character(len=:), allocatable :: file
+        integer :: unit, ios, nmsg
         q = ieee_value(1.0_wp, ieee_quiet_nan)
-        stat = 0
         steps = 0
         seconds = 0.0_wp
+        call run_child('peer_job='//itext(links)//','//num_exact(rtol)//','//itext(size(times))//','// &
+                       num_exact(times(size(times))), timeout, 'the peer', file, unit, stat, message)
+        if (stat /= 0) return
+        read (unit, iostat=ios) stat, steps, seconds, nmsg
+        if (ios == 0) then
+            deallocate (message)
+            allocate (character(len=nmsg) :: message)
+            read (unit, iostat=ios) message, q
+        end if
+        close (unit, status='delete')
+        if (ios /= 0) then
+            stat = child_failed
+            message = 'the peer''s result could not be read'
+        end if
+    end subroutine peer_run
+
+    ! The reference method: Dormand-Prince (drivers/common/dopri5.f90) at rtol = atol = `rtol` on
+    ! the reduced ODE of `system` ('crank' or 'fourbar') from (th1, w1) to `times` (output_times),
+    ! in a child process stopped after `timeout` seconds: dopri5_integrate has no step limit,
+    ! and an error estimate that becomes NaN (a solution that blew up) makes it loop for ever.
+    subroutine oracle_run(system, th1, w1, rtol, times, states, stat, message, timeout)
+        character(len=*), intent(in) :: system
+        real(wp), intent(in) :: th1, w1, rtol, times(:)
+        real(wp), intent(out) :: states(:, :)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: message
+        integer, intent(in) :: timeout
+        character(len=:), allocatable :: file
+        integer :: unit, ios
+        states = ieee_value(1.0_wp, ieee_quiet_nan)
+        call run_child('oracle_job='//system//','//num_exact(th1)//','//num_exact(w1)//','//num_exact(rtol)//','// &
+                       itext(size(times))//','//num_exact(times(size(times))), timeout, 'Dormand-Prince', file, unit, &
+                       stat, message)
+        if (stat /= 0) return
+        read (unit, iostat=ios) states
+        close (unit, status='delete')
+        if (ios /= 0) then
+            stat = child_failed
+            message = 'the Dormand-Prince result could not be read'
+        end if
+    end subroutine oracle_run
+
+    ! Run this program as `exe job,FILE` under coreutils' timeout; on success (stat = 0) FILE is
+    ! open for reading on `unit` (stream access), otherwise stat = child_timed_out or child_failed.
+    subroutine run_child(job, timeout, what, file, unit, stat, message)
+        character(len=*), intent(in) :: job, what
+        integer, intent(in) :: timeout
+        character(len=:), allocatable, intent(out) :: file, message
+        integer, intent(out) :: unit, stat
+        character(len=:), allocatable :: exe, tmp
+        integer :: length, exit_stat, cmd_stat, ios
+        integer(int64) :: tick
+        stat = 0
+        unit = -1
         message = ''
         call get_command_argument(0, length=length)
         allocate (character(len=length) :: exe)
@@ -934,65 +1027,92 @@ contains
             tmp = '/tmp'
         end if
         call system_clock(tick)
-        file = tmp//'/trust_peer_'//itext(filter%part)//'of'//itext(filter%parts)//'_'//itext(links)//'_'// &
+        file = tmp//'/trust_child_'//itext(filter%part)//'of'//itext(filter%parts)//'_'// &
                itext(int(modulo(tick, 1000000000_int64)))
-        write (rtol_text, '(es24.16e3)') rtol
-        call execute_command_line('timeout '//itext(timeout)//' '//exe//' peer_job='//itext(links)//','// &
-                                  trim(adjustl(rtol_text))//','//itext(size(times))//','// &
-                                  num_exact(times(size(times)))//','//file//' >/dev/null 2>&1', &
+        call execute_command_line('timeout '//itext(timeout)//' '//exe//' '//job//','//file//' >/dev/null 2>&1', &
                                   exitstat=exit_stat, cmdstat=cmd_stat)
         if (cmd_stat /= 0) then
-            stat = -1
-            message = 'could not run the peer''s child process'
-            return
-        end if
-        if (exit_stat == 124) then
-            stat = peer_timed_out
-            message = 'the peer ran longer than '//itext(timeout)//' s (stopped by timeout)'
+            stat = child_failed
+            message = 'could not start the child process for '//what
+        else if (exit_stat == 124) then
+            stat = child_timed_out
+            message = what//' ran longer than '//itext(timeout)//' s (stopped by timeout)'
             call remove_file(file)
-            return
+        else
+            open (newunit=unit, file=file, access='stream', form='unformatted', status='old', action='read', &
+                  iostat=ios)
+            if (ios /= 0) then
+                stat = child_failed
+                message = 'the child process for '//what//' wrote no result (exit status '//itext(exit_stat)//')'
+            end if
         end if
-        open (newunit=unit, file=file, access='stream', form='unformatted', status='old', action='read', iostat=ios)
-        if (ios /= 0) then
-            stat = -1
-            message = 'the peer''s child process wrote no result (exit status '//itext(exit_stat)//')'
-            return
-        end if
-        read (unit, iostat=ios) stat, steps, seconds, nmsg
-        if (ios == 0) then
-            deallocate (message)
-            allocate (character(len=nmsg) :: message)
-            read (unit, iostat=ios) message, q
-        end if
-        close (unit, status='delete')
-        if (ios /= 0) then
-            stat = -1
-            message = 'the peer''s result could not be read'
-        end if
-    end subroutine peer_run
+    end subroutine run_child
 
     ! The child process: peer_job=N,rtol,nout,tf,file runs the plain chain by the peer at
-    ! rtol = atol on the nout + 1 equally spaced outputs of [0, tf] and writes the result.
+    ! rtol = atol on the outputs 0 and output_times(tf, nout) and writes the result.
     subroutine peer_job(spec)
         character(len=*), intent(in) :: spec
         character(len=len(spec)) :: fields(5)
         character(len=:), allocatable :: message
         real(wp) :: rtol, tf, seconds
-        real(wp), allocatable :: times(:), q(:, :)
-        integer :: links, nout, k, stat, steps, res_evals, jac_evals, unit, count
+        real(wp), allocatable :: q(:, :)
+        integer :: links, nout, stat, steps, res_evals, jac_evals, unit, count
         call split_fields(spec, fields, count)
         if (count /= 5) call die_usage(prog, 'peer_job=N,rtol,nout,tf,file')
         call read_count(prog, 'peer_job N', trim(fields(1)), links, 1, 1000000)
         call read_number(prog, 'peer_job rtol', trim(fields(2)), rtol)
         call read_count(prog, 'peer_job nout', trim(fields(3)), nout, 1, 1000000)
         call read_number(prog, 'peer_job tf', trim(fields(4)), tf)
-        times = [(tf*real(k, wp)/real(nout, wp), k=0, nout)]
         allocate (q(2*links, nout + 1))
-        call run_chain_peer(links, .false., rtol, rtol, times, q, steps, res_evals, jac_evals, seconds, stat, message)
+        call run_chain_peer(links, .false., rtol, rtol, [0.0_wp, output_times(tf, nout)], q, steps, res_evals, &
+                            jac_evals, seconds, stat, message)
         open (newunit=unit, file=trim(fields(5)), access='stream', form='unformatted', status='replace', action='write')
         write (unit) stat, steps, seconds, len(message), message, q
         close (unit)
     end subroutine peer_job
+
+    ! The child process: oracle_job=crank|fourbar,th1,w1,rtol,nout,tf,file runs Dormand-Prince on
+    ! the reduced ODE from (th1, w1) to output_times(tf, nout) and writes the states (2, nout).
+    subroutine oracle_job(spec)
+        character(len=*), intent(in) :: spec
+        character(len=len(spec)) :: fields(7)
+        type(slider_crank_reduced) :: crank
+        type(fourbar_reduced) :: bar
+        real(wp) :: th1, w1, rtol, tf
+        real(wp), allocatable :: states(:, :)
+        integer :: nout, steps, evals, unit, count
+        call split_fields(spec, fields, count)
+        if (count /= 7) call die_usage(prog, 'oracle_job=crank|fourbar,th1,w1,rtol,nout,tf,file')
+        call read_number(prog, 'oracle_job th1', trim(fields(2)), th1)
+        call read_number(prog, 'oracle_job w1', trim(fields(3)), w1)
+        call read_number(prog, 'oracle_job rtol', trim(fields(4)), rtol)
+        call read_count(prog, 'oracle_job nout', trim(fields(5)), nout, 1, 1000000)
+        call read_number(prog, 'oracle_job tf', trim(fields(6)), tf)
+        allocate (states(2, nout))
+        select case (trim(fields(1)))
+        case ('crank')
+            crank%gravity = crank_gravity
+            call dopri5_integrate(crank, 0.0_wp, [th1, w1], output_times(tf, nout), states, rtol, rtol, steps, evals)
+        case ('fourbar')
+            bar%crank = fourbar_r
+            bar%gravity = fourbar_g
+            call dopri5_integrate(bar, 0.0_wp, [th1, w1], output_times(tf, nout), states, rtol, rtol, steps, evals)
+        case default
+            call die_usage(prog, 'oracle_job: crank or fourbar')
+        end select
+        open (newunit=unit, file=trim(fields(7)), access='stream', form='unformatted', status='replace', action='write')
+        write (unit) states
+        close (unit)
+    end subroutine oracle_job
+
+    !> The nout outputs tf k / nout, k = 1 ... nout (the parent's and the child processes' alike).
+    pure function output_times(tf, nout) result(times)
+        real(wp), intent(in) :: tf
+        integer, intent(in) :: nout
+        real(wp) :: times(nout)
+        integer :: k
+        times = [(tf*real(k, wp)/real(nout, wp), k=1, nout)]
+    end function output_times
 
     ! The comma-separated fields of `text` into fields(1:min(count, size(fields))).
     subroutine split_fields(text, fields, count)

@@ -54,7 +54,9 @@ for fam in $families; do
     wait "$pid2" || rc2=$?
     stop=$(date +%s)
     merge "$out/$fam.part1" "$out/$fam.part2" > "$out/$fam.txt"
-    line="$(add_summaries "$out/$fam.part1" "$out/$fam.part2") wall_seconds=$((stop - start))"
+    # the machine's load average at the end (1 min): the wall time is only comparable on an idle machine
+    load=$(cut -d ' ' -f 1 /proc/loadavg 2>/dev/null || echo '?')
+    line="$(add_summaries "$out/$fam.part1" "$out/$fam.part2") wall_seconds=$((stop - start)) load=$load"
     [ "$rc1" -eq 0 ] && [ "$rc2" -eq 0 ] || line="$line exit_status=$rc1,$rc2"
     echo "$line" | tee -a "$summaries"
     rm -f "$out/$fam.part1" "$out/$fam.part2"
