@@ -8,9 +8,11 @@
 !! bound = 10 max(1, err_ref); the class (drivers/common/trust_support.f90): ok, warned,
 !! silent, false_alarm (stopped by regdae's branch, drift, work-energy or invariant check while
 !! the same run with jump_tol = drift_tol = work_tol = 0 ends with status >= 0 within the
-!! bound), failed, refused (init refused the case), no_reference. For a failure err counts the
-!! outputs before it. A run longer than its wall budget (`budget`, checked after each output)
-!! is stopped with status -1000 and counts as failed.
+!! bound), failed, refused (init refused the case), undecided (the reference's own convergence
+!! check, column ref_chk, is larger than |err - bound|) and no_reference. For a failure err counts
+!! the outputs before it. A run longer than its wall budget (`budget`, checked after each output)
+!! is stopped with status -1000 and counts as failed. status and t_end are regdae's (the run's
+!! first failure, else its first warning, else 0; statistics()%t).
 !!
 !! Families (cells numbered from 1 in the loop order given, the last index fastest):
 !! - crank: the slider crank of Example 5.2 (index 3, g = 9.8), th2 = pi - th1, w2 = -w1, tf = 10,
@@ -42,7 +44,8 @@
 !!   cell family case p1 p2 R status class err err_ref bound t_end steps seconds [family columns]
 !! (seconds: init and advances of the run; after a failure or a warning a '#' line with the first
 !! 80 characters of the solver's message), and the line
-!!   summary family=NAME cells=.. ok=.. warned=.. silent=.. false_alarm=.. failed=.. refused=.. no_reference=..
+!!   summary family=NAME cells=.. ok=.. warned=.. silent=.. false_alarm=.. failed=.. refused=.. undecided=..
+!!           no_reference=..
 !! The chain's peer and the Dormand-Prince reference method run in child processes of this program
 !! (`peer_job=...`, `oracle_job=...`) under coreutils' `timeout`: neither has a wall budget of its own
 !! (some peer runs take minutes; a Dormand-Prince run whose solution blows up loops on a NaN error).

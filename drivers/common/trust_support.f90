@@ -17,11 +17,13 @@
 !! | no_reference | the reference could not be computed: the cell is not judged |
 !!
 !! The reference's uncertainty ref_chk is the same norm of the difference between the reference
-!! and its convergence check (the same reference method at a 10 times looser tolerance): the
-!! true error lies in [err - ref_chk, err + ref_chk] as long as the tight reference is at least
-!! as accurate as the looser one, so a cell is within its bound when err + ref_chk <= bound,
-!! beyond it when err - ref_chk > bound, and undecided otherwise (with a converged reference,
-!! ref_chk << bound, only cells at the bound itself).
+!! and its convergence check (the same reference method at a 10 times looser tolerance), taken
+!! as the reference's error: where the errors fall with the tolerance the tight run errs by about
+!! ref_chk/9, so the true error of the cell lies in [err - ref_chk, err + ref_chk]. A cell is then
+!! within its bound when err + ref_chk <= bound, beyond it when err - ref_chk > bound, and
+!! undecided otherwise (with a converged reference, ref_chk << bound, only cells at the bound).
+!! Where the reference's errors do not fall with its tolerance, ref_chk can understate them: the
+!! drivers print the checks so that this can be seen.
 module trust_support
     use, intrinsic :: iso_fortran_env, only: int64
     use regdae, only: wp, solver_options, regdae_err_branch, regdae_err_drift, regdae_err_invariant, regdae_err_work

@@ -5,17 +5,26 @@
 # cells in BUILD/report/trust/baseline.txt, and gnuplot heat maps in BUILD/report/trust/*.png.
 # Builds nothing.
 #
-# Usage: trust_grids.sh BUILD_DIR [FAMILY ...]     (default: crank chain chain_long fourbar linear)
+# Usage: trust_grids.sh [--report-only] BUILD_DIR [FAMILY ...]   (default: crank chain chain_long fourbar linear)
+#   --report-only: run nothing; baseline.txt and the figures again from the rows and summaries.txt there.
 set -eu
-build=${1:?usage: trust_grids.sh BUILD_DIR [FAMILY ...]}
+run=yes
+if [ "${1:-}" = --report-only ]; then
+    run=no
+    shift
+fi
+build=${1:?usage: trust_grids.sh [--report-only] BUILD_DIR [FAMILY ...]}
 shift
 families=${*:-crank chain chain_long fourbar linear}
 bin=$build/bin/trust
 out=$build/report/trust
-[ -x "$bin" ] || { echo "trust_grids.sh: $bin not found (build it first)" >&2; exit 2; }
-mkdir -p "$out"
 summaries=$out/summaries.txt
-: > "$summaries"
+if [ $run = yes ]; then
+    [ -x "$bin" ] || { echo "trust_grids.sh: $bin not found (build it first)" >&2; exit 2; }
+    mkdir -p "$out"
+    echo "# run at commit $(git -C "$(dirname "$0")" rev-parse --short HEAD 2>/dev/null || echo '?'), $(date -u +%Y-%m-%dT%H:%MZ)" \
+        > "$summaries"
+fi
 
 # merge PART1 PART2 > FAMILY.txt: part 1's header, both parts' '# reference' lines (tagged
 # with their part), then the rows in cell order, each with the '#   ' lines that follow it.
@@ -43,6 +52,7 @@ add_summaries() {
 }
 
 for fam in $families; do
+    [ $run = yes ] || break
     start=$(date +%s)
     "$bin" family="$fam" part=1/2 > "$out/$fam.part1" 2>&1 &
     pid1=$!
@@ -62,19 +72,43 @@ for fam in $families; do
     rm -f "$out/$fam.part1" "$out/$fam.part2"
 done
 
-# baseline.txt: the summaries and the cells to look at (silent, false_alarm, undecided, and
-# the families' warned ones), one compact line each.
+# baseline.txt: the summaries (with the wall time of each family), the reference-method
+# anomalies, the chain references' convergence checks, and the cells to look at (silent,
+# false_alarm, undecided, warned, no_reference), one compact line each: the row's columns
+# but the seconds, then the family's columns, and for a false alarm the checks-off run.
 {
-    echo "# trust grids: $(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$(dirname "$0")" rev-parse --short HEAD 2>/dev/null || echo '?')"
+    echo "# trust grids (drivers/report/trust_grids.sh): the summaries, the references, the cells to look at"
+    echo "# wall_seconds: both parts side by side on two cores; load: the 1-minute load average at the end"
     cat "$summaries"
-    for cls in silent false_alarm undecided warned; do
+    echo
+    echo "# reference method (Dormand-Prince) per family: cells by its outcome"
+    for fam in crank fourbar; do
+        [ -f "$out/$fam.txt" ] || continue
+        awk -v fam="$fam" '$1 ~ /^[0-9]+$/ { n[$NF]++ } END { line = "#   " fam ":"; for (k in n) line = line " " k "=" n[k]; print line }' \
+            "$out/$fam.txt"
+    done
+    [ -f "$out/chain.txt" ] && awk '$1 ~ /^[0-9]+$/ && $3 == "plain" { n[$NF == 0 ? "ok" : "status_" $NF]++ }
+        END { line = "#   chain (plain; the peer at R):"; for (k in n) line = line " " k "=" n[k]; print line }' "$out/chain.txt"
+    for fam in chain chain_long; do
+        [ -f "$out/$fam.txt" ] || continue
         echo
-        echo "# $cls cells: family cell case p1 p2 R status err err_ref bound t_end"
+        echo "# $fam references (part 1's; the two parts compute the same ones):"
+        grep '^# \[part 1\] reference' "$out/$fam.txt" | sed 's/^# \[part 1\] reference /#   /'
+    done
+    for cls in silent false_alarm undecided warned no_reference; do
+        echo
+        echo "# $cls cells: family cell case p1 p2 R status err err_ref bound t_end steps [family columns]"
         for fam in $families; do
             [ -f "$out/$fam.txt" ] || continue
-            awk -v cls="$cls" '$1 ~ /^[0-9]+$/ && $8 == cls {
-                printf "%-10s %5d %-18s %13s %13s %8s %6s %11s %11s %11s %12s\n", $2, $1, $3, $4, $5, $6, $7, $9, $10, $11, $12 }' \
-                "$out/$fam.txt"
+            awk -v cls="$cls" '
+                function flush() { if (line != "") print line; line = "" }
+                $1 ~ /^[0-9]+$/ { flush(); if ($8 != cls) next
+                    line = sprintf("%-10s %5d %-18s %13s %13s %8s %6s %11s %11s %11s %12s %8s", $2, $1, $3, $4, $5, $6, $7,
+                                   $9, $10, $11, $12, $13)
+                    for (i = 15; i <= NF; i++) line = line " " $i
+                    next }
+                /^#   checks off: / && line != "" { line = line "  | checks off: " substr($0, 17); next }
+                END { flush() }' "$out/$fam.txt"
         done
     done
 } > "$out/baseline.txt"
