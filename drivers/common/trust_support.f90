@@ -10,7 +10,8 @@
 !! | ok          | status 0 and err <= bound |
 !! | warned      | status > 0 (a warning, e.g. regdae_warn_unresolved), whatever err |
 !! | silent      | status 0 and err > bound |
-!! | false_alarm | status < 0 by one of regdae's checks (branch, drift, work, invariant), and the same run with the checks off ends with status >= 0 and err <= bound |
+!! | false_alarm | status < 0 by one of regdae's checks (branch, drift, work, invariant), and the same run |
+!! |             | with the checks off ends with status >= 0 and err <= bound |
 !! | failed      | any other status < 0 (also the driver's wall budget, `status_budget`) |
 !! | refused     | init refused the case: bad input, or `direct` on a GB that is not positive semidefinite |
 !! | undecided   | the reference's own uncertainty decides: abs(err - bound) <= ref_chk (below) |

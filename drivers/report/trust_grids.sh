@@ -84,8 +84,8 @@ done
     echo "# reference method (Dormand-Prince) per family: cells by its outcome"
     for fam in crank fourbar; do
         [ -f "$out/$fam.txt" ] || continue
-        awk -v fam="$fam" '$1 ~ /^[0-9]+$/ { n[$NF]++ } END { line = "#   " fam ":"; for (k in n) line = line " " k "=" n[k]; print line }' \
-            "$out/$fam.txt"
+        awk -v fam="$fam" '$1 ~ /^[0-9]+$/ { n[$NF]++ }
+            END { line = "#   " fam ":"; for (k in n) line = line " " k "=" n[k]; print line }' "$out/$fam.txt"
     done
     [ -f "$out/chain.txt" ] && awk '$1 ~ /^[0-9]+$/ && $3 == "plain" { n[$NF == 0 ? "ok" : "status_" $NF]++ }
         END { line = "#   chain (plain; the peer at R):"; for (k in n) line = line " " k "=" n[k]; print line }' "$out/chain.txt"
