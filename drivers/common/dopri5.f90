@@ -3,6 +3,7 @@
 !! ODE (the speed any DAE method here is measured against), with the tableau
 !! of `regdae_dopri_tableau`.
 module dopri5
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use regdae, only: wp
     use reference_ode, only: ode_system
     use regdae_dopri_tableau
@@ -15,7 +16,7 @@ contains
     !> Integrate y' = F(t, y) from (t0, y0) to the ascending `times`; states(:, k)
     !! at times(k) by the continuous extension of the step. `steps` counts
     !! accepted steps, `evals` right-hand-side evaluations; where no step fits (h below
-    !! the rounding of t), the outputs from there on are huge and steps is negative.
+    !! the rounding of t), the outputs from there on are NaN and steps is negative.
     subroutine dopri5_integrate(system, t0, y0, times, states, rtol, atol, steps, evals)
         class(ode_system), intent(inout) :: system
         real(wp), intent(in) :: t0, y0(:), times(:), rtol, atol
@@ -46,7 +47,7 @@ contains
                 exit
             end if
             if (h <= 16*epsilon(1.0_wp)*max(1.0_wp, abs(t))) then   ! no step fits: the method fails here
-                states(:, iout:) = huge(1.0_wp)
+                states(:, iout:) = ieee_value(1.0_wp, ieee_quiet_nan)
                 steps = -steps
                 exit
             end if
