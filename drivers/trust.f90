@@ -36,7 +36,8 @@
 !!   trust_region, direct, baumgarte, R = 1e-3 ... 1e-10; the exact solution; no reference method.
 !!
 !! Usage: trust [family=crank|chain|chain_long|fourbar|linear|all] [part=k/K] [rtol=R] [cell=I]
-!!              [budget=S]
+!!              [budget=S] [th1=A [w1=W]]
+!! (th1=A, w1=W: the crank family at that start only, one cell per R, case th00)
 !! (part=k/K: only the cells whose number I has mod(I, K) = k - 1; rtol=R: only the cells of that
 !! R; cell=I: only cell I of the family, for reproducing one; budget: the wall budget in seconds
 !! per regdae run, default 30, chains 120.)
@@ -69,7 +70,7 @@ program trust_driver
 
     character(len=*), parameter :: prog = 'trust'
     character(len=*), parameter :: usage = 'usage: trust [family=crank|chain|chain_long|fourbar|linear|all] '// &
-                                           '[part=k/K] [rtol=R] [cell=I] [budget=S]'
+                                           '[part=k/K] [rtol=R] [cell=I] [budget=S] [th1=A [w1=W]]'
     real(wp), parameter :: pi = acos(-1.0_wp)
     real(wp), parameter :: mech_rtols(6) = [1.0e-3_wp, 1.0e-4_wp, 1.0e-5_wp, 1.0e-6_wp, 1.0e-7_wp, 1.0e-8_wp]
     real(wp), parameter :: linear_rtols(8) = [1.0e-3_wp, 1.0e-4_wp, 1.0e-5_wp, 1.0e-6_wp, 1.0e-7_wp, 1.0e-8_wp, &
@@ -117,6 +118,7 @@ program trust_driver
     type(chain_reference) :: cached
     character(len=:), allocatable :: family, family_name
     real(wp) :: budget = -1.0_wp
+    real(wp) :: start_th1 = -1.0_wp, start_w1 = 0.0_wp   ! th1= (w1=): the crank family at this start only
 
     call main()
 
@@ -144,6 +146,9 @@ contains
             case ('rtol'); call read_number(prog, key, value, filter%rtol)
                 if (.not. (filter%rtol > 0.0_wp)) call die_usage(prog, 'rtol must be > 0')
             case ('cell'); call read_count(prog, key, value, filter%cell, 1, 1000000)
+            case ('th1'); call read_number(prog, key, value, start_th1)
+                if (.not. (start_th1 >= 0.0_wp .and. start_th1 <= pi)) call die_usage(prog, 'th1 must be in [0, pi]')
+            case ('w1'); call read_number(prog, key, value, start_w1)
             case ('budget'); call read_number(prog, key, value, budget)
                 if (.not. (budget > 0.0_wp)) call die_usage(prog, 'budget must be > 0')
             case ('peer_job')
@@ -386,6 +391,15 @@ contains
             'refm = the reference method: ok, diverged (err_ref over the outputs before a NaN/Inf), timeout '// &
             '(no result in '//itext(oracle_timeout)//' s: err_ref = 0), failed'
         cell = 0
+        if (start_th1 >= 0.0_wp) then   ! one start of the caller's (the reproducers of issue 19)
+            do ir = 1, size(mech_rtols)
+                cell = cell + 1
+                if (.not. filter%selected(cell, mech_rtols(ir))) cycle
+                call crank_cell(counts, cell, 0, start_th1, start_w1, mech_rtols(ir), times)
+            end do
+            write (*, '(a)') counts%summary('crank')
+            return
+        end if
         do i = 1, size(angles)
             do ir = 1, size(mech_rtols)
                 do j = 1, size(speeds)

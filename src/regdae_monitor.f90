@@ -70,6 +70,9 @@ module regdae_monitor
     !> The approach to a singular pass begins where sigma_min(GB) falls below this
     !! many times the singular threshold: the checkpoint a pass is re-integrated from.
     real(wp), parameter, public :: approach_factor = 5.0_wp
+    !> The checkpoint a pass is re-integrated from: the last sample where sigma_min(GB) was
+    !! at least this many times the singular threshold.
+    real(wp), parameter, public :: checkpoint_factor = 2.0_wp
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
@@ -335,7 +338,7 @@ contains
         if (self%in_singular) then
             self%checkpoint_frozen = .true.
             if (self%checkpoint_valid) return
-        else if (.not. (self%sigma_last >= approach_factor*self%threshold) .and. self%checkpoint_valid) then
+        else if (.not. (self%sigma_last >= checkpoint_factor*self%threshold) .and. self%checkpoint_valid) then
             return
         end if
         self%checkpoint_t = t
