@@ -90,6 +90,10 @@ program bench_driver
         tol = 10.0_wp**(-k)
         if (which == 'all' .or. which == 'crank') then
             call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
+            call crank('crank3', 'defaults pass_check=no', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
+                       extra='pass_check=no')
+            call crank('crank3', 'defaults error_estimate=yes', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
+                       extra='error_estimate=yes')
             call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
             call crank('crank3', 'trust_region eps=1e-6', 3, 'trust_region', 1.0e-6_wp, tol)
             call crank('crank3', 'trust_region eps=1e-12 excluded=vy', 3, 'trust_region', 1.0e-12_wp, tol, excl='vy')
@@ -167,7 +171,7 @@ contains
     ! A configuration of the slider crank (index 2 or 3) with its options by hand: IDA and
     ! the paper's weights (gamma = 1e6; gamma1 = 2e3, gamma0 = 2e6) unless rk; or, with
     ! `defaults`, every option at its default but rtol = atol = tol.
-    subroutine crank(name, config, index, method, eps, tol, excl, rk, pair, formulation, defaults)
+    subroutine crank(name, config, index, method, eps, tol, excl, rk, pair, formulation, defaults, extra)
         character(len=*), intent(in) :: name, config, method
         integer, intent(in) :: index
         real(wp), intent(in) :: eps, tol
@@ -176,6 +180,7 @@ contains
         logical, intent(in), optional :: pair
         character(len=*), intent(in), optional :: formulation
         logical, intent(in), optional :: defaults
+        character(len=*), intent(in), optional :: extra   ! 'key=value' set after the defaults
         type(solver_options) :: opts
         type(regdae_solver) :: solver
         type(solver_stats) :: st
@@ -215,6 +220,10 @@ contains
                 opts%rtol = tol
                 opts%atol = tol
             end if
+        end if
+        if (present(extra)) then
+            j = scan(extra, '=')
+            call set_option(opts, extra(:j - 1), extra(j + 1:), stat, msg)
         end if
         crank_problem = new_slider_crank(9.8_wp)
         crank_problem%analytic_curvature = .true.   ! the user-supplied g_xx(v, v) (doc/performance.md)

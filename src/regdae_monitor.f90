@@ -613,8 +613,9 @@ contains
         self%alarm_kind = alarm_none
     end subroutine settle_alarm
 
-    subroutine monitor_rebase_work(self, kinetic, power)
+    subroutine monitor_rebase_work(self, t, kinetic, power)
         class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t                !! the time of the new state
         real(wp), intent(in) :: kinetic, power   !! of the new state
         if (.not. self%have_work) return
         ! the balance starts again from the verified state: D = 0 there (the path the
@@ -625,6 +626,9 @@ contains
         self%tolerance_energy = 0.0_wp
         self%kinetic_last = kinetic
         self%power_last = power
+        self%power_before = power
+        self%t_work = t      ! the quadrature goes on from t (the last sample may lie beyond it)
+        self%t_before = t
         self%work_samples = 1
     end subroutine monitor_rebase_work
 

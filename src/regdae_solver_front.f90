@@ -2115,7 +2115,7 @@ contains
             call core%model%evaluate(t, z, wstat, recoverable)
             if (wstat == regdae_success) call core%model%work_sample(t, z, kinetic, power, wstat)
         end if
-        if (wstat == 0) call core%monitor%rebase_work(kinetic, power)
+        if (wstat == 0) call core%monitor%rebase_work(t, kinetic, power)
     end subroutine rebase_work
 
     subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale)

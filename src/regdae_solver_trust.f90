@@ -14,8 +14,9 @@
 !! level k+1 by at most `pass_tol` (in units of rtol |z| + atol, over the state
 !! z = (x, v) in the error test) is the answer, level 0 being the solution
 !! itself. At the end of the pass (the engine stops there) the solution continues
-!! from the answer's state; at outputs inside the pass the answer's values are
-!! returned. If no two levels agree (at most 3 levels, and none below rtol
+!! from the state of level answer + 1 (computed already: local extrapolation, so
+!! that the errors of many passes do not add up at the answer's size); at outputs
+!! inside the pass that level's values are returned. If no two levels agree (at most 3 levels, and none below rtol
 !! 1e-13) the finest level is taken and `advance` returns
 !! `regdae_warn_unresolved` with the differences. Statistics: `pass_checks`,
 !! `passes_resolved`, `passes_unresolved`, `pass_error`, `companion_steps`.
@@ -334,7 +335,7 @@ contains
         real(wp), intent(inout), optional :: y(:), v(:), a(:)
         integer, intent(inout) :: warn
         character(len=:), allocatable, intent(inout) :: warn_text
-        integer :: k, n, answer, lstat
+        integer :: k, n, answer, adopt, lstat
         real(wp) :: tc
         real(wp), allocatable :: zc(:)
         logical :: frozen, valid, agreed
@@ -387,9 +388,12 @@ contains
                     if (lstat == regdae_success .and. lad%d_probe > self%pass_tol) agreed = .false.
                 end if
             end if
-            if (answer > 0) then   ! its values at t are the outputs
-                call lad%level(answer)%engine%advance(t, x, y, lstat, v, a)
-            end if
+            ! The outputs and the state the run goes on from: the finer level of the agreeing
+            ! pair (level answer + 1, already at t: local extrapolation, as an embedded pair
+            ! goes on from its higher order), so that the passes' errors, each within pass_tol
+            ! for the answer, do not add up over many passes at the answer's size.
+            adopt = min(answer + 1, lad%levels)
+            if (adopt > 0) call lad%level(adopt)%engine%advance(t, x, y, lstat, v, a)
             if (.not. agreed .and. .not. lad%warned) then
                 lad%warned = .true.
                 self%passes_unresolved = self%passes_unresolved + 1
@@ -413,8 +417,8 @@ contains
             if (.not. ended) return
             ! the end of the pass: the engine goes on from the answer's state
             self%pass_checks = self%pass_checks + 1
+            if (adopt > 0) call self%main%restart_at(t, lad%z(:, adopt), lstat)
             if (answer > 0) then
-                call self%main%restart_at(t, lad%z(:, answer), lstat)
                 if (agreed) then
                     self%passes_resolved = self%passes_resolved + 1
                     call self%main%note_event('t = '//format_real(t)//': the singular pass after t = '// &
@@ -423,7 +427,7 @@ contains
                                               format_real(lad%d(1))//' error weights); the run goes on from there')
                 end if
             end if
-            call self%main%release_checkpoint(t, lad%z(:, answer))
+            call self%main%release_checkpoint(t, lad%z(:, adopt))
             call retire(self, 1)
             call retire_probe(self)
             lad%active = .false.
