@@ -94,6 +94,8 @@ program bench_driver
                        extra='pass_check=no')
             call crank('crank3', 'defaults error_estimate=yes', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
                        extra='error_estimate=yes')
+            call crank('crank3', 'defaults integrator=ida', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
+                       extra='integrator=ida')
             call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
             call crank('crank3', 'trust_region eps=1e-6', 3, 'trust_region', 1.0e-6_wp, tol)
             call crank('crank3', 'trust_region eps=1e-12 excluded=vy', 3, 'trust_region', 1.0e-12_wp, tol, excl='vy')
@@ -152,6 +154,8 @@ program bench_driver
                        rk=.true., pair=.true.)
             call crank('crank3', 'trust_region eps=1e-12', 3, 'trust_region', 1.0e-12_wp, tol, pair=.true.)
             call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
+            call crank('crank3', 'defaults integrator=ida', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
+                       extra='integrator=ida')
             call oracle('dopri5', tol)
             call oracle('cvode_adams', tol)
             call oracle('ida_bdf', tol)

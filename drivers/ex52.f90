@@ -16,6 +16,10 @@
 !!   summary method=... index=... status=ok|warning|failed t_end=... max_err_th=... max_abs_g3=...
 !!           max_energy_err=... max_branch_dev=... singular_passes=... steps=... res_evals=...
 !!           jac_evals=... err_test_fails=... conv_fails=... seconds=...
+!!   and with error_estimate=yes the estimate against the true theta error at the outputs t > 0
+!!   (true = max_i |th_i - th_i,ref|, est = max_i |e_i| from solver%error_estimate, both floored
+!!   at rtol/100): est_outputs=... est_bounds=... (outputs with est >= true/10) est_within10=...
+!!   (true/10 <= est <= 10 true) est_ratio_min=... est_ratio_max=... (of est/true)
 !! Exit status: 0 ok, 1 solver failure or off the physical branch, 2 bad arguments.
 program ex52_driver
     use regdae
@@ -39,6 +43,8 @@ program ex52_driver
     logical :: ok, run_failed, off_branch
     real(wp) :: th1, w1, tf, branch_tol, th(2), w(2), lam(1), t, e0, e, seconds, output_seconds
     real(wp) :: max_err, max_g3, max_de, max_dev, dev, t_off, ref_drift
+    real(wp) :: est(2), err_true, err_est, ratio_min, ratio_max   ! error_estimate=yes
+    integer :: est_outputs, est_bounds, est_within
     real(wp), allocatable :: times(:), ref(:, :)
     type(stopwatch) :: solve_clock, output_clock   ! the solve (init, advances); the table
     type(warning_log) :: warnings                  ! the advances' warnings
@@ -89,6 +95,11 @@ program ex52_driver
     max_g3 = 0.0_wp
     max_de = 0.0_wp
     max_dev = 0.0_wp
+    est_outputs = 0
+    est_bounds = 0
+    est_within = 0
+    ratio_min = huge(1.0_wp)
+    ratio_max = 0.0_wp
     off_branch = .false.
     t_off = t0
     e0 = crank%energy([th1, pi - th1], [w1, -w1])
@@ -116,6 +127,17 @@ program ex52_driver
                 t_off = t
             end if
             max_dev = max(max_dev, dev)
+            if (opts%error_estimate .and. k > 0) then
+                if (solver%error_estimate(est)) then
+                    err_true = max(abs(th(1) - ref(1, k)), abs(th(2) - (pi - ref(1, k))), 0.01_wp*opts%rtol)
+                    err_est = max(maxval(abs(est)), 0.01_wp*opts%rtol)
+                    est_outputs = est_outputs + 1
+                    if (err_est >= 0.1_wp*err_true) est_bounds = est_bounds + 1
+                    if (err_est >= 0.1_wp*err_true .and. err_est <= 10.0_wp*err_true) est_within = est_within + 1
+                    ratio_min = min(ratio_min, err_est/err_true)
+                    ratio_max = max(ratio_max, err_est/err_true)
+                end if
+            end if
             call output_clock%start()
             write (*, '(8es24.15e3)') t, th, w, lam, -cos(th(1)) - cos(th(2)), e
             call output_clock%stop()
@@ -136,7 +158,8 @@ program ex52_driver
     write (*, '(a)') 'summary method='//method_name(opts%method)//' index='//format_int(opts%index)// &
         ' status='//status_text//' t_end='//num(st%t)//' max_err_th='//num(max_err)// &
         ' max_abs_g3='//num(max_g3)//' max_energy_err='//num(max_de)//' max_branch_dev='//num(max_dev)// &
-        ' singular_passes='//format_int(st%singular_passes)//stats_fields(st, seconds, output_seconds)
+        ' singular_passes='//format_int(st%singular_passes)//stats_fields(st, seconds, output_seconds)// &
+        estimate_fields()
     call solver%destroy()
     run_failed = (status_text == 'failed')
     ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
@@ -145,6 +168,17 @@ program ex52_driver
     if (run_failed) stop 1
 
 contains
+
+    ! The summary's error-estimate fields (error_estimate=yes only).
+    function estimate_fields() result(text)
+        character(len=:), allocatable :: text
+        text = ''
+        if (.not. opts%error_estimate) return
+        if (est_outputs == 0) ratio_min = 0.0_wp
+        text = ' est_outputs='//format_int(est_outputs)//' est_bounds='//format_int(est_bounds)// &
+               ' est_within10='//format_int(est_within)//' est_ratio_min='//num(ratio_min)// &
+               ' est_ratio_max='//num(ratio_max)
+    end function estimate_fields
 
     elemental real(wp) function reduced_energy(th, w)
         real(wp), intent(in) :: th, w

@@ -214,7 +214,7 @@ typedef struct regdae_stats {
     int unresolved_passes;    /**< singular passes approached with more error than resolution_tol allows */
     double resolution_ratio;  /**< largest x error implied by the residual on an approach, over the tolerance */
     int pass_checks;          /**< singular passes re-integrated at tighter tolerances (pass_check) */
-    int passes_resolved;      /**< of those, passes where a tighter level's state was taken */
+    int passes_resolved;      /**< of those, passes where the solution disagreed with rtol/10 and a tighter pair agreed */
     int passes_unresolved;    /**< of those, passes where no two levels agreed (a warning each) */
     double pass_error;        /**< largest difference of the solution from the first tighter level, in error weights */
     int64_t companion_steps;  /**< steps of the companions (pass checks, error estimate) */

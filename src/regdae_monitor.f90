@@ -154,6 +154,8 @@ module regdae_monitor
         !> The solution goes on from another state at the last sample's time (a pass
         !! check's): its kinetic energy and power; the balance starts again there.
         procedure :: rebase_work => monitor_rebase_work
+        !> Does a regularization act in the layers (eps > 0; not Baumgarte's)?
+        procedure :: regularized => monitor_regularized
         !> Sample the model's last evaluation, made at time t on the solution.
         procedure :: sample => monitor_sample
         !> Sample given values: the drift max |g|, sigma_min(GB), the invariant
@@ -612,6 +614,11 @@ contains
         self%deferred_message = self%alarm_message
         self%alarm_kind = alarm_none
     end subroutine settle_alarm
+
+    pure logical function monitor_regularized(self) result(yes)
+        class(solution_monitor), intent(in) :: self
+        yes = (self%layer_eps > 0.0_wp)
+    end function monitor_regularized
 
     subroutine monitor_rebase_work(self, t, kinetic, power)
         class(solution_monitor), intent(inout) :: self

@@ -170,6 +170,8 @@ module regdae_solver_front
         !> Does the automatic eps of companions at rtol/kappa_a and rtol/kappa_b coincide (the
         !! rule's floor)? False if eps is the user's.
         procedure :: eps_floored => engine_eps_floored
+        !> Does a regularization act in the layers (eps > 0; not Baumgarte's)?
+        procedure :: regularized => engine_regularized
         !> max_i |za_i - zb_i| / (rtol |zb_i| + atol_i) over x, the positions of the state z.
         procedure :: state_distance => engine_state_distance
         !> Append a line to the events log.
@@ -2203,6 +2205,12 @@ contains
             end if
         end associate
     end subroutine engine_start_companion
+
+    logical function engine_regularized(self) result(yes)
+        class(solver_engine), intent(in) :: self
+        yes = .false.
+        if (associated(self%core)) yes = self%core%opts%method /= method_baumgarte .and. self%core%monitor%regularized()
+    end function engine_regularized
 
     logical function engine_eps_floored(self, kappa_a, kappa_b) result(floored)
         class(solver_engine), intent(in) :: self

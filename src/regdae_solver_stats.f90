@@ -31,7 +31,8 @@ module regdae_solver_stats
                                                !! constraint residual, above resolution_tol times the tolerance
         real(wp) :: resolution_ratio = 0.0_wp  !! largest such implied error over the tolerance (rtol |x| + atol)
         integer :: pass_checks = 0             !! singular passes re-integrated at tighter tolerances (pass_check)
-        integer :: passes_resolved = 0         !! of those, passes where a tighter level's state was taken
+        integer :: passes_resolved = 0         !! of those, passes where the solution disagreed with rtol/10 and
+                                               !! a tighter pair agreed
         integer :: passes_unresolved = 0       !! of those, passes where no two levels agreed (a warning each)
         real(wp) :: pass_error = 0.0_wp        !! largest difference between the solution and the first tighter
                                                !! level over a pass, in error weights (rtol |z| + atol)

@@ -378,7 +378,11 @@ contains
                 end if
             end do
             agreed = (answer >= 0)
-            if (.not. agreed) answer = lad%levels   ! the finest level that ran
+            ! no agreement: the finest level that ran; without a regularization (eps = 0,
+            ! Baumgarte) the levels' branches at a bifurcation are chance, and the solution
+            ! keeps its own (measured: the crank with Baumgarte's weights 1e6 at rtol 1e-9,
+            ! the finest level off the branch)
+            if (.not. agreed) answer = merge(lad%levels, 0, self%main%regularized())
             if (agreed .and. answer < lad%levels) then
                 ! the answer and the next level share the eps floor: probes at 10 and 100 eps (at
                 ! the next level's tolerance, where the integration error is 10 times smaller)
@@ -392,7 +396,7 @@ contains
             ! pair (level answer + 1, already at t: local extrapolation, as an embedded pair
             ! goes on from its higher order), so that the passes' errors, each within pass_tol
             ! for the answer, do not add up over many passes at the answer's size.
-            adopt = min(answer + 1, lad%levels)
+            adopt = merge(min(answer + 1, lad%levels), answer, agreed)
             if (adopt > 0) call lad%level(adopt)%engine%advance(t, x, y, lstat, v, a)
             if (.not. agreed .and. .not. lad%warned) then
                 lad%warned = .true.
@@ -405,9 +409,14 @@ contains
                 if (lad%probe_level == answer + 1) text = text//', and the regularization error at its eps is '// &
                     'about '//format_real(lad%d_probe)//' (10 eps moves x by '//format_real(lad%d_probes(1))// &
                     ', 100 eps by '//format_real(lad%d_probes(2))//' more)'
-                text = text//' error weights (> pass_tol = '//format_real(self%pass_tol)//'); x is the finest '// &
-                       'level''s (rtol/'//format_real(kappa**answer)//'); a smaller rtol, or another eps, may '// &
-                       'resolve it; pass_check=no skips this check'
+                if (adopt > 0) then
+                    text = text//' error weights (> pass_tol = '//format_real(self%pass_tol)//'); x is the '// &
+                           'level''s at rtol/'//format_real(kappa**adopt)
+                else
+                    text = text//' error weights (> pass_tol = '//format_real(self%pass_tol)//'); x is the '// &
+                           'solution''s own (no regularization: the levels'' branches are chance)'
+                end if
+                text = text//'; a smaller rtol, or another eps, may resolve it; pass_check=no skips this check'
                 call self%main%note_event('t = '//format_real(t)//': unresolved: '//text)
                 if (warn == regdae_success) then
                     warn = regdae_warn_unresolved

@@ -3,8 +3,10 @@
 # run drivers/bench, drivers/stability (the tuned grid, the default-options grid, the starts near
 # the singular configuration, the chain with sliders) and drivers/report/chain_bench.sh (the chain
 # driver from 2 to 1024 links, its slider variant, the stiff chain against the plain IDA peer, the
-# small stiff chain's automatic switch), and regenerate doc/performance.md with its PNGs
-# (doc/figures/perf_*.png). About 7.5 minutes on a 2-core machine (2.5 of them the sweeps).
+# small stiff chain's automatic switch), issue 19's trust grids, error estimate and cost of trust
+# (drivers/report/trust_grids.sh, error_estimate.sh, cost_of_trust.sh), and regenerate
+# doc/performance.md with its PNGs (doc/figures/perf_*.png, trust_*.png). About 45 minutes on a
+# 2-core machine (2.5 of them the sweeps, about 30 the trust grids).
 # Usage: tools/benchmark.sh [--reuse]   (--reuse: redraw from the raw outputs of the last run,
 #        kept in build/benchmark/)
 set -eu
@@ -52,11 +54,22 @@ if [ "${1:-}" != "--reuse" ]; then
         echo "map100 $(wall build/bin/sweep table="$raw/sweep_map_table.txt" out="$raw/sweep_map.txt" progress=0)"
         echo "ex52 $(wall build/bin/ex52)"
     } >"$raw/sweep_times.txt.new" && mv "$raw/sweep_times.txt.new" "$raw/sweep_times.txt"
+    # Issue 19: the trust grids (about 30 minutes on 2 cores), the error estimate against the true
+    # error, the cost of trust in instructions (callgrind)
+    sh drivers/report/trust_grids.sh build
+    rm -rf "$raw/trust"
+    cp -r build/report/trust "$raw/trust"
+    sh drivers/report/error_estimate.sh build/bin >"$raw/error_estimate.txt.new" 2>/dev/null &&
+        mv "$raw/error_estimate.txt.new" "$raw/error_estimate.txt"
+    sh drivers/report/cost_of_trust.sh build/bin >"$raw/cost_of_trust.txt.new" &&
+        mv "$raw/cost_of_trust.txt.new" "$raw/cost_of_trust.txt"
 fi
 cp "$raw/bench.txt" "$raw/stability.txt" "$raw/unchecked.txt" "$raw/stability_defaults.txt" \
     "$raw/stability_extended.txt" "$tmp/"
 # Issue 10's sections (perf_chain_*.png, perf_stiff_chain.png, the target rows in chain_targets.md).
 sh drivers/report/chain_bench.sh report "$raw" "$tmp" >"$tmp/chain_sections.md"
+# Issue 19's section (trust_*.png).
+sh drivers/report/trust_section.sh "$raw" "$tmp" >"$tmp/trust_section.md"
 
 # Work-precision: error (x) against seconds (y), one curve per configuration.
 curves() {   # curves PROBLEM_REGEX [CONFIG_REGEX]: gnuplot plot clauses, one per (problem, configuration)
@@ -257,6 +270,10 @@ Issue 11's targets, from this run (every option at its default unless stated; se
 | slider crank, defaults but rtol = atol, rtol 1e-4 ... 1e-10: max theta error at most 3x the explicit oracle's at the same rtol | at most ${err_ratio_max}x ($((defaults_n - defaults_bad)) of ${defaults_n} rtols status ok) | $(verdict "$v_derr") |
 | the same: run time at most 10x the oracle's at the same accuracy | at most ${time_ratio_max}x (${time_ratio_range}) | $(verdict "$v_dtime") |
 $(cat "$tmp/switch_targets.md")
+
+Issue 19's targets (a status ok you can trust: new grids against independent references, the
+cost of the checks, the error estimate) are in the section
+[Trust grids](#trust-grids-is-a-status-ok-right).
 
 ## Work-precision
 
@@ -570,6 +587,7 @@ minimum-norm one (stacked solve) where it is not: a run either passes or stops w
 
 TXT
 cat "$tmp/chain_sections.md"
+cat "$tmp/trust_section.md"
 t1=$(awk '$1 == "serial" { print $2 }' "$raw/sweep_times.txt")
 t2=$(awk '$1 == "mpi2" { print $2 }' "$raw/sweep_times.txt")
 tmap=$(awk '$1 == "map100" { print $2 }' "$raw/sweep_times.txt")
@@ -642,7 +660,8 @@ problem=crank tol_from=4 tol_to=6`, `build/bin/stability problem=crank2 rtol=1e-
 TXT
 } >"$tmp/performance.md"
 mkdir -p doc/figures
-rm -f doc/figures/perf_*.png
+rm -f doc/figures/perf_*.png doc/figures/trust_*.png
 cp "$tmp"/perf_*.png doc/figures/
+cp "$tmp"/trust_*.png doc/figures/ 2>/dev/null || true
 mv "$tmp/performance.md" doc/performance.md
 echo "regdae: doc/performance.md regenerated"

@@ -12,7 +12,7 @@
 #       The sweep gives each cell's status and errors, not stability's classes (those need its
 #       bounds and the rerun without checks), nor its 200000-step budget per crank run.
 #   sweep_tables.sh bench [crank|ex51|all]   drivers/bench's regdae rows (problem=crank, ex51; default
-#       all), one row each, in bench's order: for rtol = atol = 1e-3 ... 1e-10 its 9 configurations
+#       all), one row each, in bench's order: for rtol = atol = 1e-3 ... 1e-10 9 of its configurations
 #       of the slider crank (crank3, crank2; its options: gamma=1e6 gamma1=2e3 gamma0=2e6
 #       integrator=ida, or dopri5 with gamma1=20 gamma0=200, or 'defaults' = rtol and atol alone;
 #       stop_at_output=no as bench; 1001 outputs on [0, 10], the rows' default) and its 6 of
@@ -20,7 +20,9 @@
 #       default), then bench's extra crank rows: the half-decades 10^-3.5 ... 10^-9.5 of
 #       'dopri5 gamma1=20' and 'defaults', and 1e-11, 1e-12 of those and 'trust_region eps=1e-12'
 #       (crank 92 rows, ex51 48; all 140). Not here: bench's oracles and IDA peers (not regdae),
-#       its other problems (order3, redundant, singular_mass, linear_*: not sweep problems).
+#       its other problems (order3, redundant, singular_mass, linear_*: not sweep problems), and
+#       issue 19's 'defaults pass_check=no', 'defaults error_estimate=yes' and 'defaults
+#       integrator=ida' rows (the cost of the pass check and of the estimate, IDA's reach).
 #       The crank rows at index 3 have curvature_source=analytic (bench's g_xx(v, v); ex52 and a
 #       row without the key use the solver's difference quotient). The crank rows and ex51's
 #       eliminated rows give bench's error, steps and evaluations in every printed digit, but
