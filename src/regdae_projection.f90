@@ -26,7 +26,7 @@ contains
         real(wp), intent(in) :: t
         real(wp), intent(inout) :: x(:)
         integer, intent(out) :: stat
-        real(wp) :: g(problem%m), gx(problem%m, problem%n), dx(problem%n)
+        real(wp) :: g(problem%m), gx(problem%m, problem%n)
         type(damped_lsq_workspace) :: ws
         integer :: it
         stat = 0
@@ -36,10 +36,7 @@ contains
             call problem%constraint(t, x, g, stat)
             if (stat == 0) call problem%constraint_jacobian(t, x, gx, stat)
             if (stat /= 0) return
-            call damped_lsq_solve(ws, gx, g, 0.0_wp, lsq_stacked, dx, stat)
-            if (stat /= 0) return
-            x = x - dx
-            if (maxval(abs(dx)) <= 4.0_wp*epsilon(1.0_wp)*max(1.0_wp, maxval(abs(x)))) exit
+            if (newton_step(ws, gx, g, x, stat)) exit
         end do
     end subroutine project_first_order
 
@@ -59,11 +56,9 @@ contains
             call problem%constraint(t, x, g, stat)
             if (stat == 0) call problem%constraint_jacobian(t, x, gx, stat)
             if (stat /= 0) return
-            call damped_lsq_solve(ws, gx, g, 0.0_wp, lsq_stacked, dx, stat)
-            if (stat /= 0) return
-            x = x - dx
-            if (maxval(abs(dx)) <= 4.0_wp*epsilon(1.0_wp)*max(1.0_wp, maxval(abs(x)))) exit
+            if (newton_step(ws, gx, g, x, stat)) exit
         end do
+        if (stat /= 0) return
         call problem%constraint_jacobian(t, x, gx, stat)
         if (stat == 0) call problem%constraint_dt(t, x, gt, stat)
         if (stat /= 0) return
@@ -72,5 +67,20 @@ contains
         if (stat /= 0) return
         v = v - dx
     end subroutine project_second_order
+
+    ! One minimum-norm Gauss-Newton step x <- x - dx, G dx = g (stacked least squares): true when
+    ! the step is at rounding level (converged) or the solve failed (stat /= 0).
+    logical function newton_step(ws, gx, g, x, stat) result(done)
+        type(damped_lsq_workspace), intent(inout) :: ws
+        real(wp), intent(in) :: gx(:, :), g(:)
+        real(wp), intent(inout) :: x(:)
+        integer, intent(out) :: stat
+        real(wp) :: dx(size(x))
+        call damped_lsq_solve(ws, gx, g, 0.0_wp, lsq_stacked, dx, stat)
+        done = (stat /= 0)
+        if (done) return
+        x = x - dx
+        done = maxval(abs(dx)) <= 4.0_wp*epsilon(1.0_wp)*max(1.0_wp, maxval(abs(x)))
+    end function newton_step
 
 end module regdae_projection

@@ -172,6 +172,8 @@ module regdae_solver_front
         procedure :: eps_floored => engine_eps_floored
         !> Does a regularization act in the layers (eps > 0; not Baumgarte's)?
         procedure :: regularized => engine_regularized
+        !> The steps allowed per call of `advance` from now on (a companion's budget).
+        procedure :: limit_steps => engine_limit_steps
         !> max_i |za_i - zb_i| / (rtol |zb_i| + atol_i) over x, the positions of the state z.
         procedure :: state_distance => engine_state_distance
         !> Append a line to the events log.
@@ -2205,6 +2207,12 @@ contains
             end if
         end associate
     end subroutine engine_start_companion
+
+    subroutine engine_limit_steps(self, steps)
+        class(solver_engine), intent(inout) :: self
+        integer, intent(in) :: steps   !! >= 1
+        if (associated(self%core)) self%core%opts%max_steps = max(1, steps)
+    end subroutine engine_limit_steps
 
     logical function engine_regularized(self) result(yes)
         class(solver_engine), intent(in) :: self

@@ -72,6 +72,7 @@ module regdae_solver_trust
         real(wp), allocatable :: z_start(:)
         real(wp), allocatable :: z(:, :)   ! (n, 0:max_levels): the states at the last check
         real(wp) :: d(max_levels) = 0.0_wp ! d(k): distance between levels k-1 and k there
+        integer :: over_budget = 0         ! the level that exceeded its step budget (0: none)
     end type pass_ladder
 
     !> A regularized DAE solver (doc/api.md): `init`, `advance`, `statistics`, ...
@@ -85,6 +86,8 @@ module regdae_solver_trust
         logical :: verify = .false.
         real(wp) :: pass_tol = 3.0_wp
         real(wp) :: rtol = 0.0_wp
+        real(wp) :: t0 = 0.0_wp            ! the start (the solution's mean step density since)
+        integer :: max_steps = 100000      ! the option max_steps: steps per call of advance
         integer :: max_level = 0
         integer :: pass_checks = 0, passes_resolved = 0, passes_unresolved = 0
         real(wp) :: pass_error = 0.0_wp
@@ -146,6 +149,7 @@ contains
         call ensure_engine(self)
         call self%main%init(problem, t0, x0, opts, stat, atol_vector)
         call after_init(self, opts, stat)
+        self%t0 = t0
         if (.not. new_estimator(self, opts, stat)) return
         if (present(atol_vector)) then
             call self%estimator%init(problem, t0, x0, estimator_options(opts), stat, atol_vector/kappa)
@@ -166,6 +170,7 @@ contains
         call ensure_engine(self)
         call self%main%init(problem, t0, x0, v0, opts, stat, atol_vector)
         call after_init(self, opts, stat)
+        self%t0 = t0
         if (.not. new_estimator(self, opts, stat)) return
         if (present(atol_vector)) then
             call self%estimator%init(problem, t0, x0, v0, estimator_options(opts), stat, atol_vector/kappa)
@@ -186,6 +191,7 @@ contains
         call ensure_engine(self)
         call self%main%init(problem, t0, xs0, opts, stat, atol_vector)
         call after_init(self, opts, stat)
+        self%t0 = t0
         self%verify = .false.   ! order >= 3: the Taylor weights leave their own error; no pass check
         call self%main%stop_at_pass_ends(.false.)
         if (.not. new_estimator(self, opts, stat)) return
@@ -213,6 +219,7 @@ contains
         if (stat < 0) return
         self%pass_tol = opts%pass_tol
         self%rtol = opts%rtol
+        self%max_steps = opts%max_steps
         self%max_level = 0
         do while (self%max_level < max_levels .and. opts%rtol/kappa**(self%max_level + 1) >= rtol_floor)
             self%max_level = self%max_level + 1
@@ -280,13 +287,26 @@ contains
         logical :: ended, frozen, valid
         real(wp) :: tc
         real(wp), allocatable :: zc(:)
+        integer(int64) :: steps0
+        type(solver_stats) :: st
         warn = regdae_success
         warn_text = ''
         call ensure_engine(self)
+        st = self%main%statistics()
+        steps0 = st%steps
         do
             call self%main%advance(tout, x, y, stat, v, a)
             if (stat < 0) then
                 call record(self, stat, self%main%message())
+                return
+            end if
+            ! the engine stops at every pass end: max_steps holds for the whole call
+            st = self%main%statistics()
+            if (self%main%time() < tout .and. st%steps - steps0 >= self%max_steps) then
+                call record(self, regdae_err_integration, 'max_steps = '//format_int(self%max_steps)// &
+                            ' steps taken in this call of advance, at t = '//format_real(self%main%time())// &
+                            ' before tout = '//format_real(tout)//' (over '//format_int(self%pass_checks)// &
+                            ' singular passes so far); x is the state there', stat)
                 return
             end if
             if (stat > 0 .and. warn == regdae_success) then
@@ -346,6 +366,7 @@ contains
                 call self%main%checkpoint(tc, zc, frozen, valid)
                 lad%active = .true.
                 lad%warned = .false.
+                lad%over_budget = 0
                 lad%levels = 0
                 lad%t_start = tc
                 lad%z_start = zc
@@ -365,8 +386,10 @@ contains
                         exit
                     end if
                 end if
+                call lad%level(k)%engine%limit_steps(step_budget(self, lad%level(k)%engine, k, t))
                 call bring_to(lad%level(k)%engine, t, lad%z(:, k), lstat)
                 if (lstat < 0) then   ! this level cannot go on: the pass is not verified beyond k-1
+                    if (lstat == regdae_err_integration) lad%over_budget = k
                     call retire(self, k)
                     exit
                 end if
@@ -406,6 +429,8 @@ contains
                 do k = 1, lad%levels
                     text = text//' '//format_real(lad%d(k))
                 end do
+                if (lad%over_budget > 0) text = text//' (the level at rtol/'//format_real(kappa**lad%over_budget)// &
+                    ' failed or exceeded its step budget, 50 times the solution''s step density)'
                 if (lad%probe_level == answer + 1) text = text//', and the regularization error at its eps is '// &
                     'about '//format_real(lad%d_probe)//' (10 eps moves x by '//format_real(lad%d_probes(1))// &
                     ', 100 eps by '//format_real(lad%d_probes(2))//' more)'
@@ -470,6 +495,7 @@ contains
                         return
                     end if
                 end if
+                call lad%probe(j)%engine%limit_steps(step_budget(self, lad%probe(j)%engine, level, t))
                 call bring_to(lad%probe(j)%engine, t, zp(:, j), stat)
                 if (stat < 0) then
                     call retire_probe(self)
@@ -521,6 +547,25 @@ contains
         end if
         call engine%state(z)
     end subroutine bring_to
+
+    ! The steps a companion at rtol/kappa^level may take from its time to t: 50 times what the
+    ! solution's mean step density since t0 gives it at that level (steps grow like 10^(1/5) per
+    ! decade of the tolerance for a method of order 4 or 5), at least 1000. A pass that takes the
+    ! companions far more steps (Baumgarte's weights 1e6 through an unregularized singularity at
+    ! rtol 1e-10: 667,000 steps of the companions against 11,857 of the solution) is reported
+    ! unresolved instead.
+    integer function step_budget(self, engine, level, t) result(steps)
+        type(regdae_solver), intent(in) :: self
+        type(solver_engine), intent(in) :: engine
+        integer, intent(in) :: level
+        real(wp), intent(in) :: t
+        type(solver_stats) :: st
+        real(wp) :: density, allowed
+        st = self%main%statistics()
+        density = real(st%steps, wp)/max(self%main%time() - self%t0, tiny(1.0_wp))
+        allowed = 1000.0_wp + 50.0_wp*10.0_wp**(0.2_wp*level)*density*max(t - engine%time(), 0.0_wp)
+        steps = int(min(allowed, 1.0e9_wp))
+    end function step_budget
 
     ! Destroy level k of the ladder (the levels above it too), keeping their step counts.
     subroutine retire(self, k)

@@ -7,8 +7,9 @@
 # (drivers/report/trust_grids.sh, error_estimate.sh, cost_of_trust.sh), and regenerate
 # doc/performance.md with its PNGs (doc/figures/perf_*.png, trust_*.png). About 45 minutes on a
 # 2-core machine (2.5 of them the sweeps, about 30 the trust grids).
-# Usage: tools/benchmark.sh [--reuse]   (--reuse: redraw from the raw outputs of the last run,
-#        kept in build/benchmark/)
+# Usage: tools/benchmark.sh [--reuse | --reuse-trust]   (--reuse: redraw from the raw outputs of
+#        the last run, kept in build/benchmark/; --reuse-trust: run everything but the trust grids,
+#        taken from the last `sh drivers/report/trust_grids.sh build` in build/report/trust/)
 set -eu
 cd "$(dirname "$0")/.."
 sh tools/install-deps.sh --figures
@@ -19,6 +20,11 @@ trap 'rm -rf "$tmp"' EXIT
 raw=build/benchmark   # the raw outputs are kept; --reuse redraws the document from them
 matched=tools/matched.awk   # values at matched accuracy (log-log interpolation)
 mkdir -p "$raw"
+reuse_trust=no
+if [ "${1:-}" = "--reuse-trust" ]; then
+    reuse_trust=yes
+    [ -f build/report/trust/summaries.txt ] || { echo "benchmark.sh: no build/report/trust/summaries.txt to reuse" >&2; exit 2; }
+fi
 if [ "${1:-}" != "--reuse" ]; then
     build/bin/bench reps=5 >"$raw/bench.txt.new" && mv "$raw/bench.txt.new" "$raw/bench.txt"
     build/bin/stability >"$raw/stability.txt.new" && mv "$raw/stability.txt.new" "$raw/stability.txt"
@@ -56,7 +62,7 @@ if [ "${1:-}" != "--reuse" ]; then
     } >"$raw/sweep_times.txt.new" && mv "$raw/sweep_times.txt.new" "$raw/sweep_times.txt"
     # Issue 19: the trust grids (about 30 minutes on 2 cores), the error estimate against the true
     # error, the cost of trust in instructions (callgrind)
-    sh drivers/report/trust_grids.sh build
+    [ "$reuse_trust" = yes ] || sh drivers/report/trust_grids.sh build
     rm -rf "$raw/trust"
     cp -r build/report/trust "$raw/trust"
     sh drivers/report/error_estimate.sh build/bin >"$raw/error_estimate.txt.new" 2>/dev/null &&

@@ -90,7 +90,7 @@ cost_rows=$(awk 'FNR == 1 { f++ } /^#/ { next }
                 if ((de[j] <= e1 && de[j] >= e2) || (de[j] >= e1 && de[j] <= e2)) {
                     w = (e1 == e2) ? 0 : log(de[j] / e1) / log(e2 / e1)
                     matched = di[j] / exp(log(bi[k]) + w * log(bi[k + 1] / bi[k])) } }
-            printf "%s %s %s %s %s %s %s %s\n", dr[j], de[j], di[j], same, matched, pn[dr[j]], ee[dr[j]], di[j] > 0 ? ee[dr[j]] / di[j] : 0 } }' \
+            printf "%s %s %s %s %s %s %s %s\n", dr[j], de[j], di[j], same, matched, pn[dr[j]], ee[dr[j]], (di[j] > 0) ? ee[dr[j]] / di[j] : 0 } }' \
     "$here/cost_baseline.txt" "$raw/cost_of_trust.txt")
 cost_max=$(echo "$cost_rows" | awk '{ r = ($5 != "-") ? $5 : $4; if (r != "-" && r + 0 > m) m = r } END { printf "%.2f", m }')
 cost_range=$(echo "$cost_rows" | awk '{ r = ($5 != "-") ? $5 : $4; printf "%s%s: %.2f", (NR > 1 ? ", " : ""), $1, r }')
