@@ -10,7 +10,7 @@
 !! in all (at most 201; the machine's timing noise shrinks with the count), setup included; outputs are interpolated (no
 !! stop at output times) and nothing is printed while timing.
 !!
-!! Usage: bench [reps=5] [min_time=0.05] [tol_from=3] [tol_to=10] [problem=all|crank|ex51|others]
+!! Usage: bench [reps=5] [min_time=0.05] [tol_from=3] [tol_to=10] [problem=all|crank|ex51|others|crank_defaults]
 !! (reps: an integer in [1, 201]; min_time: seconds in [0, 60]; tol_from <= tol_to: integers k in
 !! [1, 14] of rtol = atol = 10^-k)
 !! (others: order3, redundant, singular_mass and the linear family, every method and
@@ -72,8 +72,8 @@ program bench_driver
         case ('tol_from'); call read_count(prog, key, value, tol_from, 1, 14)
         case ('tol_to'); call read_count(prog, key, value, tol_to, 1, 14)
         case ('problem'); which = value
-            if (which /= 'all' .and. which /= 'crank' .and. which /= 'ex51' .and. which /= 'others') &
-                call die_usage(prog, 'bad problem '//value)
+            if (which /= 'all' .and. which /= 'crank' .and. which /= 'ex51' .and. which /= 'others' .and. &
+                which /= 'crank_defaults') call die_usage(prog, 'bad problem '//value)
         case default; call die_usage(prog, 'unknown option "'//key//'"')
         end select
     end do
@@ -88,6 +88,11 @@ program bench_driver
     write (*, '(a)') '# problem config rtol max_err seconds steps res_evals jac_evals status'
     do k = tol_from, tol_to
         tol = 10.0_wp**(-k)
+        if (which == 'crank_defaults') then   ! the defaults' rows alone (tools/benchmark.sh --trust-only)
+            call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
+            call crank('crank3', 'defaults integrator=ida', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
+                       extra='integrator=ida')
+        end if
         if (which == 'all' .or. which == 'crank') then
             call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
             call crank('crank3', 'defaults pass_check=no', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
