@@ -1,6 +1,6 @@
 !> Driver: a sweep, many runs from a table, on MPI ranks or serially (issue 13).
 !!
-!! Usage: sweep table=FILE [out=FILE|-] [progress=SECONDS] [ahead=N] [order=cost|table]
+!! Usage: sweep table=FILE [out=FILE|-] [progress=SECONDS] [ahead=N] [order=cost|table] [lock_wait=SECONDS]
 !!        mpirun -np K sweep table=FILE out=FILE ...
 !!   table=FILE    the runs, one a line: a problem (ex51, crank2, crank3, pendulum, chain) and
 !!                 key=value words with the drivers' keys (drivers/common/sweep_rows.f90 lists
@@ -15,18 +15,21 @@
 !!   order=cost    the order in which rows are handed out: cost, the estimated most expensive
 !!                 first (the tightest rtol, then the largest gamma or gamma1; table order among
 !!                 equals), so that long rows do not start last; table: in table order
+!!   lock_wait=30  seconds to wait for the result file's lock (one writer per file: another
+!!                 sweep on it, or the ranks of a killed mpirun); then exit 1, nothing run
 !! Output: a '#' line (on a new file), then one line per row, in row order at the end whatever
 !! the number of ranks,
 !!   <id> <problem> <status> t_end=... <errors> steps=... res_evals=... jac_evals=...
-!!       err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... [message=...]
-!! status ok, failed, off_branch or bad_input (with message=, the rest of the line). Each line
-!! is written by one write statement and flushed as soon as its row is done (in the order the
-!! rows finish); when every row is done the file is rewritten in row order (FILE.sorting,
+!!       err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... crc=... [message=...]
+!! status ok, warning, failed, off_branch or bad_input (with message=, the rest of the line);
+!! crc= the line's check (FNV-1a of the rest: a rerun keeps only lines that pass it). Each line
+!! is written by one write(2), its errors checked, as soon as its row is done (in the order the
+!! rows finish; fsync at most every 10 s and at the end); when every row is done the file is rewritten in row order (FILE.sorting,
 !! renamed over FILE). A rerun drops a partial last line (a kill in the middle of a write) and
 !! runs the rows not in the file: the file ends equal to an uninterrupted run's. With out=-
 !! the lines are printed in row order at the end.
 !! Exit status: 0 the sweep is complete (whatever its rows' status), 1 the result file cannot
-!! be read or written, 2 bad arguments, an unreadable table or a result file of another table.
+!! be read or written (a full disk: the sweep stops at the failed write) or stays locked, 2 bad arguments, an unreadable table or a result file of another table.
 !! Built with MPI (CMake option REGDAE_MPI) rank 0 runs rows too and serves the other ranks
 !! between its output times; without MPI the same program runs every row itself.
 program sweep_driver

@@ -641,7 +641,7 @@ map_solve=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=
 speedup=$(awk -v a="$t1" -v b="${t2:-0}" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "-" }')
 bench_rows=$(sh drivers/report/sweep_tables.sh bench | grep -vc '^#')
 same=$(if [ -f "$raw/sweep_2.txt" ] && cmp -s "$raw/sweep_1.txt" "$raw/sweep_2.txt" 2>/dev/null; then echo "identical files"; else
-    awk 'FNR == 1 { f++ } $1 ~ /^[0-9]+$/ { line = $0; gsub(/ seconds=[^ ]*/, "", line); if (f == 1) a[$1] = line; else if (a[$1] != line) d++ } END { printf "%d rows differ outside seconds", d }' "$raw/sweep_1.txt" "$raw/sweep_2.txt"; fi)
+    awk 'FNR == 1 { f++ } $1 ~ /^[0-9]+$/ { line = $0; gsub(/ seconds=[^ ]*/, "", line); gsub(/ crc=[^ ]*/, "", line); if (f == 1) a[$1] = line; else if (a[$1] != line) d++ } END { printf "%d rows differ outside seconds and crc", d }' "$raw/sweep_1.txt" "$raw/sweep_2.txt"; fi)
 cat <<TXT
 ## Sweeps on MPI ranks
 

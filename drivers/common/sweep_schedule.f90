@@ -8,12 +8,12 @@
 !! rewritten in row order (a new file renamed over the old one). The ranks exchange
 !! only through module sweep_comm (MPI, or one rank without it).
 module sweep_schedule
-    use, intrinsic :: iso_fortran_env, only: int64, error_unit, output_unit
+    use, intrinsic :: iso_fortran_env, only: int64, error_unit
     use regdae, only: wp, parse_real, solver_options
     use driver_support, only: format_int, argument, split_key_value, parse_count, clock_start, elapsed_seconds
     use sweep_rows, only: run_row, row_problem, row_hook
     use sweep_table, only: text_line, read_lines, table_rows, word, results_present, sort_result_file, &
-                           row_real
+                           row_real, max_row_length, with_check, lock_file, write_line, sync_file, close_file
     use sweep_comm, only: send_text, receive_text, text_waiting, any_rank, comm_kind
     implicit none
     private
@@ -23,6 +23,11 @@ module sweep_schedule
     integer, parameter :: tag_row = 1, tag_result = 2, tag_cancel = 3
     integer, parameter :: stop_id = 0   !! a row id that tells a rank to stop
     integer, parameter :: max_ahead = 100  !! the deepest queue per rank (the largest ahead= too)
+    !> Seconds between two fsyncs of the result file (and one at the end).
+    real(wp), parameter :: sync_every = 10.0_wp
+    !> Seconds a sweep waits by default for the lock of its result file (another sweep on
+    !! it, or the orphaned ranks of a killed mpirun, which live on for 2-3 s): lock_wait=.
+    real(wp), parameter :: lock_wait_default = 30.0_wp
 
     !> Rank 0's state: the rows to run, the results held for stdout, the counts.
     type, extends(row_hook) :: sweep_master
@@ -44,15 +49,20 @@ module sweep_schedule
         integer :: taken_back = 0      !! rows taken back from the rank they were queued on
         integer :: earlier = 0         !! rows found in the result file
         integer :: counts(3) = 0       !! failed, off_branch, bad_input
-        integer :: unit = output_unit
+        integer :: fd = 1                             !! where result lines go: the result file's descriptor,
+                                                      !! which holds its lock (lock_file), or 1 (stdout)
+        character(len=:), allocatable :: out          !! the result file's name ('-': stdout)
+        logical :: write_failed = .false.             !! a write, flush or fsync failed: the sweep stops
+        character(len=:), allocatable :: write_message
         real(wp) :: every = 5.0_wp     !! seconds between progress lines (0: none)
-        integer(int64) :: started = 0, reported = 0
+        integer(int64) :: started = 0, reported = 0, synced = 0
     contains
         procedure :: poll => master_poll
         procedure :: feed => master_feed
         procedure :: take => master_take
         procedure :: report => master_report
         procedure :: take_back => master_take_back
+        procedure :: put => master_put
     end type sweep_master
 
 contains
@@ -67,8 +77,11 @@ contains
         type(text_line), allocatable :: lines(:), problems(:)
         character(len=:), allocatable :: key, value, table, out, tail, msg, note
         logical, allocatable :: done(:)
+        integer, allocatable :: line_numbers(:)
         logical :: ok
-        integer :: i, w, pos, ios
+        integer :: i, w, pos, ios, nbytes
+        real(wp) :: lock_wait
+        lock_wait = lock_wait_default
         table = ''
         out = '-'
         code = 2
@@ -88,7 +101,11 @@ contains
                 case ('progress')
                     call parse_real(value, m%every, ok)
                     if (.not. ok .or. m%every < 0.0_wp) msg = 'bad value "'//value//'" for progress (seconds >= 0)'
-                case default; msg = 'unknown key "'//key//'" (table, out, progress, ahead, order)'
+                case ('lock_wait')
+                    call parse_real(value, lock_wait, ok)
+                    if (.not. ok .or. .not. (lock_wait >= 0.0_wp .and. lock_wait <= 86400.0_wp)) &
+                        msg = 'bad value "'//value//'" for lock_wait (seconds, 0 to 86400)'
+                case default; msg = 'unknown key "'//key//'" (table, out, progress, ahead, order, lock_wait)'
                 end select
             end if
             if (len(msg) > 0) then
@@ -97,7 +114,8 @@ contains
             end if
         end do
         if (len(table) == 0) then
-            call say('usage: sweep table=FILE [out=FILE|-] [progress=SECONDS] [ahead=N] [order=cost|table]')
+            call say('usage: sweep table=FILE [out=FILE|-] [progress=SECONDS] [ahead=N] [order=cost|table] '// &
+                     '[lock_wait=SECONDS]')
             return
         end if
         call read_lines(table, lines, tail, ios, msg)
@@ -105,25 +123,41 @@ contains
             call say(msg)
             return
         end if
-        m%rows = table_rows(lines, tail)
+        call table_rows(lines, tail, m%rows, line_numbers)
+        deallocate (lines)
+        do i = 1, size(m%rows)   ! a row too long is refused (bad_input) without reading all of it
+            if (len(m%rows(i)%s) > max_row_length) then
+                call say('table line '//format_int(line_numbers(i))//' (row '//format_int(i)//') has '// &
+                         format_int(len(m%rows(i)%s))//' characters, more than '//format_int(max_row_length)// &
+                         ': its result is bad_input')
+                m%rows(i)%s = m%rows(i)%s(1:max_row_length + 1)
+            end if
+        end do
         allocate (problems(size(m%rows)))
         do i = 1, size(m%rows)   ! (an array constructor of text_line(f(...)) leaks with gfortran 12)
             problems(i)%s = row_problem(m%rows(i)%s)
         end do
         allocate (done(size(m%rows)))
         done = .false.
+        m%out = out
         if (out /= '-') then
+            ! one writer per result file: an exclusive lock (flock) held until the end
+            code = 1
+            call lock_file(out, real(lock_wait), m%fd, ios)
+            if (ios == 1) then
+                call say('cannot open "'//out//'" for writing')
+                return
+            else if (ios == 2) then
+                call say('"'//out//'" is locked by another process (another sweep on it, or the ranks of a '// &
+                         'killed mpirun that live on for a few seconds): waited '//format_int(nint(lock_wait))// &
+                         ' s (lock_wait=); not started')
+                return
+            end if
             call results_present(out, problems, done, note, code, msg)
             if (len(note) > 0) call say(note)
             if (code /= 0) then
                 call say(msg)
                 ! code: results_present's stat, 1 cannot read or cut, 2 another table's results
-                return
-            end if
-            code = 1
-            open (newunit=m%unit, file=out, status='unknown', position='append', action='write', iostat=ios)
-            if (ios /= 0) then
-                call say('cannot open "'//out//'" for writing')
                 return
             end if
         end if
@@ -141,9 +175,16 @@ contains
         m%arrived = .false.
         m%taken = .false.
         m%ranks = ranks
-        if (m%earlier == 0) write (m%unit, '(a)') '# regdae sweep: id problem status t_end=... <errors> steps=... '// &
+        nbytes = 0
+        if (m%to_file) inquire (file=out, size=nbytes)   ! the header on a new (or empty) file only
+        if (nbytes <= 0) call m%put('# regdae sweep: id problem status t_end=... <errors> steps=... '// &
             'res_evals=... jac_evals=... err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... '// &
-            '[message=...]'
+            'crc=... [message=...]')
+        if (m%write_failed) then
+            call say(m%write_message//'; not started')
+            code = 1
+            return
+        end if
         call say(format_int(size(m%rows))//' rows in "'//table//'", '//format_int(m%earlier)//' already in "'//out// &
                  '", '//format_int(size(m%order))//' to run on '//format_int(ranks)//' rank(s) ('//comm_kind//')')
         m%started = clock_start()
@@ -152,6 +193,7 @@ contains
             call m%feed(w)
         end do
         do
+            if (m%write_failed) exit
             if (m%next <= size(m%order)) then
                 pos = m%next
                 m%next = m%next + 1
@@ -167,9 +209,22 @@ contains
                 exit
             end if
         end do
+        if (m%write_failed) then
+            call say(m%write_message//'; the sweep stops (the lines written before are kept: a rerun goes on)')
+            code = 1
+            if (m%to_file) call close_file(m%fd, ios)
+            return
+        end if
         call m%report(.true.)
         if (m%to_file) then
-            close (m%unit)
+            call sync_file(m%fd, ios)
+            if (ios == 0) call close_file(m%fd, ios)
+            if (ios /= 0) then
+                call say('cannot write "'//out//'" (fsync or close failed, errno '//format_int(ios)//'): the '// &
+                         'rows of this run may not be on the device; a rerun checks every line')
+                code = 1
+                return
+            end if
             call sort_result_file(out, size(m%rows), ios, msg)
             if (ios /= 0) then
                 call say(msg)
@@ -177,9 +232,12 @@ contains
             end if
         else
             do i = 1, size(m%rows)
-                if (allocated(m%held(i)%s)) write (m%unit, '(a)') m%held(i)%s
+                if (allocated(m%held(i)%s)) call m%put(m%held(i)%s)
             end do
-            flush (m%unit)
+            if (m%write_failed) then
+                call say(m%write_message)
+                code = 1
+            end if
         end if
     end subroutine sweep_main
 
@@ -275,9 +333,10 @@ contains
         end if
         if (len(line) == 0 .or. self%arrived(rid)) return   ! a row taken back: skipped there, or run twice
         self%arrived(rid) = .true.
+        line = with_check(line)
         if (self%to_file) then
-            write (self%unit, '(a)') line
-            flush (self%unit)
+            call self%put(line)
+            if (self%write_failed) return
         else
             self%held(rid)%s = line
         end if
@@ -287,6 +346,31 @@ contains
         if (status == 'off_branch') self%counts(2) = self%counts(2) + 1
         if (status == 'bad_input') self%counts(3) = self%counts(3) + 1
     end subroutine master_take
+
+    !> Write one line to the result file (or stdout) and flush it; every `sync_every`
+    !! seconds fsync the file. A failure sets write_failed with a message naming the
+    !! file (the sweep then stops: no row is counted that is not written).
+    subroutine master_put(self, line)
+        class(sweep_master), intent(inout) :: self
+        character(len=*), intent(in) :: line
+        character(len=:), allocatable :: why
+        integer :: ios
+        if (self%write_failed) return
+        call write_line(self%fd, line, ios, why)
+        if (ios == 0 .and. self%to_file .and. elapsed_seconds(self%synced) >= sync_every) then
+            call sync_file(self%fd, ios)
+            if (ios /= 0) why = 'fsync failed (errno '//format_int(ios)//')'
+            self%synced = clock_start()
+        end if
+        if (ios /= 0) then
+            self%write_failed = .true.
+            if (self%to_file) then
+                self%write_message = 'cannot write "'//self%out//'": '//why
+            else
+                self%write_message = 'cannot write to stdout: '//why
+            end if
+        end if
+    end subroutine master_put
 
     !> Nothing is left to hand out: take back a row queued on another rank behind the
     !! one it is running (the last of its queue, not taken back yet), tell that rank to
