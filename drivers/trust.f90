@@ -221,15 +221,7 @@ contains
                 call clock%start()
                 call solver%advance(times(k), q, stat=stat, v=v)
                 call clock%stop()
-                if (stat < 0) then
-                    rec%stat = stat
-                    rec%message = solver%message()
-                    exit
-                end if
-                if (stat > 0 .and. warning == 0) then
-                    warning = stat
-                    rec%message = solver%message()
-                end if
+                if (advance_failed(rec, solver, stat, warning)) exit
                 rec%x(:, k) = q
                 rec%good = k
                 ustat = 0
@@ -237,12 +229,7 @@ contains
                 rec%energy(k) = e
                 call probe%constraint(times(k), q, gval, ustat)
                 rec%violation(k) = maxval(abs(gval))
-                if (k < size(times) .and. elapsed_seconds(start) > seconds_budget) then
-                    rec%stat = status_budget
-                    rec%message = 'the driver''s wall budget of '//num(seconds_budget)//' s is exhausted at t = '// &
-                                  num(times(k))
-                    exit
-                end if
+                if (over_budget(rec, k, times, start, seconds_budget)) exit
             end do
             if (rec%stat == 0) rec%stat = warning
         end if
@@ -282,23 +269,10 @@ contains
                 call clock%start()
                 call solver%advance(times(k), x, stat=stat)
                 call clock%stop()
-                if (stat < 0) then
-                    rec%stat = stat
-                    rec%message = solver%message()
-                    exit
-                end if
-                if (stat > 0 .and. warning == 0) then
-                    warning = stat
-                    rec%message = solver%message()
-                end if
+                if (advance_failed(rec, solver, stat, warning)) exit
                 rec%x(:, k) = x
                 rec%good = k
-                if (k < size(times) .and. elapsed_seconds(start) > seconds_budget) then
-                    rec%stat = status_budget
-                    rec%message = 'the driver''s wall budget of '//num(seconds_budget)//' s is exhausted at t = '// &
-                                  num(times(k))
-                    exit
-                end if
+                if (over_budget(rec, k, times, start, seconds_budget)) exit
             end do
             if (rec%stat == 0) rec%stat = warning
         end if
@@ -320,6 +294,38 @@ contains
     end subroutine new_record
 
     ! init failed: a refusal (bad input, or `direct` on a GB that is not PSD) or a failure.
+    ! After an advance: a failure (stat < 0) recorded with the solver's message (true: the run
+    ! ends); the first warning kept in `warning` with its message.
+    logical function advance_failed(rec, solver, stat, warning) result(failed)
+        type(run_record), intent(inout) :: rec
+        type(regdae_solver), intent(in) :: solver
+        integer, intent(in) :: stat
+        integer, intent(inout) :: warning
+        failed = (stat < 0)
+        if (failed) then
+            rec%stat = stat
+            rec%message = solver%message()
+        else if (stat > 0 .and. warning == 0) then
+            warning = stat
+            rec%message = solver%message()
+        end if
+    end function advance_failed
+
+    ! After output k: the driver's wall budget exhausted before the last output (recorded; true:
+    ! the run ends).
+    logical function over_budget(rec, k, times, start, seconds_budget) result(over)
+        type(run_record), intent(inout) :: rec
+        integer, intent(in) :: k
+        real(wp), intent(in) :: times(:), seconds_budget
+        integer(int64), intent(in) :: start
+        over = (k < size(times) .and. elapsed_seconds(start) > seconds_budget)
+        if (over) then
+            rec%stat = status_budget
+            rec%message = 'the driver''s wall budget of '//num(seconds_budget)//' s is exhausted at t = '// &
+                          num(times(k))
+        end if
+    end function over_budget
+
     subroutine init_failed(rec, solver, stat)
         type(run_record), intent(inout) :: rec
         type(regdae_solver), intent(in) :: solver
