@@ -19,14 +19,16 @@
 !!   summary n_links=... slider=... engine=... status=ok|warning|failed t_end=... max_drift=... energy_change=...
 !!           singular_passes=... sigma_min=... [max_err_th=... (N = 2 with slider, no springs: against the slider
 !!           crank's reduced ODE by CVODE at 1e-13)] steps=... res_evals=... jac_evals=...
-!!           err_test_fails=... conv_fails=... seconds=... output_seconds=... seconds_per_step=...
+!!           err_test_fails=... conv_fails=... seconds=... output_seconds=... seconds_per_step=... peak_rss_kb=...
 !! (engine: formulation/linear solver, or peer/band; seconds: init and advances, not the output;
+!! peak_rss_kb: the process's peak resident memory (getrusage), set-up and output included;
 !! max_drift: max |g| at the outputs; energy_change: max |E - E(0)| at the outputs; status=warning:
 !! an advance returned a warning (x valid, the tolerance maybe not met; a '# warning:' line says
 !! which), the run goes on.)
 !! Exit status: 0 ok or warning, 1 solver failure, 2 bad arguments.
 program chain_driver
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use, intrinsic :: iso_c_binding, only: c_long
     use regdae
     use chain_problem, only: chain, new_chain, chain_start, chain_energy_of, chain_violation
     use chain_peer, only: run_chain_peer
@@ -36,6 +38,13 @@ program chain_driver
                               format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, warning_log, die_usage, read_number, read_count
     implicit none
+
+    interface
+        !> The process's peak resident memory in kB (drivers/common/process_memory.c).
+        integer(c_long) function peak_rss_kb() bind(C, name='regdae_peak_rss_kb')
+            import :: c_long
+        end function peak_rss_kb
+    end interface
 
     character(len=*), parameter :: prog = 'chain'
     real(wp), parameter :: t0 = 0.0_wp, pi = acos(-1.0_wp)
@@ -182,7 +191,8 @@ contains
         write (*, '(a)') 'summary n_links='//format_int(n_links)//' slider='//trim(merge('yes', 'no ', slider))// &
             ' engine='//engine//' status='//status_text//' t_end='//num(st%t)//' max_drift='//num(max_drift)// &
             ' energy_change='//num(energy_change)//extra//stats_fields(st, seconds, output_clock%seconds())// &
-            ' seconds_per_step='//num(seconds/max(1.0_wp, real(st%steps, wp)))
+            ' seconds_per_step='//num(seconds/max(1.0_wp, real(st%steps, wp)))// &
+            ' peak_rss_kb='//format_int(int(peak_rss_kb()))
         if (status_text == 'failed') stop 1
     end subroutine run_chain
 

@@ -87,6 +87,8 @@ extern "C" {
 #define REGDAE_ERR_JACOBIAN -116
 /** The work-energy balance of a mechanical problem failed. */
 #define REGDAE_ERR_WORK -117
+/** The system refused an allocation (out of memory); the message names what. */
+#define REGDAE_ERR_MEMORY -118
 
 /* ---- Option codes (src/regdae_options.f90; doc/api.md section 2) ----------- */
 

@@ -47,7 +47,7 @@ module regdae
               regdae_err_not_psd, regdae_err_singular, regdae_err_lapack, regdae_err_sundials, &
               regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, regdae_err_mass_matrix, &
               regdae_err_branch, regdae_err_drift, regdae_err_invariant, regdae_err_structure, regdae_err_jacobian, &
-              regdae_err_work, &
+              regdae_err_work, regdae_err_memory, &
               status_message
     ! regdae_options
     public :: solver_options, set_option, validate_options, method_name, formulation_name, lsq_name, &

@@ -64,18 +64,32 @@ module regdae_damped_lsq
 
 contains
 
-    subroutine workspace_init(self, p, q)
+    subroutine workspace_init(self, p, q, stat)
         class(damped_lsq_workspace), intent(inout) :: self
         integer, intent(in) :: p   !! rows of the matrices to be solved with
         integer, intent(in) :: q   !! columns (unknowns)
+        integer, intent(out), optional :: stat   !! nonzero: the system refused the workspace (absent: an error stop)
         real(wp) :: work_query(1), a_dummy(1, 1), b_dummy(1, 1), s_dummy(1)
-        integer :: iwork_query(1), rank, info, lwork, liwork, rows
+        integer :: iwork_query(1), rank, info, lwork, liwork, rows, astat
 
         self%p = p
         self%q = q
         rows = max(p + q, 1)
         if (allocated(self%mat)) deallocate (self%mat, self%vec, self%sv, self%work, self%iwork, self%ipiv)
-        allocate (self%mat(rows, max(q, 1)), self%vec(rows), self%sv(max(q, 1)), self%ipiv(max(q, 1)))
+        if (present(stat)) then
+            stat = 0
+            allocate (self%mat(rows, max(q, 1)), self%vec(rows), self%sv(max(q, 1)), self%ipiv(max(q, 1)), stat=astat)
+            if (astat /= 0) then
+                stat = astat
+                if (allocated(self%mat)) deallocate (self%mat)
+                if (allocated(self%vec)) deallocate (self%vec)
+                if (allocated(self%sv)) deallocate (self%sv)
+                if (allocated(self%ipiv)) deallocate (self%ipiv)
+                return
+            end if
+        else
+            allocate (self%mat(rows, max(q, 1)), self%vec(rows), self%sv(max(q, 1)), self%ipiv(max(q, 1)))
+        end if
         ! Workspace query for the stacked (p+q) x q problem with one right-hand side.
         call dgelsd(p + q, q, 1, a_dummy, rows, b_dummy, rows, s_dummy, -1.0_wp, rank, &
                     work_query, -1, iwork_query, info)
@@ -83,7 +97,17 @@ contains
         call dgesvd('N', 'N', max(p, 1), max(q, 1), a_dummy, rows, s_dummy, a_dummy, 1, a_dummy, 1, work_query, -1, info)
         lwork = max(lwork, int(work_query(1)))
         liwork = max(1, iwork_query(1))
-        allocate (self%work(lwork), self%iwork(liwork))
+        if (present(stat)) then
+            allocate (self%work(lwork), self%iwork(liwork), stat=astat)
+            if (astat /= 0) then
+                stat = astat
+                deallocate (self%mat, self%vec, self%sv, self%ipiv)
+                if (allocated(self%work)) deallocate (self%work)
+                if (allocated(self%iwork)) deallocate (self%iwork)
+            end if
+        else
+            allocate (self%work(lwork), self%iwork(liwork))
+        end if
     end subroutine workspace_init
 
     pure integer function workspace_rank(self)

@@ -23,9 +23,9 @@
 !! (band or sparse linear solver). A problem that declares nothing is dense.
 module regdae_mechanical_problem
     use regdae_kinds, only: wp
-    use regdae_status, only: regdae_err_mass_matrix, regdae_err_structure
+    use regdae_status, only: regdae_err_mass_matrix, regdae_err_structure, regdae_err_memory
     use regdae_lapack, only: dpotrf, dpotrs
-    use regdae_sparsity, only: sparsity_pattern
+    use regdae_sparsity, only: sparsity_pattern, sparse_times
     use regdae_second_order_problem, only: second_order_problem
     implicit none
     private
@@ -100,6 +100,7 @@ module regdae_mechanical_problem
     ! interface that declare patterns without giving the values routines (not re-exported
     ! by `regdae`).
     public :: default_mass_values, default_constraint_jacobian_values
+    public :: structured_velocity_constraint
 
 contains
 
@@ -135,6 +136,30 @@ contains
         call gather(pattern, dense, vals, stat)
     end subroutine default_constraint_jacobian_values
 
+    !> The velocity constraint G(q, t) v + g_t(q, t) (length m) of a problem that
+    !! declares its structure, from `constraint_jacobian_values` in O(nonzeros)
+    !! memory; `pattern` is the declared pattern of G.
+    subroutine structured_velocity_constraint(problem, pattern, t, q, v, val, stat)
+        class(mechanical_problem), intent(inout) :: problem
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(in) :: t, q(:), v(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        real(wp), allocatable :: gv(:)
+        integer :: astat
+
+        allocate (gv(pattern%nnz()), stat=astat)
+        if (astat /= 0) then
+            stat = regdae_err_memory
+            return
+        end if
+        call problem%constraint_jacobian_values(t, q, pattern, gv, stat)
+        if (stat /= 0) return
+        call problem%constraint_dt(t, q, val, stat)
+        if (stat /= 0) return
+        val = val + sparse_times(pattern, gv, v)
+    end subroutine structured_velocity_constraint
+
     ! The entries of a dense matrix in pattern order; stat = regdae_err_structure
     ! if a nonzero lies outside the pattern.
     subroutine gather(pattern, dense, vals, stat)
@@ -160,15 +185,26 @@ contains
         real(wp), intent(in) :: t, q(:)
         integer, intent(inout) :: stat
         real(wp), parameter :: symmetry_tol = 1.0e-12_wp
-        integer :: info, n, i
+        integer :: info, n, i, astat
         logical :: ok
 
         n = size(q)
         if (self%have_factor .and. self%factor_t == t) then
             if (same_point(n, self%factor_q, q)) return
         end if
-        if (.not. allocated(self%factor)) allocate (self%factor(n, n), self%factor_q(n), self%mass(n, n), &
-                                                    self%gx_work(self%m, n), self%bt_work(n, self%m))
+        if (.not. allocated(self%factor)) then
+            allocate (self%factor(n, n), self%factor_q(n), self%mass(n, n), self%gx_work(self%m, n), &
+                      self%bt_work(n, self%m), stat=astat)
+            if (astat /= 0) then
+                if (allocated(self%factor)) deallocate (self%factor)
+                if (allocated(self%factor_q)) deallocate (self%factor_q)
+                if (allocated(self%mass)) deallocate (self%mass)
+                if (allocated(self%gx_work)) deallocate (self%gx_work)
+                if (allocated(self%bt_work)) deallocate (self%bt_work)
+                stat = regdae_err_memory
+                return
+            end if
+        end if
         self%have_factor = .false.
         call self%mass_matrix(t, q, self%mass, stat)
         if (stat /= 0) return

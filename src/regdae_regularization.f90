@@ -23,7 +23,8 @@ module regdae_regularization
     use regdae_kinds, only: wp
     use regdae_format, only: format_real, format_int
     use regdae_status, only: regdae_success, regdae_err_user_callback, regdae_err_nonfinite, &
-                             regdae_err_not_psd, regdae_err_singular, regdae_err_mass_matrix, status_message
+                             regdae_err_not_psd, regdae_err_singular, regdae_err_mass_matrix, regdae_err_memory, &
+                             status_message
     use regdae_problem, only: dae_problem
     use regdae_velocity_index2, only: velocity_index2_problem
     use regdae_second_order_problem, only: second_order_problem
@@ -108,43 +109,46 @@ module regdae_regularization
 
 contains
 
-    subroutine init_first_order(self, problem, opts, lsq)
+    subroutine init_first_order(self, problem, opts, lsq, stat)
         class(regularized_dae), intent(inout) :: self
         class(dae_problem), intent(in) :: problem    !! copied into self
         type(solver_options), intent(in) :: opts
         integer, intent(in) :: lsq                   !! resolved least-squares method
+        integer, intent(out), optional :: stat       !! regdae_err_memory: the dense pieces did not fit
         call self%release()
         allocate (self%first, source=problem)
         self%order = 1
         self%w = [provisional(opts%gamma)]
         self%curvature = .false.
-        call self%allocate_pieces(problem%n, problem%m, opts, lsq)
+        call self%allocate_pieces(problem%n, problem%m, opts, lsq, stat)
     end subroutine init_first_order
 
-    subroutine init_second_order(self, problem, opts, lsq)
+    subroutine init_second_order(self, problem, opts, lsq, stat)
         class(regularized_dae), intent(inout) :: self
         class(second_order_problem), intent(in) :: problem    !! copied into self
         type(solver_options), intent(in) :: opts
         integer, intent(in) :: lsq
+        integer, intent(out), optional :: stat
         call self%release()
         allocate (self%second, source=problem)
         self%order = 2
         self%w = [provisional(opts%gamma0), provisional(opts%gamma1)]
         self%curvature = opts%curvature
-        call self%allocate_pieces(problem%n, problem%m, opts, lsq)
+        call self%allocate_pieces(problem%n, problem%m, opts, lsq, stat)
     end subroutine init_second_order
 
-    subroutine init_higher_order(self, problem, opts, lsq)
+    subroutine init_higher_order(self, problem, opts, lsq, stat)
         class(regularized_dae), intent(inout) :: self
         class(higher_order_problem), intent(in) :: problem    !! copied into self
         type(solver_options), intent(in) :: opts
         integer, intent(in) :: lsq
+        integer, intent(out), optional :: stat
         call self%release()
         allocate (self%higher, source=problem)
         self%order = problem%order
         self%w = taylor_weights(problem%order, opts%taylor_h)
         self%curvature = .false.
-        call self%allocate_pieces(problem%n, problem%m, opts, lsq)
+        call self%allocate_pieces(problem%n, problem%m, opts, lsq, stat)
     end subroutine init_higher_order
 
     ! An `auto` weight is 1 until the solver resolves it (at a consistent start
@@ -162,10 +166,12 @@ contains
         if (allocated(self%higher)) deallocate (self%higher)
     end subroutine release
 
-    subroutine allocate_pieces(self, n, m, opts, lsq)
+    subroutine allocate_pieces(self, n, m, opts, lsq, stat)
         class(regularized_dae), intent(inout) :: self
         integer, intent(in) :: n, m, lsq
         type(solver_options), intent(in) :: opts
+        integer, intent(out), optional :: stat
+        integer :: astat
         self%n = n
         self%m = m
         self%method = opts%method
@@ -173,10 +179,26 @@ contains
         self%eps = opts%eps
         if (opts%eps == option_auto) self%eps = 0.0_wp   ! until the solver resolves it
         if (allocated(self%f)) deallocate (self%f, self%b, self%g, self%gx, self%gt, self%curv, self%gb, self%r, self%q)
-        allocate (self%f(n), self%b(n, m), self%g(m), self%gx(m, n), self%gt(m), self%curv(m), self%gb(m, m), &
-                  self%r(m), self%q(m), source=0.0_wp)
-        call self%lsq_ws%init(m, m)
         self%message = ''
+        allocate (self%f(n), self%b(n, m), self%g(m), self%gx(m, n), self%gt(m), self%curv(m), self%gb(m, m), &
+                  self%r(m), self%q(m), source=0.0_wp, stat=astat)
+        if (astat == 0) call self%lsq_ws%init(m, m, astat)
+        if (astat /= 0) then
+            if (allocated(self%f)) deallocate (self%f)
+            if (allocated(self%b)) deallocate (self%b)
+            if (allocated(self%g)) deallocate (self%g)
+            if (allocated(self%gx)) deallocate (self%gx)
+            if (allocated(self%gt)) deallocate (self%gt)
+            if (allocated(self%curv)) deallocate (self%curv)
+            if (allocated(self%gb)) deallocate (self%gb)
+            if (allocated(self%r)) deallocate (self%r)
+            if (allocated(self%q)) deallocate (self%q)
+            self%message = 'out of memory: the dense pieces of the eliminated formulation (G, B: 2 x '// &
+                           format_int(m)//' x '//format_int(n)//' reals) were refused'
+            if (present(stat)) stat = regdae_err_memory
+            return
+        end if
+        if (present(stat)) stat = 0
     end subroutine allocate_pieces
 
     !> Evaluate the pieces at (t, z). A failing user routine gives

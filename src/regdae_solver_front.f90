@@ -26,11 +26,13 @@ module regdae_solver_front
     use regdae_status
     use regdae_problem, only: dae_problem
     use regdae_second_order_problem, only: second_order_problem, velocity_constraint
-    use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
+    use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure, &
+                                         structured_velocity_constraint
     use regdae_higher_order_problem, only: higher_order_problem
     use regdae_linear_problem, only: linear_dae_problem
     use regdae_velocity_index2, only: new_velocity_index2, velocity_index2_problem
     use regdae_projection, only: project_first_order, project_second_order
+    use regdae_sparse_projection, only: project_structured
     use regdae_options
     use regdae_regularization, only: regularized_dae
     use regdae_explicit_rk, only: rk_integrator
@@ -218,7 +220,11 @@ contains
         class is (linear_dae_problem)
             self%core%multiplier_sign = -1.0_wp   ! section 3 writes x' = A x + B y + q
         end select
-        call self%core%model%init_first_order(problem, opts, lsq_normal)
+        call self%core%model%init_first_order(problem, opts, lsq_normal, stat)
+        if (stat /= 0) then
+            call self%record(regdae_err_memory, self%core%model%message, stat)
+            return
+        end if
         call self%start(t0, x0, opts, stat)
     end subroutine solver_init_first
 
@@ -246,8 +252,16 @@ contains
         call copy%constraint(t0, x0, gval, ustat)
         gnorm = 0.0_wp
         if (ustat == 0 .and. problem%m > 0) gnorm = maxval(abs(gval))
-        if (ustat == 0) call velocity_constraint(copy, t0, x0, v0, gval, ustat)
-        if (ustat /= 0) then
+        if (ustat == 0) call initial_velocity_constraint(copy, t0, x0, v0, gval, ustat)
+        if (ustat == regdae_err_memory) then
+            call self%record(regdae_err_memory, 'at the initial point: the system refused the values of G ('// &
+                             'the declared pattern)', stat)
+            return
+        else if (ustat == regdae_err_structure) then
+            call self%record(regdae_err_structure, status_message(regdae_err_structure)//' at the initial point '// &
+                             '(in constraint_jacobian_values)', stat)
+            return
+        else if (ustat /= 0) then
             call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
                              'reported failure (stat = '//format_int(ustat)//')', stat)
             return
@@ -287,9 +301,13 @@ contains
             end if
         end select
         if (opts%index == 3) then
-            call self%core%model%init_second_order(copy, opts, lsq_normal)
+            call self%core%model%init_second_order(copy, opts, lsq_normal, stat)
         else
-            call self%core%model%init_first_order(new_velocity_index2(copy), opts, lsq_normal)
+            call self%core%model%init_first_order(new_velocity_index2(copy), opts, lsq_normal, stat)
+        end if
+        if (stat /= 0) then
+            call self%record(regdae_err_memory, self%core%model%message, stat)
+            return
         end if
         call self%start(t0, [x0, v0], opts, stat)
     end subroutine solver_init_second
@@ -341,7 +359,11 @@ contains
         if (present(atol_vector)) self%core%atol_z = atol_vector
         self%core%nx = problem%n
         self%core%second_order = .true.
-        call self%core%model%init_higher_order(copy, opts, lsq_normal)
+        call self%core%model%init_higher_order(copy, opts, lsq_normal, stat)
+        if (stat /= 0) then
+            call self%record(regdae_err_memory, self%core%model%message, stat)
+            return
+        end if
         call self%start(t0, reshape(xs0, [size(xs0)]), opts, stat)
     end subroutine solver_init_higher
 
@@ -376,6 +398,25 @@ contains
             ok = .true.
         end if
     end function check_input
+
+    ! G v0 + g_t at t0: from the declared pattern of G for a mechanical problem that
+    ! declares its structure (O(nonzeros) memory), otherwise from the dense G.
+    subroutine initial_velocity_constraint(problem, t0, x0, v0, val, stat)
+        class(second_order_problem), intent(inout) :: problem
+        real(wp), intent(in) :: t0, x0(:), v0(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        type(mechanical_structure) :: st
+        select type (problem)
+        class is (mechanical_problem)
+            st = problem%structure()
+            if (st%declared) then
+                call structured_velocity_constraint(problem, st%constraint, t0, x0, v0, val, stat)
+                return
+            end if
+        end select
+        call velocity_constraint(problem, t0, x0, v0, val, stat)
+    end subroutine initial_velocity_constraint
 
     ! formulation=auto takes the augmented formulation for a mechanical problem
     ! that declares its structure and is large enough, with M positive definite
@@ -2185,7 +2226,11 @@ contains
             if (core%augmented) then
                 select type (sys => core%ida%system)
                 type is (augmented_system)
-                    call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
+                    if (sys%st%declared) then
+                        call project_structured(sys%problem, sys%st%constraint, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
+                    else
+                        call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
+                    end if
                     call other%init(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
                                     atol_vector=core%atol_z/kappa)
                 end select

@@ -7,6 +7,7 @@
 !! that share no row are perturbed together) and to order the unknowns so that
 !! the matrix is banded (reverse Cuthill-McKee).
 module regdae_sparsity
+    use regdae_kinds, only: wp
     implicit none
     private
 
@@ -28,7 +29,7 @@ module regdae_sparsity
     end type sparsity_pattern
 
     public :: dense_pattern, empty_pattern, diagonal_pattern, band_pattern, pattern_from_entries, pattern_union
-    public :: color_columns, reverse_cuthill_mckee, permuted_bandwidths
+    public :: color_columns, reverse_cuthill_mckee, permuted_bandwidths, sparse_times
 
 contains
 
@@ -58,6 +59,21 @@ contains
             end if
         end do
     end function pattern_position
+
+    !> y = A x for the matrix A with pattern p and its entries `vals` in pattern order.
+    pure function sparse_times(p, vals, x) result(y)
+        type(sparsity_pattern), intent(in) :: p
+        real(wp), intent(in) :: vals(:)   !! p%nnz() entries
+        real(wp), intent(in) :: x(:)      !! length p%ncols
+        real(wp) :: y(p%nrows)
+        integer :: i, k
+        do i = 1, p%nrows
+            y(i) = 0.0_wp
+            do k = p%row_start(i), p%row_start(i + 1) - 1
+                y(i) = y(i) + vals(k)*x(p%cols(k))
+            end do
+        end do
+    end function sparse_times
 
     subroutine pattern_entries(self, rows, cols)
         class(sparsity_pattern), intent(in) :: self

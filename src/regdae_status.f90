@@ -29,6 +29,7 @@ module regdae_status
     integer, parameter, public :: regdae_err_structure = -115        !! a matrix has an entry outside its declared pattern
     integer, parameter, public :: regdae_err_jacobian = -116         !! a Jacobian disagrees with difference quotients
     integer, parameter, public :: regdae_err_work = -117             !! the work-energy balance of a mechanical problem failed
+    integer, parameter, public :: regdae_err_memory = -118           !! the system refused an allocation
 
     public :: status_message
 
@@ -78,6 +79,8 @@ contains
             msg = 'a matrix has a nonzero entry outside the sparsity pattern the problem declared'
         case (regdae_err_work)
             msg = 'the work-energy balance failed: the constraint forces did work (energy gained or lost)'
+        case (regdae_err_memory)
+            msg = 'out of memory: the system refused an allocation'
         case (regdae_err_jacobian)
             msg = 'a Jacobian (user G, or the Newton matrix from the declared patterns) disagrees with difference quotients'
         case default

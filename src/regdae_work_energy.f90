@@ -14,7 +14,7 @@
 module regdae_work_energy
     use regdae_kinds, only: wp
     use regdae_differences, only: central_difference_step
-    use regdae_sparsity, only: sparsity_pattern
+    use regdae_sparsity, only: sparsity_pattern, sparse_times
     use regdae_mechanical_problem, only: mechanical_problem
     implicit none
     private
@@ -65,17 +65,11 @@ contains
             real(wp), intent(in) :: qq(:), tt, x(:)
             real(wp), intent(out) :: mx(:)
             real(wp), allocatable :: dense(:, :), vals(:)
-            integer :: i, k
             if (present(pattern)) then
                 allocate (vals(pattern%nnz()))
                 call problem%mass_values(tt, qq, pattern, vals, stat)
                 if (stat /= 0) return
-                do i = 1, pattern%nrows
-                    mx(i) = 0.0_wp
-                    do k = pattern%row_start(i), pattern%row_start(i + 1) - 1
-                        mx(i) = mx(i) + vals(k)*x(pattern%cols(k))
-                    end do
-                end do
+                mx = sparse_times(pattern, vals, x)
             else
                 allocate (dense(size(qq), size(qq)))
                 call problem%mass_matrix(tt, qq, dense, stat)
