@@ -21,7 +21,8 @@
 !! the number of ranks,
 !!   <id> <problem> <status> t_end=... <errors> steps=... res_evals=... jac_evals=...
 !!       err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... crc=... [message=...]
-!! status ok, warning, failed, off_branch or bad_input (with message=, the rest of the line);
+!! status ok, warning, failed, off_branch, bad_input or crashed (with message=, the rest of the line;
+!! crashed: the row killed its process twice, as FILE.crashes records, and is not run again);
 !! crc= the line's check (FNV-1a of the rest: a rerun keeps only lines that pass it). Each line
 !! is written by one write(2), its errors checked, as soon as its row is done (in the order the
 !! rows finish; fsync at most every 10 s and at the end); when every row is done the file is rewritten in row order (FILE.sorting,

@@ -9,7 +9,8 @@
 # mpirun (its ranks killed by SIGKILL). Rows are compared in every column but seconds and crc.
 # Serially also issue 20's faults: a full disk (/dev/full, stdout), a write failure mid-run (a file
 # size limit) resumed, a corrupted middle line rerun, two sweeps on one file, a locked file, a
-# table of 10^5 rows and a row of 10^6 characters.
+# table of 10^5 rows and a row of 10^6 characters, a row that crashes (recorded after two attempts)
+# and one that crashes once (run again).
 # Usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]
 bin=${1:?usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]}
 dir=${2:?usage: check_sweep.sh BINDIR TABLEDIR [MPIRUN]}
@@ -115,6 +116,7 @@ if [ -z "$mpirun" ]; then
     check "killed after $left of $total rows" "$([ "$left" -ge 5 ] && [ "$left" -lt "$total" ]; echo $?)"
     check "the killed file holds complete lines of distinct rows" \
         "$(rows "$tmp/killed.txt" | awk '{ print $1 }' | sort | uniq -d | wc -l | tr -d ' ' | grep -qx 0; echo $?)"
+    check "a kill from outside is not a crash: nothing in the crash log" "$([ ! -s "$tmp/killed.txt.crashes" ]; echo $?)"
     printf '%s' "$((left + 1)) pendulum ok t_end=1.0" >>"$tmp/killed.txt"   # a write cut short
     "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0 2>"$tmp/resumed.err"
     check "the resumed sweep exits 0 and drops the partial line" \
@@ -149,6 +151,29 @@ if [ -z "$mpirun" ]; then
         "$([ $? = 0 ] && grep -q "1 line(s) .* fail their check (crc=), the first at line 4" "$tmp/corrupt.err" &&
             grep -q "$((total - 1)) already in" "$tmp/corrupt.err"; echo $?)"
     resume_check corrupted "$tmp/whole.txt" "$tmp/corrupt.txt"
+    # a row that kills its process (REGDAE_SWEEP_CRASH: row 3 raises SIGSEGV at its start) is
+    # recorded in FILE.crashes; after two crashes a resume writes it as crashed and finishes the rest
+    for try in 1 2; do
+        REGDAE_SWEEP_CRASH=3 "$sweep" table="$dir/resume.txt" out="$tmp/crash.txt" progress=0 2>/dev/null
+        code=$?
+        check "a crashing row, attempt $try: the sweep dies (exit $code), the crash logged" \
+            "$([ $code != 0 ] && [ "$(grep -c '^crash id=3 signal=11$' "$tmp/crash.txt.crashes")" = $try ]; echo $?)"
+    done
+    REGDAE_SWEEP_CRASH=3 "$sweep" table="$dir/resume.txt" out="$tmp/crash.txt" progress=0 2>"$tmp/crash.err"
+    check "after two crashes: exit 0, the row written as crashed, the crash log removed" \
+        "$([ $? = 0 ] && grep -q '^3 [a-z0-9]* crashed crc=[0-9A-F]\{8\} message=the row killed its process 2 times (the last: signal 11, SIGSEGV)' \
+            "$tmp/crash.txt" && grep -q '1 row(s) crashed 2 times before' "$tmp/crash.err" && [ ! -e "$tmp/crash.txt.crashes" ]; echo $?)"
+    check "... and every other row as in the uninterrupted run" \
+        "$(rows "$tmp/whole.txt" | awk '$1 != 3' >"$tmp/crash.a"; rows "$tmp/crash.txt" | awk '$1 != 3' >"$tmp/crash.b"
+           cmp -s "$tmp/crash.a" "$tmp/crash.b"; echo $?)"
+    # one crash (an exit from inside the row, as on a refused allocation) is retried: the row runs again
+    REGDAE_SWEEP_CRASH=3:0 "$sweep" table="$dir/resume.txt" out="$tmp/crash_once.txt" progress=0 2>/dev/null
+    code=$?
+    check "an exit inside a row: the sweep stops (exit $code), the crash logged" \
+        "$([ $code != 0 ] && grep -q '^crash id=3 exit$' "$tmp/crash_once.txt.crashes"; echo $?)"
+    "$sweep" table="$dir/resume.txt" out="$tmp/crash_once.txt" progress=0 2>/dev/null
+    check "... once only: the resume runs the row again, the file equals the uninterrupted run" \
+        "$([ $? = 0 ] && same "$tmp/whole.txt" "$tmp/crash_once.txt"; echo $?)"
     # one writer per file: a second sweep waits for the first, then finds every row done
     "$sweep" table="$dir/resume.txt" out="$tmp/two_writers.txt" progress=0 2>/dev/null &
     first=$!
@@ -216,5 +241,16 @@ else
     $launch -np 2 "$sweep" table="$dir/resume.txt" out="$tmp/killed.txt" progress=0 2>/dev/null
     check "the resumed mpirun exits 0" $?
     resume_check mpi "$tmp/whole.txt" "$tmp/killed.txt"
+    # a row that crashes whichever rank runs it (mpirun ends the job): crashed after two attempts
+    for try in 1 2; do
+        REGDAE_SWEEP_CRASH=3 $launch -x REGDAE_SWEEP_CRASH -np 2 "$sweep" table="$dir/resume.txt" \
+            out="$tmp/mpi_crash.txt" progress=0 >/dev/null 2>&1
+    done
+    REGDAE_SWEEP_CRASH=3 $launch -x REGDAE_SWEEP_CRASH -np 2 "$sweep" table="$dir/resume.txt" \
+        out="$tmp/mpi_crash.txt" progress=0 2>/dev/null
+    check "mpirun, a crashing row: after two crashes exit 0 with the row crashed, the others as serially" \
+        "$([ $? = 0 ] && grep -q '^3 [a-z0-9]* crashed .*signal 11, SIGSEGV' "$tmp/mpi_crash.txt" &&
+           rows "$tmp/whole.txt" | awk '$1 != 3' >"$tmp/crash.a" && rows "$tmp/mpi_crash.txt" | awk '$1 != 3' >"$tmp/crash.b" &&
+           cmp -s "$tmp/crash.a" "$tmp/crash.b"; echo $?)"
 fi
 finish

@@ -15,6 +15,8 @@ module sweep_schedule
     use sweep_table, only: text_line, read_lines, table_rows, word, results_present, sort_result_file, &
                            row_real, max_row_length, with_check, lock_file, write_line, sync_file, close_file
     use sweep_comm, only: send_text, receive_text, text_waiting, any_rank, comm_kind
+    use sweep_crashes, only: open_crash_log, running_row, crash_counts, crashed_line, remove_crash_log, &
+                             crash_if_asked, crash_attempts
     implicit none
     private
 
@@ -48,6 +50,8 @@ module sweep_schedule
         integer :: finished = 0        !! results received in this run
         integer :: taken_back = 0      !! rows taken back from the rank they were queued on
         integer :: earlier = 0         !! rows found in the result file
+        integer :: crashed = 0         !! rows written as crashed by this run (crash_attempts crashes before)
+        integer :: current = 0         !! the row rank 0 is running (0: none)
         integer :: counts(3) = 0       !! failed, off_branch, bad_input
         integer :: fd = 1                             !! where result lines go: the result file's descriptor,
                                                       !! which holds its lock (lock_file), or 1 (stdout)
@@ -76,8 +80,9 @@ contains
         type(sweep_master) :: m
         type(text_line), allocatable :: lines(:), problems(:)
         character(len=:), allocatable :: key, value, table, out, tail, msg, note
-        logical, allocatable :: done(:)
-        integer, allocatable :: line_numbers(:)
+        logical, allocatable :: done(:), crashed(:)
+        integer, allocatable :: line_numbers(:), crashes(:)
+        type(text_line), allocatable :: causes(:)
         logical :: ok
         integer :: i, w, pos, ios, nbytes
         real(wp) :: lock_wait
@@ -137,8 +142,9 @@ contains
         do i = 1, size(m%rows)   ! (an array constructor of text_line(f(...)) leaks with gfortran 12)
             problems(i)%s = row_problem(m%rows(i)%s)
         end do
-        allocate (done(size(m%rows)))
+        allocate (done(size(m%rows)), crashed(size(m%rows)), crashes(size(m%rows)), causes(size(m%rows)))
         done = .false.
+        crashed = .false.
         m%out = out
         if (out /= '-') then
             ! one writer per result file: an exclusive lock (flock) held until the end
@@ -160,10 +166,19 @@ contains
                 ! code: results_present's stat, 1 cannot read or cut, 2 another table's results
                 return
             end if
+            ! the rows that killed their process crash_attempts times are not run again
+            nbytes = 0
+            inquire (file=out, size=nbytes)
+            if (nbytes <= 0) call remove_crash_log(out)   ! a crash log of an earlier result file
+            call crash_counts(out, size(m%rows), crashes, causes)
+            crashed = (.not. done .and. crashes >= crash_attempts)
+            done = done .or. crashed
+            if (.not. open_crash_log(out)) call say('cannot open "'//out//'.crashes": a row that kills its '// &
+                                                    'process is not recorded (it runs again on a resume)')
         end if
         code = 0
         m%to_file = (out /= '-')
-        m%earlier = count(done)
+        m%earlier = count(done .and. .not. crashed)
         m%order = pack([(i, i=1, size(m%rows))], .not. done)
         if (m%by_cost) call order_by_cost(m%rows, m%order)
         allocate (m%queued(ranks - 1), m%pending(max_ahead, ranks - 1), m%depth(ranks - 1), m%answered(ranks - 1), &
@@ -180,6 +195,13 @@ contains
         if (nbytes <= 0) call m%put('# regdae sweep: id problem status t_end=... <errors> steps=... '// &
             'res_evals=... jac_evals=... err_test_fails=... conv_fails=... switches=... work_defect=... seconds=... '// &
             'crc=... [message=...]')
+        do i = 1, size(m%rows)
+            if (.not. crashed(i)) cycle
+            call m%put(with_check(crashed_line(i, problems(i)%s, crashes(i), causes(i)%s)))
+            m%crashed = m%crashed + 1
+        end do
+        if (m%crashed > 0) call say(format_int(m%crashed)//' row(s) crashed '//format_int(crash_attempts)// &
+                                    ' times before: written as crashed, not run again')
         if (m%write_failed) then
             call say(m%write_message//'; not started')
             code = 1
@@ -197,10 +219,10 @@ contains
             if (m%next <= size(m%order)) then
                 pos = m%next
                 m%next = m%next + 1
-                call m%take(0, m%order(pos), run_row(m%order(pos), m%rows(m%order(pos))%s, m))
+                call m%take(0, m%order(pos), guarded_row(m%order(pos), m%rows(m%order(pos))%s, m))
                 call m%poll()
             else if (m%take_back(pos)) then   ! a row queued behind a running one: run it here
-                call m%take(0, pos, run_row(pos, m%rows(pos)%s, m))
+                call m%take(0, pos, guarded_row(pos, m%rows(pos)%s, m))
                 call m%poll()
             else if (any(m%queued > 0)) then
                 call m%take(-1, 0, '')
@@ -229,6 +251,8 @@ contains
             if (ios /= 0) then
                 call say(msg)
                 code = 1
+            else
+                call remove_crash_log(out)   ! complete: the crashes are in the result lines
             end if
         else
             do i = 1, size(m%rows)
@@ -246,10 +270,15 @@ contains
     !! received before the row started; one that came later finds the row run, and rank
     !! 0 drops the second result).
     subroutine serve_rows()
-        character(len=:), allocatable :: line, ignored
+        character(len=:), allocatable :: line, ignored, key, value
         integer, allocatable :: cancelled(:)
-        integer :: id, from, back
+        integer :: id, from, back, i
+        logical :: ok
         allocate (cancelled(0))
+        do i = 1, command_argument_count()   ! the crash log of the result file (rank 0 says if it fails)
+            call split_key_value(argument(i), key, value, ok)
+            if (ok .and. key == 'out' .and. value /= '-') ok = open_crash_log(value)
+        end do
         do
             call receive_text(0, tag_row, id, line, from)
             if (id == stop_id) exit
@@ -261,10 +290,29 @@ contains
                 cancelled = pack(cancelled, cancelled /= id)
                 call send_text(0, tag_result, id, '')
             else
-                call send_text(0, tag_result, id, run_row(id, line))
+                call send_text(0, tag_result, id, guarded_row(id, line))
             end if
         end do
     end subroutine serve_rows
+
+    !> run_row with the crash log told which row runs (and the testing hook of
+    !! REGDAE_SWEEP_CRASH); on rank 0 the master remembers it for its hook.
+    function guarded_row(id, line, m) result(text)
+        integer, intent(in) :: id
+        character(len=*), intent(in) :: line
+        class(sweep_master), intent(inout), optional :: m
+        character(len=:), allocatable :: text
+        if (present(m)) m%current = id
+        call running_row(id)
+        call crash_if_asked(id)
+        if (present(m)) then
+            text = run_row(id, line, m)
+            m%current = 0
+        else
+            text = run_row(id, line)
+        end if
+        call running_row(0)
+    end function guarded_row
 
     !> Rank 0, at the end: tell every other rank to stop.
     subroutine release_ranks(ranks)
@@ -283,6 +331,7 @@ contains
     subroutine master_poll(self)
         class(sweep_master), intent(inout) :: self
         integer :: before(size(self%queued)), w
+        call running_row(0)   ! a failure while serving is not the row's
         before = self%queued
         self%answered = 0
         do while (text_waiting(tag_result))
@@ -295,6 +344,7 @@ contains
             end if
         end do
         call self%report(.false.)
+        call running_row(self%current)
     end subroutine master_poll
 
     !> Queue rows on rank w up to its depth.
@@ -414,10 +464,11 @@ contains
         if (final) prefix = 'done, '
         if (final .and. self%taken_back > 0) estimate = ', '//format_int(self%taken_back)//' row(s) taken back '// &
                                                         'from the rank they were queued on'
-        call say(prefix//format_int(self%earlier + self%finished)//'/'// &
+        call say(prefix//format_int(self%earlier + self%finished + self%crashed)//'/'// &
                  format_int(size(self%rows))//' rows ('//format_int(self%earlier)//' from before); this run: '// &
                  format_int(self%counts(1))//' failed, '// &
-                 format_int(self%counts(2))//' off_branch, '//format_int(self%counts(3))//' bad_input; '// &
+                 format_int(self%counts(2))//' off_branch, '//format_int(self%counts(3))//' bad_input, '// &
+                 format_int(self%crashed)//' crashed; '// &
                  duration(spent)//estimate)
     end subroutine master_report
 
