@@ -76,6 +76,8 @@ module regdae_augmented_system
         real(wp), allocatable :: kband(:, :), kwork(:)
         ! the last estimate's singular vector: the next estimate starts from it
         real(wp), allocatable :: sigma_vector(:)
+        ! GB's structural rank deficiency: the smallest numerical one over the estimates (-1: none yet)
+        integer :: deficiency = -1
     contains
         procedure :: residual => augmented_residual
         !> Take the problem and the options; build the patterns and the ordering.
@@ -316,6 +318,7 @@ contains
         allocate (self%knew(nk), self%kpiv(nk), self%kwork(nk))
         self%knew(self%kperm) = [(k, k=1, nk)]
         allocate (self%kband(2*self%kl + self%ku + 1, nk))
+        self%deficiency = -1
     end subroutine prepare_saddle_point
 
     real(wp) function augmented_sigma_min(self, t, u, stat) result(sigma)
@@ -330,10 +333,23 @@ contains
         ! iterations on the slider chain (tf = 3, 30 outputs) within 1% at N = 64, 30% at
         ! N = 8, a factor 2.4 at N = 1024 where the smallest eigenvalues cluster. The monitor
         ! compares it with thresholds, so that is enough.
+        !
+        ! Redundant constraints (GB of constant rank r < m): K is singular, or its LU
+        ! has a pivot at rounding level, and the quotient is rounding noise (0 or u |GB|
+        ! at random), which says nothing about the configuration (the pass check chattered
+        ! on it). As the dense models' smallest_singular_value (regdae_damped_lsq), the
+        ! estimate is then taken on GB's structural rank: a quotient at most
+        ! (n + m) u max_i (GB)_ii is numerically zero; such modes are deflated (the
+        ! iteration goes on orthogonal to them, on K with GB shifted by sqrt(u) times that
+        ! scale, so that the null modes do not make it singular, the shift subtracted
+        ! again), as many as every estimate so far has found (`deficiency`, the smallest
+        ! count over the calls), and the next quotient is the estimate.
         integer, parameter :: iterations = 8, min_iterations = 3
         real(wp), parameter :: settled = 1.0e-3_wp
-        real(wp) :: q(self%n), x(self%m), z(self%m), znorm, previous
-        integer :: i, k, nk, info, it
+        real(wp) :: q(self%n), x(self%m), z(self%m), znorm, previous, scale, null_tol, shift, diag_gb, gs
+        real(wp), allocatable :: nullv(:, :)
+        integer :: i, k, nk, info, it, found, limit
+        logical :: ok
         stat = 0
         sigma = huge(1.0_wp)
         if (self%m == 0) return
@@ -343,51 +359,130 @@ contains
         if (stat /= 0) return
         call self%problem%constraint_jacobian_values(t, q, self%st%constraint, self%gvals, stat)
         if (stat /= 0) return
-        self%kband = 0.0_wp
-        associate (mp => self%st%mass, gp => self%st%constraint)
-            do i = 1, self%n
-                do k = mp%row_start(i), mp%row_start(i + 1) - 1
-                    call put(i, mp%cols(k), self%mvals(k))
-                end do
-            end do
-            do i = 1, self%m
-                do k = gp%row_start(i), gp%row_start(i + 1) - 1
-                    call put(self%n + i, gp%cols(k), self%gvals(k))
-                    call put(gp%cols(k), self%n + i, self%gvals(k))
-                end do
-            end do
-        end associate
-        call dgbtrf(nk, nk, self%kl, self%ku, self%kband, size(self%kband, 1), self%kpiv, info)
-        if (info /= 0) then   ! K singular: GB singular (or M)
-            sigma = 0.0_wp
-            return
-        end if
-        ! the start: a fixed vector with generic components (a constant one is orthogonal to
-        ! every antisymmetric mode), plus the last call's singular vector
-        x = [(modulo(0.6180339887498949_wp*i, 1.0_wp) - 0.5_wp, i=1, self%m)]
-        x = x/norm2(x)
-        if (allocated(self%sigma_vector)) x = x + self%sigma_vector
-        x = x/norm2(x)
-        previous = -1.0_wp
-        do it = 1, iterations
-            self%kwork = 0.0_wp
-            self%kwork(self%knew(self%n + 1:nk)) = x
-            call dgbtrs('N', nk, self%kl, self%ku, 1, self%kband, size(self%kband, 1), self%kpiv, self%kwork, nk, &
-                        info)
-            z = -self%kwork(self%knew(self%n + 1:nk))   ! (GB)^{-1} x
-            znorm = norm2(z)
-            if (.not. (znorm > 0.0_wp .and. znorm <= huge(1.0_wp))) then
+        call self%diagonal_scales(diag_gb, gs)
+        scale = diag_gb
+        null_tol = real(nk, wp)*epsilon(1.0_wp)*scale
+        shift = 0.0_wp
+        if (self%deficiency <= 0) then
+            ! full rank seen (or the first call): the plain estimate
+            call assemble(0.0_wp, info)
+            ok = (info == 0)
+            if (ok) call iterate(0, sigma, ok)
+            if (ok .and. (sigma > null_tol .or. self%deficiency == 0)) then
+                self%deficiency = 0
+                self%sigma_vector = x
+                sigma = max(0.0_wp, sigma)
+                return
+            end if
+            if (self%deficiency == 0) then   ! K singular at a sample of a full-rank GB: singular here
                 sigma = 0.0_wp
                 return
             end if
-            sigma = dot_product(x, x)/dot_product(x, z)   ! Rayleigh quotient of (GB)^{-1}
-            x = z/znorm
-            if (it >= min_iterations .and. abs(sigma - previous) <= settled*abs(sigma)) exit
-            previous = sigma
+        end if
+        ! numerically rank-deficient: deflate up to the structural deficiency (the first call: m - 1)
+        if (.not. (scale > 0.0_wp)) then
+            sigma = 0.0_wp
+            return
+        end if
+        shift = sqrt(epsilon(1.0_wp))*scale
+        call assemble(shift, info)
+        if (info /= 0) then
+            sigma = 0.0_wp
+            return
+        end if
+        limit = self%m - 1
+        if (self%deficiency > 0) limit = self%deficiency
+        allocate (nullv(self%m, limit))
+        found = 0
+        do
+            call iterate(found, sigma, ok)
+            if (.not. ok) then
+                sigma = 0.0_wp
+                return
+            end if
+            sigma = sigma - shift
+            if (sigma > null_tol .or. found == limit) exit
+            found = found + 1
+            nullv(:, found) = x
         end do
+        if (sigma <= null_tol) found = found + 1   ! this mode too: numerically null here
+        if (self%deficiency < 0) then
+            self%deficiency = found
+        else
+            self%deficiency = min(self%deficiency, found)
+        end if
         self%sigma_vector = x
         sigma = max(0.0_wp, sigma)
     contains
+        ! K = [M G^T; G -shift I] in band storage, factored (info: dgbtrf's)
+        subroutine assemble(sh, info)
+            real(wp), intent(in) :: sh
+            integer, intent(out) :: info
+            self%kband = 0.0_wp
+            associate (mp => self%st%mass, gp => self%st%constraint)
+                do i = 1, self%n
+                    do k = mp%row_start(i), mp%row_start(i + 1) - 1
+                        call put(i, mp%cols(k), self%mvals(k))
+                    end do
+                end do
+                do i = 1, self%m
+                    do k = gp%row_start(i), gp%row_start(i + 1) - 1
+                        call put(self%n + i, gp%cols(k), self%gvals(k))
+                        call put(gp%cols(k), self%n + i, self%gvals(k))
+                    end do
+                    if (sh > 0.0_wp) call put(self%n + i, self%n + i, -sh)
+                end do
+            end associate
+            call dgbtrf(nk, nk, self%kl, self%ku, self%kband, size(self%kband, 1), self%kpiv, info)
+        end subroutine assemble
+
+        ! Inverse iteration on (GB + shift I) orthogonal to nullv(:, 1:nn): the quotient in est
+        subroutine iterate(nn, est, ok)
+            integer, intent(in) :: nn
+            real(wp), intent(out) :: est
+            logical, intent(out) :: ok
+            integer :: j
+            ok = .true.
+            est = 0.0_wp
+            ! the start: a fixed vector with generic components (a constant one is orthogonal to
+            ! every antisymmetric mode), plus the last call's singular vector
+            x = [(modulo(0.6180339887498949_wp*i, 1.0_wp) - 0.5_wp, i=1, self%m)]
+            x = x/norm2(x)
+            if (allocated(self%sigma_vector)) x = x + self%sigma_vector
+            do j = 1, nn
+                x = x - dot_product(nullv(:, j), x)*nullv(:, j)
+            end do
+            znorm = norm2(x)
+            if (.not. (znorm > 0.0_wp)) then
+                x = [(modulo(0.6180339887498949_wp*i, 1.0_wp) - 0.5_wp, i=1, self%m)]
+                do j = 1, nn
+                    x = x - dot_product(nullv(:, j), x)*nullv(:, j)
+                end do
+                znorm = norm2(x)
+            end if
+            x = x/znorm
+            previous = -1.0_wp
+            do it = 1, iterations
+                self%kwork = 0.0_wp
+                self%kwork(self%knew(self%n + 1:nk)) = x
+                call dgbtrs('N', nk, self%kl, self%ku, 1, self%kband, size(self%kband, 1), self%kpiv, self%kwork, &
+                            nk, info)
+                z = -self%kwork(self%knew(self%n + 1:nk))   ! (GB + shift I)^{-1} x
+                do j = 1, nn
+                    z = z - dot_product(nullv(:, j), z)*nullv(:, j)
+                end do
+                znorm = norm2(z)
+                if (.not. (znorm > 0.0_wp .and. znorm <= huge(1.0_wp))) then
+                    ok = .false.
+                    return
+                end if
+                est = dot_product(x, x)/dot_product(x, z)   ! Rayleigh quotient of (GB + shift I)^{-1}
+                x = z/znorm
+                if (it >= min_iterations .and. abs(est - previous) <= settled*abs(est)) exit
+                previous = est
+            end do
+        end subroutine iterate
+
         ! K(i, j) = val in LAPACK band storage (row kl + ku + 1 + i - j of column j)
         subroutine put(i, j, val)
             integer, intent(in) :: i, j

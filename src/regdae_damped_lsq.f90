@@ -50,13 +50,17 @@ module regdae_damped_lsq
         integer, allocatable :: iwork(:)
         integer, allocatable :: ipiv(:)
         integer :: last_rank = 0
+        integer :: deficiency = -1           ! smallest_singular_value: the structural rank deficiency
+                                             ! (the smallest numerical one over the calls; -1: no call yet)
         integer(8), public :: stacked_solves = 0   !! lsq_checked: solves that took the stacked system
     contains
         !> Size the workspace for p x q matrices (queries dgelsd's workspace).
         procedure :: init => workspace_init
         !> Numerical rank of the stacked matrix in the last `lsq_stacked` solve.
         procedure :: rank => workspace_rank
-        !> Smallest singular value of a p x q matrix (`dgesvd`, values only).
+        !> Smallest singular value of a p x q matrix (`dgesvd`, values only) on its
+        !! structural rank: the smallest one above the rank deficiency that every
+        !! call so far has shown (redundant constraints: GB rank-deficient everywhere).
         procedure :: smallest_singular_value
     end type damped_lsq_workspace
 
@@ -108,6 +112,7 @@ contains
         else
             allocate (self%work(lwork), self%iwork(liwork))
         end if
+        self%deficiency = -1
     end subroutine workspace_init
 
     pure integer function workspace_rank(self)
@@ -121,7 +126,7 @@ contains
         class(damped_lsq_workspace), intent(inout) :: self
         real(wp), intent(in) :: a(:, :)
         real(wp) :: sigma, dummy(1, 1)
-        integer :: info, p, q
+        integer :: info, p, q, k, d
         p = size(a, 1)
         q = size(a, 2)
         if (p == 0 .or. q == 0) then
@@ -134,7 +139,24 @@ contains
             self%mat(1:p, 1:q) = a
             call dgesvd('N', 'N', p, q, self%mat, size(self%mat, 1), self%sv, dummy, 1, dummy, 1, &
                         self%work, size(self%work), info)
-            sigma = self%sv(min(p, q))
+            ! A matrix of constant rank r < min(p, q) (GB of redundant constraints) has
+            ! sigma_(r+1..) zero in exact arithmetic and at rounding level in dgesvd's
+            ! (0, 1e-16 |GB|, ... at random): their minimum says nothing about the
+            ! configuration, and a threshold relative to it flips with the rounding (the
+            ! pass check's chatter). The rank deficiency that all calls have shown (the
+            ! numerical rank's tolerance is LAPACK's, max(p, q) u sigma_1) is the
+            ! structure's; sigma_min is taken on the rest, sigma_r, which falls to 0 where
+            ! the configuration is singular. A matrix of full rank somewhere (a singular
+            ! configuration sampled on it included, once one regular sample is seen) has
+            ! deficiency 0: its plain sigma_min, unchanged.
+            k = min(p, q)
+            d = count(self%sv(1:k) <= real(max(p, q), wp)*epsilon(1.0_wp)*self%sv(1))
+            if (self%deficiency < 0) then
+                self%deficiency = d
+            else
+                self%deficiency = min(self%deficiency, d)
+            end if
+            sigma = self%sv(max(1, k - self%deficiency))
         end if
     end function smallest_singular_value
 
