@@ -343,8 +343,13 @@ contains
         ! iteration goes on orthogonal to them, on K with GB shifted by sqrt(u) times that
         ! scale, so that the null modes do not make it singular, the shift subtracted
         ! again), as many as every estimate so far has found (`deficiency`, the smallest
-        ! count over the calls), and the next quotient is the estimate.
-        integer, parameter :: iterations = 8, min_iterations = 3
+        ! count over the calls), and the next quotient is the estimate. At most
+        ! `max_deflation` modes: a large regular mechanism whose softest modes all lie
+        ! below that tolerance (the straight chain of 10^6 links: sigma_min(GB) ~ 1e-24)
+        ! would otherwise cost an m x (m - 1) array and thousands of iterations per sample
+        ! (issue 20: memory O(nonzeros)); more redundant constraints than that are not
+        ! recognized as such.
+        integer, parameter :: iterations = 8, min_iterations = 3, max_deflation = 8
         real(wp), parameter :: settled = 1.0e-3_wp
         real(wp) :: q(self%n), x(self%m), z(self%m), znorm, previous, scale, null_tol, shift, diag_gb, gs
         real(wp), allocatable :: nullv(:, :)
@@ -390,8 +395,8 @@ contains
             sigma = 0.0_wp
             return
         end if
-        limit = self%m - 1
-        if (self%deficiency > 0) limit = self%deficiency
+        limit = min(self%m - 1, max_deflation)
+        if (self%deficiency > 0) limit = min(self%deficiency, max_deflation)
         allocate (nullv(self%m, limit))
         found = 0
         do

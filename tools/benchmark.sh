@@ -9,11 +9,13 @@
 # minutes on 2 cores (measured at 1254138); the whole run is not measured there: drivers/bench's
 # redundant crank with formulation=multiplier or augmented under the pass check stalls (its pass
 # ends chatter: 23,611 in 0.19 s; now stopped by max_steps), so the bench is the long part.
-# Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only]   (--reuse: redraw from the raw
+# Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only]   (--reuse: redraw from the raw
 #        outputs of the last run, kept in build/benchmark/; --reuse-trust: run everything but the
 #        trust grids, taken from the last `sh drivers/report/trust_grids.sh build` in
 #        build/report/trust/; --trust-only: issue 19's section alone, from those grids, with the
-#        error estimate and the cost of trust measured again, spliced into doc/performance.md)
+#        error estimate and the cost of trust measured again, spliced into doc/performance.md;
+#        --memory-only: issue 20's memory section alone, drivers/report/chain_memory.sh measured
+#        again (45 s) and spliced in before the trust grids)
 set -eu
 cd "$(dirname "$0")/.."
 sh tools/install-deps.sh --figures
@@ -59,6 +61,29 @@ if [ "${1:-}" = "--trust-only" ]; then
     echo "regdae: the Trust grids section of doc/performance.md regenerated"
     exit 0
 fi
+# splice FILE HEADING BEFORE: doc/performance.md with the section of FILE (its first line is the
+# heading '## HEADING...') in place of the section of that heading, or inserted before '## BEFORE'
+splice() {
+    awk -v section="$1" -v head="$2" -v before="$3" '
+        function put() { while ((getline line < section) > 0) print line; done = 1 }
+        /^## / { skip = 0 }
+        index($0, "## " head) == 1 { if (!done) put(); skip = 1; next }
+        index($0, "## " before) == 1 && !done { put() }
+        !skip { print }' doc/performance.md >"$tmp/performance.md"
+    mv "$tmp/performance.md" doc/performance.md
+}
+if [ "${1:-}" = "--memory-only" ]; then
+    sh drivers/report/chain_memory.sh run build/bin "$raw/chain_memory.txt"
+    sh drivers/report/chain_memory.sh report "$raw/chain_memory.txt" "$tmp" >"$tmp/memory_section.md.full"
+    commit=$(git rev-parse --short HEAD 2>/dev/null || echo '?')
+    awk -v c="$commit" -v d="$(date -u +%F)" 'NR == 2 { print ""; print "(This section regenerated alone, by `sh tools/benchmark.sh --memory-only` at commit " c \
+        ", " d "; the other sections are from their own runs.)" } { print }' "$tmp/memory_section.md.full" >"$tmp/memory_section.md"
+    splice "$tmp/memory_section.md" "Chain: memory against the number of bodies" "Trust grids"
+    mkdir -p doc/figures
+    cp "$tmp/perf_chain_memory.png" doc/figures/
+    echo "regdae: the chain memory section of doc/performance.md regenerated"
+    exit 0
+fi
 if [ "${1:-}" = "--reuse-trust" ]; then
     reuse_trust=yes
     [ -f build/report/trust/summaries.txt ] || { echo "benchmark.sh: no build/report/trust/summaries.txt to reuse" >&2; exit 2; }
@@ -81,6 +106,7 @@ if [ "${1:-}" != "--reuse" ]; then
         build/bin/stability problem=crank3 rtol=1e-5 checks=off
     } | grep -v -e '^#' -e '^summary' >"$raw/unchecked.txt.new" && mv "$raw/unchecked.txt.new" "$raw/unchecked.txt"
     sh drivers/report/chain_bench.sh run build/bin "$raw"   # chain.txt, chain_slider.txt, chain_stiff.txt
+    sh drivers/report/chain_memory.sh run build/bin "$raw/chain_memory.txt"   # issue 20: 1024 ... 100000 links
     # Issue 13: the tuned stability grid through drivers/sweep on 1 and on 2 MPI ranks (wall
     # seconds of the whole sweep), and the cost of a sweep row against a single driver run.
     sh drivers/report/sweep_tables.sh stability >"$raw/sweep_stability_table.txt"
@@ -112,6 +138,8 @@ cp "$raw/bench.txt" "$raw/stability.txt" "$raw/unchecked.txt" "$raw/stability_de
     "$raw/stability_extended.txt" "$tmp/"
 # Issue 10's sections (perf_chain_*.png, perf_stiff_chain.png, the target rows in chain_targets.md).
 sh drivers/report/chain_bench.sh report "$raw" "$tmp" >"$tmp/chain_sections.md"
+# Issue 20's memory section (perf_chain_memory.png).
+sh drivers/report/chain_memory.sh report "$raw/chain_memory.txt" "$tmp" >"$tmp/memory_section.md"
 # Issue 19's section (trust_*.png).
 sh drivers/report/trust_section.sh "$raw" "$tmp" >"$tmp/trust_section.md"
 
@@ -631,6 +659,7 @@ minimum-norm one (stacked solve) where it is not: a run either passes or stops w
 
 TXT
 cat "$tmp/chain_sections.md"
+cat "$tmp/memory_section.md"
 cat "$tmp/trust_section.md"
 t1=$(awk '$1 == "serial" { print $2 }' "$raw/sweep_times.txt")
 t2=$(awk '$1 == "mpi2" { print $2 }' "$raw/sweep_times.txt")

@@ -1,6 +1,6 @@
 #!/bin/sh
 # Issue 20's fault campaigns on drivers/sweep: a sweep on 2 MPI ranks interrupted KILLS times at
-# random moments, each time resumed with the same command, then run to the end; its result file
+# random moments (after 1..15 new result lines, at random), each time resumed with the same command, then run to the end; its result file
 # against an uninterrupted serial run of the same table: rows lost, duplicated, different.
 #   mpirun   SIGKILL of mpirun alone (its ranks, in their own process groups, live on a few
 #            seconds: the resume waits for the result file's lock)
@@ -8,7 +8,7 @@
 #   disk     the result file's write(2) fails with ENOSPC after a random number (1..4) of writes
 #            (test/fault/fail_write.c preloaded into the ranks), as a disk that fills mid-run
 # Usage: sweep_campaign.sh BINDIR FAIL_WRITE_LIB [KILLS] [SEED]   (KILLS default 20; the table:
-#        sweep_tables.sh crank_map 8 8, 64 slider-crank rows at the defaults)
+#        sweep_tables.sh crank_map 24 24, 576 slider-crank rows at the defaults)
 # Output: one line per campaign 'campaign KIND faults=F finished_early=E lost=L duplicated=D
 # different=X rows=R' and the commands' exit codes on stderr. Needs mpirun.
 set -u
@@ -21,13 +21,10 @@ tmp=$(mktemp -d) || exit 1
 trap 'rm -rf "$tmp"' EXIT INT TERM
 launch="mpirun --oversubscribe -np 2"
 [ "$(id -u)" = 0 ] && launch="$launch --allow-run-as-root"
-sh "$here/sweep_tables.sh" crank_map 8 8 >"$tmp/table.txt"
+sh "$here/sweep_tables.sh" crank_map 24 24 >"$tmp/table.txt"
 "$bin/sweep" table="$tmp/table.txt" out="$tmp/reference.txt" progress=0 2>/dev/null || exit 1
 rows() { grep -v '^#' "$1" | sed 's/ seconds=[^ ]*//; s/ crc=[^ ]*//' | sort; }
 count() { if [ -f "$1" ]; then grep -c '^[0-9]' "$1"; else echo 0; fi; }
-random_between() {   # random_between LO HI K: a number in [LO, HI] from the seed and K
-    awk -v lo="$1" -v hi="$2" -v s="$seed" -v k="$3" 'BEGIN { srand(s * 1000 + k); printf "%.2f", lo + (hi - lo) * rand() }'
-}
 
 for kind in mpirun rank disk; do
     out=$tmp/$kind.txt
@@ -47,9 +44,17 @@ for kind in mpirun rank disk; do
             faults=$((faults + 1))
             continue
         fi
+        # the fault lands after a random number (1..15) of new result lines: mid-run, not while
+        # the sweep still waits for the lock that the ranks of the last killed mpirun hold
+        before=$(count "$out")
+        lines=$(awk -v s="$seed" -v k="$k" 'BEGIN { srand(s * 1000 + k); print 1 + int(15 * rand()) }')
         $launch "$bin/sweep" table="$tmp/table.txt" out="$out" progress=0 >/dev/null 2>"$tmp/err" &
         pid=$!
-        sleep "$(random_between 0.5 2.5 "$k")"
+        i=0
+        while [ "$(count "$out")" -lt $((before + lines)) ] && kill -0 "$pid" 2>/dev/null && [ "$i" -lt 3000 ]; do
+            sleep 0.02
+            i=$((i + 1))
+        done
         if ! kill -0 "$pid" 2>/dev/null; then
             wait "$pid"
             early=$((early + 1))
