@@ -548,23 +548,26 @@ contains
         call engine%state(z)
     end subroutine bring_to
 
-    ! The steps a companion at rtol/kappa^level may take from its time to t: 50 times what the
-    ! solution's mean step density since t0 gives it at that level (steps grow like 10^(1/5) per
-    ! decade of the tolerance for a method of order 4 or 5), at least 1000. A pass that takes the
-    ! companions far more steps (Baumgarte's weights 1e6 through an unregularized singularity at
-    ! rtol 1e-10: 667,000 steps of the companions against 11,857 of the solution) is reported
-    ! unresolved instead.
+    ! The steps a companion at rtol/kappa^level may still take on its way to t: over the pass
+    ! (from its start, the checkpoint at t_start, to t) 1000 plus 50 times what the solution's
+    ! mean step density since t0 gives it at that level (steps grow like 10^(1/5) per decade of
+    ! the tolerance for a method of order 4 or 5), less the steps it has taken. Counted from the
+    ! pass's start, not per call: a pass checked at many outputs does not get the floor of 1000
+    ! at each. A pass that takes the companions far more steps (Baumgarte's weights 1e6 through
+    ! an unregularized singularity at rtol 1e-10: 667,000 steps of the companions against 11,857
+    ! of the solution) is reported unresolved instead.
     integer function step_budget(self, engine, level, t) result(steps)
         type(regdae_solver), intent(in) :: self
         type(solver_engine), intent(in) :: engine
         integer, intent(in) :: level
         real(wp), intent(in) :: t
-        type(solver_stats) :: st
+        type(solver_stats) :: st, taken
         real(wp) :: density, allowed
         st = self%main%statistics()
+        taken = engine%statistics()
         density = real(st%steps, wp)/max(self%main%time() - self%t0, tiny(1.0_wp))
-        allowed = 1000.0_wp + 50.0_wp*10.0_wp**(0.2_wp*level)*density*max(t - engine%time(), 0.0_wp)
-        steps = int(min(allowed, 1.0e9_wp))
+        allowed = 1000.0_wp + 50.0_wp*10.0_wp**(0.2_wp*level)*density*max(t - self%ladder%t_start, 0.0_wp)
+        steps = int(max(1.0_wp, min(allowed - real(taken%steps, wp), 1.0e9_wp)))
     end function step_budget
 
     ! Destroy level k of the ladder (the levels above it too), keeping their step counts.
