@@ -6,9 +6,9 @@
 # small stiff chain's automatic switch), issue 19's trust grids, error estimate and cost of trust
 # (drivers/report/trust_grids.sh, error_estimate.sh, cost_of_trust.sh), and regenerate
 # doc/performance.md with its PNGs (doc/figures/perf_*.png, trust_*.png). The trust grids take 13
-# minutes on 2 cores (measured at 1254138); the whole run is not measured there: drivers/bench's
-# redundant crank with formulation=multiplier or augmented under the pass check stalls (its pass
-# ends chatter: 23,611 in 0.19 s; now stopped by max_steps), so the bench is the long part.
+# minutes on 2 cores (measured at 1254138). (drivers/bench's redundant crank with
+# formulation=multiplier or augmented stalled the whole run until the pass ends stopped chattering
+# on the rounding noise of sigma_min: 3.5M pass checks, now 6.)
 # Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only]   (--reuse: redraw from the raw
 #        outputs of the last run, kept in build/benchmark/; --reuse-trust: run everything but the
 #        trust grids, taken from the last `sh drivers/report/trust_grids.sh build` in
