@@ -732,7 +732,7 @@ contains
         character(len=:), allocatable, intent(out) :: message
         logical, intent(out) :: recoverable
         recoverable = (ustat > 0)
-        if (ustat == regdae_err_mass_matrix .or. ustat == regdae_err_structure) then
+        if (ustat == regdae_err_mass_matrix .or. ustat == regdae_err_structure .or. ustat == regdae_err_memory) then
             stat = ustat
             recoverable = .false.
             message = status_message(stat)//' at t = '//format_real(t)//' (in '//name//')'

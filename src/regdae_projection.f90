@@ -9,6 +9,7 @@ module regdae_projection
     use regdae_problem, only: dae_problem
     use regdae_second_order_problem, only: second_order_problem
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, lsq_stacked
+    use regdae_status, only: regdae_err_memory
     implicit none
     private
 
@@ -26,12 +27,14 @@ contains
         real(wp), intent(in) :: t
         real(wp), intent(inout) :: x(:)
         integer, intent(out) :: stat
-        real(wp) :: g(problem%m), gx(problem%m, problem%n)
+        real(wp) :: g(problem%m)
+        real(wp), allocatable :: gx(:, :)
         type(damped_lsq_workspace) :: ws
         integer :: it
         stat = 0
         if (problem%m == 0) return
-        call ws%init(problem%m, problem%n)
+        call workspace_for(problem%m, problem%n, gx, ws, stat)
+        if (stat /= 0) return
         do it = 1, max_steps
             call problem%constraint(t, x, g, stat)
             if (stat == 0) call problem%constraint_jacobian(t, x, gx, stat)
@@ -46,12 +49,14 @@ contains
         real(wp), intent(in) :: t
         real(wp), intent(inout) :: x(:), v(:)
         integer, intent(out) :: stat
-        real(wp) :: g(problem%m), gx(problem%m, problem%n), gt(problem%m), dx(problem%n)
+        real(wp) :: g(problem%m), gt(problem%m), dx(problem%n)
+        real(wp), allocatable :: gx(:, :)
         type(damped_lsq_workspace) :: ws
         integer :: it
         stat = 0
         if (problem%m == 0) return
-        call ws%init(problem%m, problem%n)
+        call workspace_for(problem%m, problem%n, gx, ws, stat)
+        if (stat /= 0) return
         do it = 1, max_steps
             call problem%constraint(t, x, g, stat)
             if (stat == 0) call problem%constraint_jacobian(t, x, gx, stat)
@@ -67,6 +72,17 @@ contains
         if (stat /= 0) return
         v = v - dx
     end subroutine project_second_order
+
+    ! G's array and the least-squares workspace (stat: regdae_err_memory if refused).
+    subroutine workspace_for(m, n, gx, ws, stat)
+        integer, intent(in) :: m, n
+        real(wp), allocatable, intent(out) :: gx(:, :)
+        type(damped_lsq_workspace), intent(inout) :: ws
+        integer, intent(out) :: stat
+        allocate (gx(m, n), stat=stat)
+        if (stat == 0) call ws%init(m, n, stat)
+        if (stat /= 0) stat = regdae_err_memory
+    end subroutine workspace_for
 
     ! One minimum-norm Gauss-Newton step x <- x - dx, G dx = g (stacked least squares): true when
     ! the step is at rounding level (converged) or the solve failed (stat /= 0).

@@ -13,6 +13,7 @@
 module regdae_second_order_problem
     use regdae_kinds, only: wp
     use regdae_differences, only: central_difference_step
+    use regdae_status, only: regdae_err_memory
     implicit none
     private
 
@@ -120,8 +121,14 @@ contains
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: val(:)
         integer, intent(inout) :: stat
-        real(wp) :: gx(problem%m, problem%n)
+        real(wp), allocatable :: gx(:, :)
+        integer :: astat
 
+        allocate (gx(problem%m, problem%n), stat=astat)
+        if (astat /= 0) then
+            stat = regdae_err_memory
+            return
+        end if
         call problem%constraint_jacobian(t, x, gx, stat)
         if (stat /= 0) return
         call problem%constraint_dt(t, x, val, stat)

@@ -323,8 +323,9 @@ contains
                                                           !! (replaces atol, atol_v; second order: positions,
                                                           !! then velocities; order m: x, ..., x^(m-1))
         class(higher_order_problem), allocatable :: copy
-        real(wp) :: gval(problem%m), gx(problem%m, problem%n), gt(problem%m), gnorm
-        integer :: ustat
+        real(wp) :: gval(problem%m), gt(problem%m), gnorm
+        real(wp), allocatable :: gx(:, :)
+        integer :: ustat, astat
 
         if (problem%order < 3 .or. size(xs0, 2) /= problem%order) then
             call self%record(regdae_err_bad_input, 'a higher_order_problem needs order >= 3 and xs0(n, order); '// &
@@ -336,6 +337,12 @@ contains
         if (.not. formulation_fits(self, opts, stat)) return
         if (.not. all(ieee_is_finite(xs0))) then
             call self%record(regdae_err_bad_input, 'xs0 contains NaN or Inf', stat)
+            return
+        end if
+        allocate (gx(problem%m, problem%n), stat=astat)
+        if (astat /= 0) then
+            call self%record(regdae_err_memory, 'out of memory: G at the initial point ('//format_int(problem%m)// &
+                             ' x '//format_int(problem%n)//' reals) was refused', stat)
             return
         end if
         allocate (copy, source=problem)
@@ -897,8 +904,8 @@ contains
         real(wp), intent(in) :: t0, x0(:)
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: gx(problem%m, problem%n), dq(problem%m, problem%n)
-        stat = 0
+        real(wp), allocatable :: gx(:, :), dq(:, :)
+        if (.not. check_arrays(problem%m, problem%n, gx, dq, stat, msg)) return
         call problem%constraint_jacobian(t0, x0, gx, stat)
         if (stat == 0) call constraint_difference_quotient(problem, t0, x0, dq, stat)
         if (stat /= 0) then
@@ -917,8 +924,10 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         class(mechanical_problem), allocatable :: copy
-        real(wp) :: gx(problem%m, problem%n), dq(problem%m, problem%n), vals(sys%st%constraint%nnz())
+        real(wp), allocatable :: gx(:, :), dq(:, :)
+        real(wp) :: vals(sys%st%constraint%nnz())
         integer :: i, k
+        if (.not. check_arrays(problem%m, problem%n, gx, dq, stat, msg)) return
         allocate (copy, source=problem)
         stat = 0
         msg = ''
@@ -940,6 +949,22 @@ contains
         end do
         call compare_jacobian('constraint_jacobian_values', gx, dq, stat, msg)
     end subroutine check_structured_jacobian
+
+    ! The two dense m x n arrays of check_jacobians; false with regdae_err_memory and a
+    ! message when the system refuses them.
+    logical function check_arrays(m, n, gx, dq, stat, msg) result(ok)
+        integer, intent(in) :: m, n
+        real(wp), allocatable, intent(out) :: gx(:, :), dq(:, :)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        allocate (gx(m, n), dq(m, n), stat=stat)
+        ok = (stat == 0)
+        msg = ''
+        if (ok) return
+        stat = regdae_err_memory
+        msg = 'check_jacobians: out of memory (two dense '//format_int(m)//' x '//format_int(n)// &
+              ' matrices: the check is for small instances)'
+    end function check_arrays
 
     ! Central difference quotients of g(x, t0), column j with the step of
     ! regdae_differences for x_j.
