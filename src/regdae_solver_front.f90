@@ -1066,7 +1066,10 @@ contains
         call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
         call start_monitor(core, t0, z0, zp0)
         core%t0 = t0
-        core%z0 = z0
+        ! (allocated explicitly: the reallocating assignment to a component never allocated
+        ! reads its undefined bounds, which UBSan reports as an integer overflow)
+        if (allocated(core%z0)) deallocate (core%z0)
+        allocate (core%z0, source=z0)
         if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
             call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
                       '(override `invariant` of the second-order problem; first-order problems have none)')
