@@ -5,8 +5,8 @@
 # driver from 2 to 1024 links, its slider variant, the stiff chain against the plain IDA peer, the
 # small stiff chain's automatic switch), issue 19's trust grids, error estimate and cost of trust
 # (drivers/report/trust_grids.sh, error_estimate.sh, cost_of_trust.sh), and regenerate
-# doc/performance.md with its PNGs (doc/figures/perf_*.png, trust_*.png). The trust grids take 13
-# minutes on 2 cores (measured at 1254138). (drivers/bench's redundant crank with
+# doc/performance.md with its PNGs (doc/figures/perf_*.png, trust_*.png). The whole run took 48
+# minutes on 2 cores at d82beff, the trust grids 12 of them. (drivers/bench's redundant crank with
 # formulation=multiplier or augmented stalled the whole run until the pass ends stopped chattering
 # on the rounding noise of sigma_min: 3.5M pass checks, now 6.)
 # Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only]   (--reuse: redraw from the raw
