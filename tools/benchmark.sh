@@ -27,6 +27,17 @@ raw=build/benchmark   # the raw outputs are kept; --reuse redraws the document f
 matched=tools/matched.awk   # values at matched accuracy (log-log interpolation)
 mkdir -p "$raw"
 reuse_trust=no
+# splice FILE HEADING BEFORE: doc/performance.md with the section of FILE (its first line is the
+# heading '## HEADING...') in place of the section of that heading, or inserted before '## BEFORE'
+splice() {
+    awk -v section="$1" -v head="$2" -v before="$3" '
+        function put() { while ((getline line < section) > 0) print line; done = 1 }
+        /^## / { skip = 0 }
+        index($0, "## " head) == 1 { if (!done) put(); skip = 1; next }
+        index($0, "## " before) == 1 && !done { put() }
+        !skip { print }' doc/performance.md >"$tmp/performance.md"
+    mv "$tmp/performance.md" doc/performance.md
+}
 if [ "${1:-}" = "--trust-only" ]; then
     # Issue 19's section alone: the trust grids of the last trust_grids.sh run, the error estimate
     # and the cost of trust measured again, the section replaced in doc/performance.md (inserted
@@ -48,30 +59,13 @@ if [ "${1:-}" = "--trust-only" ]; then
     awk -v c="$commit" -v d="$(date -u +%F)" 'NR == 2 { print ""; print "(This section regenerated alone, by `sh tools/benchmark.sh --trust-only` at commit " c \
         ", " d "; the other sections are from the last full run, dated at the top of this document.)" } { print }' \
         "$tmp/trust_section.md.full" >"$tmp/trust_section.md"
-    awk -v section="$tmp/trust_section.md" '
-        function put() { while ((getline line < section) > 0) print line; done = 1 }
-        /^## / { skip = 0 }
-        /^## Trust grids/ { if (!done) put(); skip = 1; next }
-        /^## Sweeps on MPI ranks/ && !done { put() }
-        !skip { print }' doc/performance.md >"$tmp/performance.md"
+    splice "$tmp/trust_section.md" "Trust grids" "Sweeps on MPI ranks"
     mkdir -p doc/figures
     rm -f doc/figures/trust_*.png
     cp "$tmp"/trust_*.png doc/figures/ 2>/dev/null || true
-    mv "$tmp/performance.md" doc/performance.md
     echo "regdae: the Trust grids section of doc/performance.md regenerated"
     exit 0
 fi
-# splice FILE HEADING BEFORE: doc/performance.md with the section of FILE (its first line is the
-# heading '## HEADING...') in place of the section of that heading, or inserted before '## BEFORE'
-splice() {
-    awk -v section="$1" -v head="$2" -v before="$3" '
-        function put() { while ((getline line < section) > 0) print line; done = 1 }
-        /^## / { skip = 0 }
-        index($0, "## " head) == 1 { if (!done) put(); skip = 1; next }
-        index($0, "## " before) == 1 && !done { put() }
-        !skip { print }' doc/performance.md >"$tmp/performance.md"
-    mv "$tmp/performance.md" doc/performance.md
-}
 if [ "${1:-}" = "--memory-only" ]; then
     sh drivers/report/chain_memory.sh run build/bin "$raw/chain_memory.txt"
     sh drivers/report/chain_memory.sh report "$raw/chain_memory.txt" "$tmp" >"$tmp/memory_section.md.full"
