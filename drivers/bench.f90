@@ -151,6 +151,15 @@ program bench_driver
             call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
         end do
     end if
+    ! Beyond 1e-10 for the defaults' rows alone (--trust-only: the same rows as the full run's)
+    if (tol_to >= 10 .and. which == 'crank_defaults') then
+        do k = 11, 12
+            tol = 10.0_wp**(-k)
+            call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
+            call crank('crank3', 'defaults integrator=ida', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
+                       extra='integrator=ida')
+        end do
+    end if
     ! Beyond 1e-10 for the explicit integrator and the oracles: where 1e-8 is reached.
     if (tol_to >= 10 .and. (which == 'all' .or. which == 'crank')) then
         do k = 11, 12
