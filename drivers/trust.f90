@@ -28,7 +28,8 @@
 !!   augmented, rtol = atol = 1e-11, eps = 1e-16; check: 1e-10 with eps = 1e-14); no reference
 !!   method.
 !! - chain_long: the same chains on [0, 10] (100 outputs), N = 2 ... 256: judged on the energy
-!!   change and the largest constraint violation at the outputs against the tight regdae run.
+!!   change and the largest constraint violation at the outputs, in units of the tight regdae
+!!   run's own plus R times the scales; reference method (plain) the peer at R, in those units.
 !! - fourbar: the parallelogram four-bar (drivers/problems/fourbar_problem.f90, r = 1, L = 2,
 !!   g = 9.81), 9 starts, index 3 and 2, tf = 5, 200 outputs; reference th1'' = -(g/r) cos th1 by
 !!   CVODE at 1e-13, reference method Dormand-Prince at R; th2_ref = 0, th3_ref = th1_ref.
@@ -670,11 +671,13 @@ contains
             '(a 45-degree start is not available without changing chain_peer)'
         if (long) then
             write (*, '(a)') '#   judged on the energy change dE = max |E - E(0)| and the violation max |g| at the '// &
-                'outputs: ok when dE <= 10 dE_ref + 10 R E_scale and viol <= 10 viol_ref + 10 R (1 + q_scale)'
-            write (*, '(a)') '#   (dE_ref, viol_ref: the tight run, regdae formulation=augmented rtol = atol = 1e-11 '// &
-                'eps = 1e-16; E_scale: the largest potential-energy drop of that run; q_scale: its max |q|); '// &
-                'err = max(dE/dE_bound, viol/viol_bound), bound = 1'
-            write (*, '(a)') '#   extra columns: dE dE_bound viol viol_bound'
+                'outputs: err = max(dE/dE_unit, viol/viol_unit), dE_unit = dE_tight + R E_scale, viol_unit = '// &
+                'viol_tight + R (1 + q_scale)'
+            write (*, '(a)') '#   (dE_tight, viol_tight: the tight run, regdae formulation=augmented rtol = atol = 1e-11 '// &
+                'eps = 1e-16; E_scale: the largest potential-energy drop of that run; q_scale: its max |q|)'
+            write (*, '(a)') '#   reference method (plain): the peer at R, its err_ref the same over the outputs it '// &
+                'reached; slider: none (err_ref = 0); bound = 10 max(1, err_ref)'
+            write (*, '(a)') '#   extra columns: dE dE_unit viol viol_unit peer_status (none: no reference method)'
         else
             write (*, '(a)') '#   plain: reference the peer (plain IDA, band, stabilized index 2, not regdae) at '// &
                 'rtol = atol = 1e-11 checked against 1e-10; where either fails, the regdae reference (ref_src); '// &
@@ -750,39 +753,78 @@ contains
         real(wp), intent(in) :: rtol, times(:)
         type(run_record) :: rec, rerun
         type(chain) :: p
-        real(wp) :: q0(2*links), v0(2*links), de, viol, de_bound, viol_bound, ratio, rerun_ratio
-        integer :: code, rerun_stat
-        character(len=:), allocatable :: label
+        real(wp) :: q0(2*links), v0(2*links), de, viol, de_unit, viol_unit, err, err_ref, bound, rerun_err, seconds
+        real(wp) :: qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1)
+        integer :: code, rerun_stat, peer_stat, steps
+        character(len=:), allocatable :: label, peer_text, peer_message
         label = trim(merge('slider', 'plain ', slider))
         if (cached%source == 'none') then
             call unjudged_chain_run(counts, cell, label, slider, links, rtol, times)
             return
         end if
-        de_bound = 10.0_wp*cached%energy_change + 10.0_wp*rtol*cached%energy_scale
-        viol_bound = 10.0_wp*cached%violation + 10.0_wp*rtol*(1.0_wp + cached%q_scale)
+        ! the units: the tight run's own change and violation plus R times the scales
+        de_unit = cached%energy_change + rtol*cached%energy_scale
+        viol_unit = cached%violation + rtol*(1.0_wp + cached%q_scale)
         p = new_chain(links, slider, chain_gravity)
         call chain_start(p, q0, v0)
+        ! the reference method (plain only): the peer at R, its energy change and violation in
+        ! the same units over the outputs it reached
+        err_ref = 0.0_wp
+        peer_stat = 0
+        peer_text = 'none'
+        if (.not. slider) then
+            call peer_run(links, rtol, times, qpeer, peer_stat, steps, seconds, peer_message, peer_method_timeout, &
+                          vpeer)
+            call peer_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de, viol)
+            err_ref = max(de/de_unit, viol/viol_unit)
+            peer_text = itext(peer_stat)
+        end if
+        bound = 10.0_wp*max(1.0_wp, err_ref)
         call run_mechanical(p, q0, v0, times, cell_options(rtol), run_budget(120.0_wp), rec)
         call energy_and_violation(rec, de, viol)
-        ratio = max(de/de_bound, viol/viol_bound)
-        rerun_ratio = 0.0_wp
+        err = max(de/de_unit, viol/viol_unit)
+        rerun_err = 0.0_wp
         rerun_stat = 0
         if (stopped_by_check(rec%stat)) then
             call run_mechanical(p, q0, v0, times, checks_off(cell_options(rtol)), run_budget(120.0_wp), rerun)
             call energy_and_violation(rerun, de, viol)
-            rerun_ratio = max(de/de_bound, viol/viol_bound)
+            rerun_err = max(de/de_unit, viol/viol_unit)
             rerun_stat = rerun%stat
             call energy_and_violation(rec, de, viol)
         end if
-        ! the bounds already carry the tight run's own values: no further uncertainty
-        code = cell_class(rec%stat, verdict(ratio, 1.0_wp, 0.0_wp), rerun_stat, verdict(rerun_ratio, 1.0_wp, 0.0_wp), &
+        ! the units already carry the tight run's own values: no further uncertainty
+        code = cell_class(rec%stat, verdict(err, bound, 0.0_wp), rerun_stat, verdict(rerun_err, bound, 0.0_wp), &
                           rec%refused)
         call counts%add(code)
-        call write_row(cell, family_name, label, real(links, wp), times(size(times)), rtol, rec%stat, code, ratio, &
-                       0.0_wp, 1.0_wp, rec%st%t, rec%st%steps, rec%seconds, &
-                       ' '//etext(de)//' '//etext(de_bound)//' '//etext(viol)//' '//etext(viol_bound))
-        call notes(rec, rerun, rerun_ratio)
+        call write_row(cell, family_name, label, real(links, wp), times(size(times)), rtol, rec%stat, code, err, &
+                       err_ref, bound, rec%st%t, rec%st%steps, rec%seconds, &
+                       ' '//etext(de)//' '//etext(de_unit)//' '//etext(viol)//' '//etext(viol_unit)//' '//peer_text)
+        call notes(rec, rerun, rerun_err)
+        if (.not. slider .and. peer_stat /= 0) call write_note('reference method (peer) failed: ', peer_message)
     end subroutine chain_long_cell
+
+    ! The energy change and the largest violation of the peer's run over the outputs it reached
+    ! (the chain starts at rest, horizontal: its energy is 0 there).
+    subroutine peer_energy_and_violation(p, times, q, v, de, viol)
+        type(chain), intent(in) :: p
+        real(wp), intent(in) :: times(:), q(:, :), v(:, :)
+        real(wp), intent(out) :: de, viol
+        type(chain) :: probe
+        real(wp) :: e, e0, gval(p%m), q0(size(q, 1)), v0(size(q, 1))
+        integer :: k, ustat
+        probe = p
+        call chain_start(probe, q0, v0)
+        ustat = 0
+        call probe%invariant(0.0_wp, q0, v0, e0, ustat)
+        de = 0.0_wp
+        viol = 0.0_wp
+        do k = 1, peer_good(q)
+            call probe%invariant(times(k), q(:, k), v(:, k), e, ustat)
+            de = max(de, abs(e - e0))
+            call probe%constraint(times(k), q(:, k), gval, ustat)
+            viol = max(viol, maxval(abs(gval)))
+        end do
+    end subroutine peer_energy_and_violation
 
     ! A chain cell without a reference: the run is made and shown (status, t_end) but not judged.
     subroutine unjudged_chain_run(counts, cell, label, slider, links, rtol, times)
@@ -972,16 +1014,18 @@ contains
 
     ! The plain chain by the peer at rtol = atol = `rtol`, outputs at 0 and `times` (output_times),
     ! in a child process of this program stopped after `timeout` seconds (status child_timed_out).
-    subroutine peer_run(links, rtol, times, q, stat, steps, seconds, message, timeout)
+    subroutine peer_run(links, rtol, times, q, stat, steps, seconds, message, timeout, v)
         integer, intent(in) :: links, timeout
         real(wp), intent(in) :: rtol, times(:)
         real(wp), intent(out) :: q(:, :)
+        real(wp), intent(out), optional :: v(:, :)   !! the velocities, as q
         integer, intent(out) :: stat, steps
         real(wp), intent(out) :: seconds
         character(len=:), allocatable, intent(out) :: message
         character(len=:), allocatable :: file
         integer :: unit, ios, nmsg
         q = ieee_value(1.0_wp, ieee_quiet_nan)
+        if (present(v)) v = ieee_value(1.0_wp, ieee_quiet_nan)
         steps = 0
         seconds = 0.0_wp
         call run_child('peer_job='//itext(links)//','//num_exact(rtol)//','//itext(size(times))//','// &
@@ -992,6 +1036,7 @@ contains
             deallocate (message)
             allocate (character(len=nmsg) :: message)
             read (unit, iostat=ios) message, q
+            if (ios == 0 .and. present(v)) read (unit, iostat=ios) v
         end if
         close (unit, status='delete')
         if (ios /= 0) then
@@ -1078,7 +1123,7 @@ contains
         character(len=len(spec)) :: fields(5)
         character(len=:), allocatable :: message
         real(wp) :: rtol, tf, seconds
-        real(wp), allocatable :: q(:, :)
+        real(wp), allocatable :: q(:, :), v(:, :)
         integer :: links, nout, stat, steps, res_evals, jac_evals, unit, count
         call split_fields(spec, fields, count)
         if (count /= 5) call die_usage(prog, 'peer_job=N,rtol,nout,tf,file')
@@ -1086,11 +1131,11 @@ contains
         call read_number(prog, 'peer_job rtol', trim(fields(2)), rtol)
         call read_count(prog, 'peer_job nout', trim(fields(3)), nout, 1, 1000000)
         call read_number(prog, 'peer_job tf', trim(fields(4)), tf)
-        allocate (q(2*links, nout + 1))
+        allocate (q(2*links, nout + 1), v(2*links, nout + 1))
         call run_chain_peer(links, .false., rtol, rtol, [0.0_wp, output_times(tf, nout)], q, steps, res_evals, &
-                            jac_evals, seconds, stat, message)
+                            jac_evals, seconds, stat, message, v_out=v)
         open (newunit=unit, file=trim(fields(5)), access='stream', form='unformatted', status='replace', action='write')
-        write (unit) stat, steps, seconds, len(message), message, q
+        write (unit) stat, steps, seconds, len(message), message, q, v
         close (unit)
     end subroutine peer_job
 

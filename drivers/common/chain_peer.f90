@@ -78,7 +78,7 @@ contains
     !! `max_drift` is the largest
     !! \(|g_i(q)|\) over the outputs reached.
     subroutine run_chain_peer(n_links, slider, rtol, atol, times, q_out, steps, res_evals, jac_evals, seconds, stat, &
-                              message, max_drift, joint_mass, stiffness, damping)
+                              message, max_drift, joint_mass, stiffness, damping, v_out)
         integer, intent(in) :: n_links
         logical, intent(in) :: slider
         real(wp), intent(in) :: rtol, atol, times(:)
@@ -91,6 +91,7 @@ contains
         real(wp), intent(in), optional :: joint_mass   !! mass of each joint (default 1)
         real(wp), intent(in), optional :: stiffness    !! vertical springs k y under the joints (default 0)
         real(wp), intent(in), optional :: damping      !! vertical dashpots c y' under the joints (default 0)
+        real(wp), intent(out), optional :: v_out(:, :) !! the joints' velocities at `times`, as q_out (NaN after a failure)
         type(chain_data), target :: data
         type(c_ptr) :: ctx, mem
         type(N_Vector), pointer :: uu, up, idv
@@ -112,6 +113,7 @@ contains
         seconds = 0.0_wp
         stat = 0
         q_out = ieee_value(1.0_wp, ieee_quiet_nan)
+        if (present(v_out)) v_out = ieee_value(1.0_wp, ieee_quiet_nan)
         drift = 0.0_wp
         consistent = .true.
         if (present(max_drift)) max_drift = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -192,6 +194,10 @@ contains
                 do i = 1, n_links
                     q_out(2*i - 1, k) = u(position(data, i, off_x))
                     q_out(2*i, k) = u(position(data, i, off_y))
+                    if (present(v_out)) then
+                        v_out(2*i - 1, k) = u(position(data, i, off_vx))
+                        v_out(2*i, k) = u(position(data, i, off_vy))
+                    end if
                 end do
                 drift = max(drift, constraint_drift(data, u))
             end do
