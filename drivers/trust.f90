@@ -29,7 +29,8 @@
 !!   method.
 !! - chain_long: the same chains on [0, 10] (100 outputs), N = 2 ... 256: judged on the energy
 !!   change and the largest constraint violation at the outputs, in units of the tight regdae
-!!   run's own plus R times the scales; reference method (plain) the peer at R, in those units.
+!!   run's own plus R times the scales; reference method the peer at R (plain) and Dormand-Prince
+!!   on the slider crank's reduced ODE (N = 2 with the slider), in those units.
 !! - fourbar: the parallelogram four-bar (drivers/problems/fourbar_problem.f90, r = 1, L = 2,
 !!   g = 9.81), 9 starts, index 3 and 2, tf = 5, 200 outputs; reference th1'' = -(g/r) cos th1 by
 !!   CVODE at 1e-13, reference method Dormand-Prince at R; th2_ref = 0, th3_ref = th1_ref.
@@ -675,9 +676,11 @@ contains
                 'viol_tight + R (1 + q_scale)'
             write (*, '(a)') '#   (dE_tight, viol_tight: the tight run, regdae formulation=augmented rtol = atol = 1e-11 '// &
                 'eps = 1e-16; E_scale: the largest potential-energy drop of that run; q_scale: its max |q|)'
-            write (*, '(a)') '#   reference method (plain): the peer at R, its err_ref the same over the outputs it '// &
-                'reached; slider: none (err_ref = 0); bound = 10 max(1, err_ref)'
-            write (*, '(a)') '#   extra columns: dE dE_unit viol viol_unit peer_status (none: no reference method)'
+            write (*, '(a)') '#   reference method: plain, the peer at R; slider N = 2 (the slider crank), '// &
+                'Dormand-Prince on its reduced ODE at R; its err_ref the same over the outputs it reached; the '// &
+                'other sliders none (err_ref = 0); bound = 10 max(1, err_ref)'
+            write (*, '(a)') '#   extra columns: dE dE_unit viol viol_unit method (the reference method''s status; '// &
+                'none: no reference method)'
         else
             write (*, '(a)') '#   plain: reference the peer (plain IDA, band, stabilized index 2, not regdae) at '// &
                 'rtol = atol = 1e-11 checked against 1e-10; where either fails, the regdae reference (ref_src); '// &
@@ -754,7 +757,7 @@ contains
         type(run_record) :: rec, rerun
         type(chain) :: p
         real(wp) :: q0(2*links), v0(2*links), de, viol, de_unit, viol_unit, err, err_ref, bound, rerun_err, seconds
-        real(wp) :: qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1)
+        real(wp) :: qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1), crank_states(2, size(times))
         integer :: code, rerun_stat, peer_stat, steps
         character(len=:), allocatable :: label, peer_text, peer_message
         label = trim(merge('slider', 'plain ', slider))
@@ -775,9 +778,24 @@ contains
         if (.not. slider) then
             call peer_run(links, rtol, times, qpeer, peer_stat, steps, seconds, peer_message, peer_method_timeout, &
                           vpeer)
-            call peer_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de, viol)
+            call method_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de, viol)
             err_ref = max(de/de_unit, viol/viol_unit)
             peer_text = itext(peer_stat)
+        else if (links == 2) then
+            ! N = 2 with the slider is the slider crank: Dormand-Prince on its reduced ODE at R,
+            ! mapped to the joints, joint 1 = (sin th1, -cos th1), joint 2 = (2 sin th1, 0)
+            call oracle_run('chain2', pi/2, 0.0_wp, rtol, times, crank_states, peer_stat, peer_message, oracle_timeout)
+            qpeer(1, 2:) = sin(crank_states(1, :))
+            qpeer(2, 2:) = -cos(crank_states(1, :))
+            qpeer(3, 2:) = 2.0_wp*sin(crank_states(1, :))
+            qpeer(4, 2:) = 0.0_wp
+            vpeer(1, 2:) = crank_states(2, :)*cos(crank_states(1, :))
+            vpeer(2, 2:) = crank_states(2, :)*sin(crank_states(1, :))
+            vpeer(3, 2:) = 2.0_wp*crank_states(2, :)*cos(crank_states(1, :))
+            vpeer(4, 2:) = 0.0_wp
+            call method_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de, viol)
+            err_ref = max(de/de_unit, viol/viol_unit)
+            peer_text = oracle_text(peer_stat, crank_states)
         end if
         bound = 10.0_wp*max(1.0_wp, err_ref)
         call run_mechanical(p, q0, v0, times, cell_options(rtol), run_budget(120.0_wp), rec)
@@ -800,12 +818,12 @@ contains
                        err_ref, bound, rec%st%t, rec%st%steps, rec%seconds, &
                        ' '//etext(de)//' '//etext(de_unit)//' '//etext(viol)//' '//etext(viol_unit)//' '//peer_text)
         call notes(rec, rerun, rerun_err)
-        if (.not. slider .and. peer_stat /= 0) call write_note('reference method (peer) failed: ', peer_message)
+        if (peer_stat /= 0) call write_note('reference method failed: ', peer_message)
     end subroutine chain_long_cell
 
-    ! The energy change and the largest violation of the peer's run over the outputs it reached
-    ! (the chain starts at rest, horizontal: its energy is 0 there).
-    subroutine peer_energy_and_violation(p, times, q, v, de, viol)
+    ! The energy change and the largest violation of a reference method's run (q, v at `times`)
+    ! over the outputs it reached, against the chain's start (chain_start).
+    subroutine method_energy_and_violation(p, times, q, v, de, viol)
         type(chain), intent(in) :: p
         real(wp), intent(in) :: times(:), q(:, :), v(:, :)
         real(wp), intent(out) :: de, viol
@@ -824,7 +842,7 @@ contains
             call probe%constraint(times(k), q(:, k), gval, ustat)
             viol = max(viol, maxval(abs(gval)))
         end do
-    end subroutine peer_energy_and_violation
+    end subroutine method_energy_and_violation
 
     ! A chain cell without a reference: the run is made and shown (status, t_end) but not judged.
     subroutine unjudged_chain_run(counts, cell, label, slider, links, rtol, times)
@@ -1139,7 +1157,7 @@ contains
         close (unit)
     end subroutine peer_job
 
-    ! The child process: oracle_job=crank|fourbar,th1,w1,rtol,nout,tf,file runs Dormand-Prince on
+    ! The child process: oracle_job=crank|chain2|fourbar,th1,w1,rtol,nout,tf,file runs Dormand-Prince on
     ! the reduced ODE from (th1, w1) to output_times(tf, nout) and writes the states (2, nout).
     subroutine oracle_job(spec)
         character(len=*), intent(in) :: spec
@@ -1150,7 +1168,7 @@ contains
         real(wp), allocatable :: states(:, :)
         integer :: nout, steps, evals, unit, count
         call split_fields(spec, fields, count)
-        if (count /= 7) call die_usage(prog, 'oracle_job=crank|fourbar,th1,w1,rtol,nout,tf,file')
+        if (count /= 7) call die_usage(prog, 'oracle_job=crank|chain2|fourbar,th1,w1,rtol,nout,tf,file')
         call read_number(prog, 'oracle_job th1', trim(fields(2)), th1)
         call read_number(prog, 'oracle_job w1', trim(fields(3)), w1)
         call read_number(prog, 'oracle_job rtol', trim(fields(4)), rtol)
@@ -1158,8 +1176,8 @@ contains
         call read_number(prog, 'oracle_job tf', trim(fields(6)), tf)
         allocate (states(2, nout))
         select case (trim(fields(1)))
-        case ('crank')
-            crank%gravity = crank_gravity
+        case ('crank', 'chain2')   ! chain2: the slider crank as the chain of 2 links with the slider
+            crank%gravity = merge(chain_gravity, crank_gravity, trim(fields(1)) == 'chain2')
             call dopri5_integrate(crank, 0.0_wp, [th1, w1], output_times(tf, nout), states, rtol, rtol, steps, evals)
         case ('fourbar')
             bar%crank = fourbar_r
