@@ -35,19 +35,18 @@ module regdae_solver_front
     use regdae_sparse_projection, only: project_structured
     use regdae_options
     use regdae_regularization, only: regularized_dae
-    use regdae_explicit_rk, only: rk_integrator
-    use regdae_ida_backend, only: ida_backend
     use regdae_regularized_system, only: new_regularized_system
     use regdae_augmented_system, only: augmented_system, user_routine_failure
     use regdae_differences, only: central_difference_step
     use regdae_solver_stats, only: solver_stats
-    use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant, alarm_work
+    use regdae_monitor, only: alarm_jump, alarm_invariant, alarm_work
     use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, &
                                  motion_rate, constraint_length, rms, degenerate_row, predict_shift, &
                                  generic_direction
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
+    use regdae_solver_core, only: solver_core, new_core, log_event
     implicit none
     private
 
@@ -56,53 +55,6 @@ module regdae_solver_front
     !> The automatic drift bound: this many times the constraint violation that the
     !! tolerances on x allow (regdae_scales; doc/methods.md).
     real(wp), parameter :: drift_factor = 1.0e2_wp
-
-    ! The state of one problem: the model, the backend, the options and the
-    ! diagnostics; allocated once per init, so that the backend (IDA's user_data)
-    ! and the model it evaluates stay at fixed addresses.
-    type :: solver_core
-        type(regularized_dae), pointer :: model => null()
-        type(ida_backend) :: ida           ! integrator=ida
-        type(rk_integrator) :: rk          ! integrator=dopri5
-        real(wp), allocatable :: z_rk(:)   ! dopri5: the state at the last output time
-        type(solver_options) :: opts
-        integer :: n = 0, m = 0, neq = 0   ! n: size of the state z; neq: IDA unknowns
-        integer :: nx = 0                  ! size of x reported to the user
-        logical :: second_order = .false.  ! the user's problem is of order 2: z = (x, v)
-        real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
-        real(wp) :: t = 0.0_wp
-        logical :: started = .false.       ! the integration has gone beyond t0
-        real(wp) :: sampled_t = -huge(1.0_wp)   ! IDA: the last time the monitor sampled
-        logical :: augmented = .false.     ! formulation=augmented: the state lives in IDA's vector, y too
-        integer :: formulation = formulation_eliminated   ! resolved
-        integer :: active = integrator_ida     ! the integrator now in charge
-        logical :: switching = .false.         ! integrator=auto: switch between dopri5 and IDA
-        integer :: switches = 0                ! switches so far
-        integer :: explicit_votes = 0          ! consecutive checks that found the explicit method would do
-        real(wp), allocatable :: rho_w(:)      ! power iteration's vector (the stiffness estimate)
-        character(len=:), allocatable :: events   ! the log of switches
-        integer :: n_events = 0                ! entries in the log
-        integer :: back_switches = 0           ! ida -> dopri5 switches so far
-        real(wp) :: eps_factor = 0.0_wp       ! > 0: eps automatic (regdae_scales)
-        real(wp) :: drift_factor = 0.0_wp     ! > 0: drift bound automatic
-        real(wp) :: work_floor = 0.0_wp       ! the work-energy check's smallest energy scale
-        real(wp) :: rate0 = 0.0_wp            ! the rate of the motion at t0 (regdae_auto_rules)
-        real(wp) :: ell0 = 0.0_wp             ! the constraint length at t0
-        real(wp) :: sigma_pred0 = -1.0_wp     ! a singular start: the predicted regular sigma_min(GB)
-        real(wp) :: eps_auto0 = 0.0_wp        ! the automatic eps at t0 (also when the user set eps)
-        logical :: follow_weights = .false.   ! the automatic weights follow the motion along the run
-        logical :: stop_at_pass_end = .false. ! advance returns early at the end of a singular pass
-        logical :: auto_gamma = .false., auto_gamma0 = .false., auto_gamma1 = .false.   ! which were auto
-        real(wp) :: t0 = 0.0_wp               ! integrator=auto: the start, kept until the first output
-        real(wp), allocatable :: z0(:)
-        integer :: linear_solver = linear_solver_dense    ! resolved
-        logical, allocatable :: excluded(:)   ! unknowns left out of the error test
-        real(wp), allocatable :: y_work(:)    ! the multiplier at an output time
-        real(wp), allocatable :: zp_work(:)   ! the slope z' at an output time (the acceleration on request)
-        real(wp), allocatable :: atol_z(:)    ! the absolute tolerance of each component of the state z
-        ! diagnostics, sampled at the output times (IDA) or the accepted steps (dopri5)
-        type(solution_monitor) :: monitor
-    end type solver_core
 
     !> A regularized DAE solver on IDA (see the module documentation).
     type, public :: solver_engine
@@ -797,19 +749,6 @@ contains
         call log_event(core, 't = '//format_real(t)//': ida -> dopri5 (the explicit method''s stable step '// &
                        'exceeds twice IDA''s)')
     end subroutine switch_to_dopri5
-
-    ! Append a line to the events log; after max_events lines only the count grows.
-    subroutine log_event(core, text)
-        type(solver_core), intent(inout) :: core
-        character(len=*), intent(in) :: text
-        integer, parameter :: max_events = 50
-        core%n_events = core%n_events + 1
-        if (core%n_events <= max_events) then
-            core%events = core%events//text//new_line('a')
-        else if (core%n_events == max_events + 1) then
-            core%events = core%events//'(later switches are counted in the statistics only)'//new_line('a')
-        end if
-    end subroutine log_event
 
     ! The monitor's sample at the end of an accepted IDA step (IDA's state and slope there).
     subroutine sample_step(core, t)
@@ -2327,13 +2266,6 @@ contains
         character(len=*), intent(in) :: text
         if (associated(self%core)) call log_event(self%core, text)
     end subroutine engine_note_event
-
-    ! A new core with its model (both at fixed addresses until destroy).
-    subroutine new_core(core)
-        type(solver_core), pointer, intent(out) :: core
-        allocate (core)
-        allocate (core%model)
-    end subroutine new_core
 
     ! The smallest interval an integrator can step across at t and tout:
     ! 4 epsilon max(|t|, |tout|) (IDA's own test for tout too close to t0), and
