@@ -40,13 +40,12 @@ module regdae_solver_front
     use regdae_differences, only: central_difference_step
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: alarm_jump, alarm_invariant, alarm_work
-    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, &
-                                 motion_rate, constraint_length, rms, degenerate_row, predict_shift, &
-                                 generic_direction
+    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, rms
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
     use regdae_solver_core, only: solver_core, new_core, log_event
+    use regdae_augmented_rules, only: mass_diagonal, gb_row_scale, augmented_motion_scales
     implicit none
     private
 
@@ -1232,9 +1231,9 @@ contains
         real(wp), intent(in) :: t0, q0(:), v0(:)
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), g0(sys%st%constraint%nnz()), scale, row, rate, gmax, &
+        real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), g0(sys%st%constraint%nnz()), scale, rate, gmax, &
                     kinetic, power, y_zero(sys%m), ell, sigma_pred, gamma, gamma0, gamma1
-        integer :: i, k, ustat
+        integer :: i, ustat
         logical :: recoverable, weights_auto, work_check
         stat = 0
         msg = ''
@@ -1250,11 +1249,7 @@ contains
             scale = 0.0_wp
             gmax = 0.0_wp
             do i = 1, sys%m
-                row = 0.0_wp
-                do k = gp%row_start(i), gp%row_start(i + 1) - 1
-                    row = row + g0(k)**2/mdiag(gp%cols(k))
-                end do
-                scale = max(scale, row)
+                scale = max(scale, gb_row_scale(sys, g0, mdiag, i))
                 gmax = max(gmax, norm2(g0(gp%row_start(i):gp%row_start(i + 1) - 1)))
             end do
             if (.not. (scale > 0.0_wp)) scale = 1.0_wp
@@ -1338,111 +1333,6 @@ contains
             sys%eps = core%opts%eps
         end if
     end subroutine augmented_eps
-
-    ! M's diagonal (1 where M has none, and everywhere if one is not positive).
-    subroutine mass_diagonal(sys, mdiag)
-        type(augmented_system), intent(in) :: sys
-        real(wp), intent(out) :: mdiag(:)
-        integer :: i, k
-        mdiag = 1.0_wp
-        do i = 1, sys%n
-            k = sys%st%mass%position(i, i)
-            if (k > 0) mdiag(i) = sys%mvals(k)
-        end do
-        if (.not. all(mdiag > 0.0_wp)) mdiag = 1.0_wp
-    end subroutine mass_diagonal
-
-    ! The scales of regdae_auto_rules' dense_motion_scales for the augmented
-    ! formulation at (t, q, v) with the accelerations acc and free (the applied
-    ! forces' M_kk^-1 f_k): the sparse G along v and acc (or free), the length
-    ! (at least ell_before), the rate, and at a singular start (predict) the
-    ! predicted GB scale max_i sum_k G_pred,ik^2 / M_kk (-1: no row vanishes).
-    ! stat: the user's constraint_jacobian_values.
-    subroutine augmented_motion_scales(sys, t, q, v, acc, free, ell_before, predict, ell, rate, sigma_pred, stat, &
-                                       stiffness)
-        type(augmented_system), intent(inout) :: sys
-        real(wp), intent(in) :: t, q(:), v(:), acc(:), free(:), ell_before
-        logical, intent(in) :: predict
-        logical, intent(in) :: stiffness   ! the forces' frequency counts (t0)
-        real(wp), intent(out) :: ell, rate, sigma_pred
-        integer, intent(out) :: stat
-        real(wp) :: g0(sys%st%constraint%nnz()), g1(sys%st%constraint%nnz()), dg(sys%st%constraint%nnz()), &
-                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, d, change, row, k_force
-        integer :: i, k, pass
-        logical :: degenerate
-        stat = 0
-        sigma_pred = -1.0_wp
-        gnorm = 0.0_wp
-        hnorm = 0.0_wp
-        dg = 0.0_wp
-        ell_x = rms(q)
-        if (.not. (ell_x > 0.0_wp)) ell_x = 1.0_wp
-        d = central_difference_step(maxval(abs(q)))
-        associate (gp => sys%st%constraint)
-            do pass = 1, 2
-                if (pass == 1) w = v
-                if (pass == 2) w = merge(acc, free, maxval(abs(acc)) > 0.0_wp)
-                if (.not. (maxval(abs(w)) > 0.0_wp .and. maxval(abs(w)) < huge(1.0_wp))) cycle
-                w = w/maxval(abs(w))
-                call sys%problem%constraint_jacobian_values(t, q - d*w, gp, g0, stat)
-                if (stat == 0) call sys%problem%constraint_jacobian_values(t, q + d*w, gp, g1, stat)
-                if (stat /= 0) return
-                do i = 1, sys%m
-                    associate (a => gp%row_start(i), b => gp%row_start(i + 1) - 1)
-                        change = norm2(g1(a:b) - g0(a:b))/(2.0_wp*d)
-                        gnorm(i) = max(gnorm(i), 0.5_wp*norm2(g1(a:b) + g0(a:b)))
-                        if (.not. (change*d > 1.0e3_wp*epsilon(1.0_wp)*gnorm(i))) change = 0.0_wp
-                        if (change > hnorm(i)) then
-                            hnorm(i) = change
-                            dg(a:b) = (g1(a:b) - g0(a:b))/(2.0_wp*d)
-                        end if
-                    end associate
-                end do
-            end do
-            ell = max(constraint_length(gnorm, hnorm, ell_x), ell_before)
-            k_force = 0.0_wp
-            if (stiffness) k_force = force_stiffness()
-            rate = motion_rate(.true., v, acc, free, ell, k_force)
-            if (.not. predict .or. sys%m == 0) return
-            call sys%problem%constraint_jacobian_values(t, q, gp, g0, stat)
-            if (stat /= 0) return
-            call mass_diagonal(sys, mdiag)
-            degenerate = .false.
-            do i = 1, sys%m
-                if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
-                    degenerate = .true.
-                    g0(gp%row_start(i):gp%row_start(i + 1) - 1) = g0(gp%row_start(i):gp%row_start(i + 1) - 1) + &
-                        predict_shift*ell_x*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
-                end if
-            end do
-            if (.not. degenerate) return
-            sigma_pred = 0.0_wp
-            do i = 1, sys%m
-                row = 0.0_wp
-                do k = gp%row_start(i), gp%row_start(i + 1) - 1
-                    row = row + g0(k)**2/mdiag(gp%cols(k))
-                end do
-                sigma_pred = max(sigma_pred, row)
-            end do
-        end associate
-    contains
-        ! |d (M_kk^-1 f)/dq| along the generic direction (central differences of the forces)
-        real(wp) function force_stiffness() result(k)
-            real(wp) :: fp(sys%n), fm(sys%n), md(sys%n), wg(sys%n), dq
-            integer :: s1, s2
-            k = 0.0_wp
-            wg = generic_direction(sys%n)
-            dq = central_difference_step(maxval(abs(q)))
-            s1 = 0
-            s2 = 0
-            call sys%problem%forces(t, q + dq*wg, v, fp, s1)
-            call sys%problem%forces(t, q - dq*wg, v, fm, s2)
-            if (s1 /= 0 .or. s2 /= 0) return
-            call mass_diagonal(sys, md)
-            k = rms((fp - fm)/md)/(2.0_wp*dq)
-            if (.not. (k*dq > 1.0e3_wp*epsilon(1.0_wp)*max(rms(free), tiny(1.0_wp)))) k = 0.0_wp
-        end function force_stiffness
-    end subroutine augmented_motion_scales
 
     ! Can an integrator take a first step from (t0, z0) with slope zp0? The
     ! step that keeps the local error near the tolerance is about 1/|zp0|_w,
