@@ -3,7 +3,11 @@
 !! Dormand-Prince integrator (`regdae_explicit_rk`). The front checks the
 !! input, computes consistent initial values, drives the backend from output
 !! to output, samples the diagnostics (`regdae_monitor`) and keeps the status
-!! and statistics.
+!! and statistics. The state of one problem is `regdae_solver_core`'s record;
+!! the monitor's start and samples are in `regdae_solver_sampling`, the
+!! switching policy of integrator=auto in `regdae_integrator_switching`, and
+!! the augmented formulation's scales for the automatic rules in
+!! `regdae_augmented_rules`.
 !!
 !! ```fortran
 !! type(solver_engine) :: solver
