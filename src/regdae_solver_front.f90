@@ -3,7 +3,11 @@
 !! Dormand-Prince integrator (`regdae_explicit_rk`). The front checks the
 !! input, computes consistent initial values, drives the backend from output
 !! to output, samples the diagnostics (`regdae_monitor`) and keeps the status
-!! and statistics.
+!! and statistics. The state of one problem is `regdae_solver_core`'s record;
+!! the monitor's start and samples are in `regdae_solver_sampling`, the
+!! switching policy of integrator=auto in `regdae_integrator_switching`, and
+!! the augmented formulation's scales for the automatic rules in
+!! `regdae_augmented_rules`.
 !!
 !! ```fortran
 !! type(solver_engine) :: solver
@@ -35,19 +39,19 @@ module regdae_solver_front
     use regdae_sparse_projection, only: project_structured
     use regdae_options
     use regdae_regularization, only: regularized_dae
-    use regdae_explicit_rk, only: rk_integrator
-    use regdae_ida_backend, only: ida_backend
     use regdae_regularized_system, only: new_regularized_system
     use regdae_augmented_system, only: augmented_system, user_routine_failure
     use regdae_differences, only: central_difference_step
     use regdae_solver_stats, only: solver_stats
-    use regdae_monitor, only: solution_monitor, alarm_jump, alarm_invariant, alarm_work
-    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, &
-                                 motion_rate, constraint_length, rms, degenerate_row, predict_shift, &
-                                 generic_direction
+    use regdae_monitor, only: alarm_jump, alarm_invariant, alarm_work
+    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, rms
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
+    use regdae_solver_core, only: solver_core, new_core, log_event
+    use regdae_augmented_rules, only: mass_diagonal, gb_row_scale, augmented_motion_scales
+    use regdae_solver_sampling, only: start_monitor, start_monitor_augmented, sample_step
+    use regdae_integrator_switching, only: switch_to_ida, explicit_would_do, switch_to_dopri5
     implicit none
     private
 
@@ -56,53 +60,6 @@ module regdae_solver_front
     !> The automatic drift bound: this many times the constraint violation that the
     !! tolerances on x allow (regdae_scales; doc/methods.md).
     real(wp), parameter :: drift_factor = 1.0e2_wp
-
-    ! The state of one problem: the model, the backend, the options and the
-    ! diagnostics; allocated once per init, so that the backend (IDA's user_data)
-    ! and the model it evaluates stay at fixed addresses.
-    type :: solver_core
-        type(regularized_dae), pointer :: model => null()
-        type(ida_backend) :: ida           ! integrator=ida
-        type(rk_integrator) :: rk          ! integrator=dopri5
-        real(wp), allocatable :: z_rk(:)   ! dopri5: the state at the last output time
-        type(solver_options) :: opts
-        integer :: n = 0, m = 0, neq = 0   ! n: size of the state z; neq: IDA unknowns
-        integer :: nx = 0                  ! size of x reported to the user
-        logical :: second_order = .false.  ! the user's problem is of order 2: z = (x, v)
-        real(wp) :: multiplier_sign = 1.0_wp   ! -1: report lambda = -y (mechanical problems)
-        real(wp) :: t = 0.0_wp
-        logical :: started = .false.       ! the integration has gone beyond t0
-        real(wp) :: sampled_t = -huge(1.0_wp)   ! IDA: the last time the monitor sampled
-        logical :: augmented = .false.     ! formulation=augmented: the state lives in IDA's vector, y too
-        integer :: formulation = formulation_eliminated   ! resolved
-        integer :: active = integrator_ida     ! the integrator now in charge
-        logical :: switching = .false.         ! integrator=auto: switch between dopri5 and IDA
-        integer :: switches = 0                ! switches so far
-        integer :: explicit_votes = 0          ! consecutive checks that found the explicit method would do
-        real(wp), allocatable :: rho_w(:)      ! power iteration's vector (the stiffness estimate)
-        character(len=:), allocatable :: events   ! the log of switches
-        integer :: n_events = 0                ! entries in the log
-        integer :: back_switches = 0           ! ida -> dopri5 switches so far
-        real(wp) :: eps_factor = 0.0_wp       ! > 0: eps automatic (regdae_scales)
-        real(wp) :: drift_factor = 0.0_wp     ! > 0: drift bound automatic
-        real(wp) :: work_floor = 0.0_wp       ! the work-energy check's smallest energy scale
-        real(wp) :: rate0 = 0.0_wp            ! the rate of the motion at t0 (regdae_auto_rules)
-        real(wp) :: ell0 = 0.0_wp             ! the constraint length at t0
-        real(wp) :: sigma_pred0 = -1.0_wp     ! a singular start: the predicted regular sigma_min(GB)
-        real(wp) :: eps_auto0 = 0.0_wp        ! the automatic eps at t0 (also when the user set eps)
-        logical :: follow_weights = .false.   ! the automatic weights follow the motion along the run
-        logical :: stop_at_pass_end = .false. ! advance returns early at the end of a singular pass
-        logical :: auto_gamma = .false., auto_gamma0 = .false., auto_gamma1 = .false.   ! which were auto
-        real(wp) :: t0 = 0.0_wp               ! integrator=auto: the start, kept until the first output
-        real(wp), allocatable :: z0(:)
-        integer :: linear_solver = linear_solver_dense    ! resolved
-        logical, allocatable :: excluded(:)   ! unknowns left out of the error test
-        real(wp), allocatable :: y_work(:)    ! the multiplier at an output time
-        real(wp), allocatable :: zp_work(:)   ! the slope z' at an output time (the acceleration on request)
-        real(wp), allocatable :: atol_z(:)    ! the absolute tolerance of each component of the state z
-        ! diagnostics, sampled at the output times (IDA) or the accepted steps (dopri5)
-        type(solution_monitor) :: monitor
-    end type solver_core
 
     !> A regularized DAE solver on IDA (see the module documentation).
     type, public :: solver_engine
@@ -542,8 +499,6 @@ contains
         end subroutine fail
     end subroutine solver_start_augmented
 
-    ! integrator=auto: the explicit method found the system stiff at rk%t: IDA
-    ! takes over there (created at the first switch, restarted at the others).
     ! max_i (GB)_ii at the model's last evaluation (the scale of GB).
     pure real(wp) function gb_scale(model) result(s)
         type(regularized_dae), intent(in) :: model
@@ -553,349 +508,6 @@ contains
             s = max(s, abs(model%gb(i, i)))
         end do
     end function gb_scale
-
-    ! The monitor from (t0, z0) with its slope zp0 (dense formulations): the checks
-    ! and automatic scales of core%opts, the first sample.
-    subroutine start_monitor(core, t0, z0, zp0)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t0, z0(:), zp0(:)
-        ! the velocity check looks at the positions' velocities, z(nx+1:2nx), of order >= 2
-        call core%monitor%reset(core%opts%singular_threshold, core%model%eps, merge(core%nx, 0, core%second_order), &
-                                core%opts%jump_tol, core%opts%drift_tol, core%opts%invariant_tol, &
-                                merge(resolved_work_tol(core%opts), 0.0_wp, core%model%is_mechanical()))
-        call core%monitor%automatic(core%eps_factor, core%model%eps, core%drift_factor, core%opts%rtol, &
-                                    maxval(core%atol_z(1:core%nx)), core%model%method == method_direct, &
-                                    core%sigma_pred0)
-        if (core%follow_weights) call core%monitor%follow_weights(core%nx, core%second_order .and. &
-                                                                  size(z0) >= 2*core%nx, core%rate0, core%ell0, t0)
-        core%monitor%work_floor = core%work_floor
-        core%monitor%work_rate = core%rate0
-        call core%monitor%set_resolution(core%opts%resolution_tol)
-        call core%monitor%sample(t0, core%model, z0, zp0)
-        core%sampled_t = t0
-    end subroutine start_monitor
-
-    subroutine switch_to_ida(core, stat, msg)
-        type(solver_core), intent(inout) :: core
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: zp(core%n), y(core%m), t, z(core%n)
-        logical :: recoverable, from_start
-        t = core%rk%t
-        z = core%rk%z
-        msg = ''
-        ! Stiff before the first output: IDA from t0 (nothing has been returned yet), so
-        ! that the run is the one integrator=ida gives, not one that carries the
-        ! explicit method's steps at its stability limit.
-        from_start = .not. core%started .and. core%switches == 0
-        if (from_start) then
-            t = core%t0
-            z = core%z0
-            core%model%eps = core%opts%eps
-            if (core%model%order == 1) core%model%w = [core%opts%gamma]
-            if (core%model%order == 2) core%model%w = [core%opts%gamma0, core%opts%gamma1]
-        end if
-        if (augmented_fits(core)) then
-            call switch_to_augmented(core, t, z, from_start, stat, msg)
-            if (stat == regdae_success) call now_ida(core, ', augmented formulation with KLU', from_start)
-            return
-        end if
-        call core%model%slope_eliminated(t, z, zp, y, stat, recoverable)
-        if (stat /= regdae_success) then
-            msg = 'switching to IDA at t = '//format_real(t)//': '//core%model%message
-            return
-        end if
-        if (c_associated_ida(core)) then
-            call core%ida%restart(t, z, zp, stat)
-            if (stat /= regdae_success) msg = 'switching to IDA at t = '//format_real(t)//': FIDAReInit failed'
-        else
-            call core%ida%create(new_regularized_system(core%model, core%n, core%n), core%opts, linear_solver_dense, &
-                                 core%excluded(1:core%n), t, z, zp, stat, msg, core%atol_z)
-        end if
-        if (stat /= regdae_success) return
-        if (from_start) call start_monitor(core, t, z, zp)
-        call now_ida(core, '', from_start)
-    end subroutine switch_to_ida
-
-    ! After a switch to IDA: the counters and the event (what: the formulation, if not
-    ! the eliminated one).
-    subroutine now_ida(core, what, from_start)
-        type(solver_core), intent(inout) :: core
-        character(len=*), intent(in) :: what
-        logical, intent(in) :: from_start
-        core%active = integrator_ida
-        core%switches = core%switches + 1
-        core%explicit_votes = 0
-        call log_event(core, 't = '//format_real(core%rk%t)//': dopri5 -> ida'//what//' (the stiffness test fired: '// &
-                       'h |lambda| at the explicit method''s stability limit for 15 steps)'// &
-                       trim(merge('; IDA starts from t0', '                    ', from_start)))
-    end subroutine now_ida
-
-    ! integrator=auto, formulation=auto: IDA takes the augmented formulation for a
-    ! mechanical problem at index 3 that declares its structure (M positive definite:
-    ! no mass_damping), whatever its size (the stiff 4-link chain: 1.2-2.5x faster per
-    ! run than the eliminated formulation on IDA, doc/performance.md).
-    logical function augmented_fits(core) result(fits)
-        type(solver_core), intent(in) :: core
-        type(mechanical_structure) :: st
-        fits = .false.
-        if (core%opts%formulation /= formulation_auto .or. core%opts%mass_damping > 0.0_wp) return
-        if (.not. allocated(core%model%second)) return
-        select type (problem => core%model%second)
-        class is (mechanical_problem)
-            st = problem%structure()
-            fits = st%declared
-        end select
-    end function augmented_fits
-
-    ! IDA on the augmented formulation from (t, z = (q, v)) (a switch, or the start):
-    ! consistent u, y, s by IDACalcIC there, the monitor kept (from_start: restarted
-    ! at t). There is no switch back to dopri5 from it (explicit_would_do).
-    subroutine switch_to_augmented(core, t, z, from_start, stat, msg)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t, z(:)
-        logical, intent(in) :: from_start
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        type(augmented_system) :: sys
-        type(solver_options) :: opts
-        real(wp), allocatable :: u0(:), up0(:), id(:)
-        integer :: nx
-        nx = core%nx
-        opts = core%opts
-        opts%eps = core%model%eps   ! the automatic eps in force (raised along the run)
-        select type (problem => core%model%second)
-        class is (mechanical_problem)
-            call sys%setup(problem, opts, stat)
-        end select
-        if (stat /= regdae_success) then
-            msg = 'switching to IDA at t = '//format_real(t)//' (augmented formulation): '//sys%message
-            return
-        end if
-        if (allocated(core%ida%system)) call core%ida%free()
-        allocate (u0(sys%neq), up0(sys%neq), id(sys%neq))
-        call sys%initial_guess(z(1:nx), z(nx + 1:2*nx), u0, up0, id)
-        core%neq = sys%neq
-        core%linear_solver = linear_solver_sparse
-        core%excluded = sys%excluded_unknowns(opts%excluded)
-        if (opts%exclusion == exclusion_off) core%excluded = .false.
-        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t, u0, up0, stat, msg, &
-                             sys%tolerance_vector(core%atol_z(1:nx), core%atol_z(nx + 1:), opts%atol))
-        if (stat == regdae_success) call core%ida%calc_ic(id, t + 1.0e-3_wp*max(1.0_wp, abs(t)), stat, msg)
-        if (stat /= regdae_success) then
-            msg = 'switching to IDA at t = '//format_real(t)//' (augmented formulation): '//msg
-            return
-        end if
-        core%augmented = .true.
-        core%formulation = formulation_augmented
-        if (from_start) call start_monitor_augmented(core, t, opts%eps)
-        core%active = integrator_ida
-    end subroutine switch_to_augmented
-
-    ! The monitor of the augmented formulation from t with the eps in force: the
-    ! checks and automatic scales of core%opts, the first sample (IDA's state at t).
-    subroutine start_monitor_augmented(core, t, eps)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t, eps
-        call core%monitor%reset(core%opts%singular_threshold, eps, core%nx, core%opts%jump_tol, &
-                                core%opts%drift_tol, core%opts%invariant_tol, resolved_work_tol(core%opts))
-        call core%monitor%automatic(core%eps_factor, eps, core%drift_factor, core%opts%rtol, &
-                                    maxval(core%atol_z(1:core%nx)), core%opts%method == method_direct, &
-                                    core%sigma_pred0)
-        if (core%follow_weights) call core%monitor%follow_weights(0, .true., core%rate0, core%ell0, t)
-        core%monitor%work_floor = core%work_floor
-        core%monitor%work_rate = core%rate0
-        call sample_augmented(core, t)
-        core%sampled_t = t
-    end subroutine start_monitor_augmented
-
-    logical function c_associated_ida(core)
-        type(solver_core), intent(in) :: core
-        c_associated_ida = allocated(core%ida%system)
-    end function c_associated_ida
-
-    ! The spectral radius of dF/dz at (t, z), F the eliminated formulation's slope:
-    ! five power iterations with difference quotients of F, from the last estimate's
-    ! vector, rho = sqrt(|J w_4| |J w_5|) (0: F failed). The model is left evaluated
-    ! at (t, z).
-    real(wp) function spectral_radius(core, t, z) result(rho)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t, z(:)
-        real(wp) :: f0(core%n), f1(core%n), y(core%m), d, wn, norm_now, norm_last
-        integer :: it, stat
-        logical :: recoverable
-        rho = 0.0_wp
-        norm_now = 0.0_wp
-        call core%model%slope_eliminated(t, z, f0, y, stat, recoverable)
-        if (stat /= regdae_success) return
-        if (.not. allocated(core%rho_w)) then
-            allocate (core%rho_w(core%n))
-            core%rho_w = 1.0_wp
-        end if
-        d = sqrt(epsilon(1.0_wp))*max(1.0_wp, maxval(abs(z)))
-        do it = 1, 5
-            wn = norm2(core%rho_w)
-            if (.not. (wn > 0.0_wp)) core%rho_w = 1.0_wp
-            core%rho_w = core%rho_w/norm2(core%rho_w)
-            call core%model%slope_eliminated(t, z + d*core%rho_w, f1, y, stat, recoverable)
-            if (stat /= regdae_success) then
-                rho = 0.0_wp
-                exit
-            end if
-            core%rho_w = (f1 - f0)/d
-            norm_last = norm_now
-            norm_now = norm2(core%rho_w)
-            if (.not. (norm_now > 0.0_wp)) exit
-            ! |J^2 w| / |w| over two iterations: a dominant complex pair (the oscillation
-            ! of a second-order system) makes the single ratios alternate
-            if (it >= 2) rho = sqrt(norm_now*norm_last)
-        end do
-        call core%model%evaluate(t, z, stat, recoverable)   ! the model back at the state
-    end function spectral_radius
-
-    ! integrator=auto, IDA active: would the explicit method do here? Its stable
-    ! step 3.3/rho (rho: the spectral radius of dF/dz, by five power iterations
-    ! with F) against IDA's last step: larger than twice IDA's at two checks in a
-    ! row (20 steps apart) means that IDA's steps are set by accuracy, not stiffness.
-    ! No vote inside a singular interval.
-    logical function explicit_would_do(core, t) result(yes)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t
-        real(c_double), pointer :: u(:)
-        real(wp) :: rho
-        yes = .false.
-        if (core%augmented) return   ! no switch back from the augmented formulation
-        u => core%ida%state()
-        rho = spectral_radius(core, t, u(1:core%n))
-        ! not inside a singular interval: the damped multiplier softens the constraint
-        ! modes there for a moment (gamma sigma^2/(sigma^2 + eps) -> 0), and the explicit
-        ! method would take the pass with the steps of the regular motion (measured:
-        ! ex52 index=2 gamma=1e6 rtol=1e-6 switched back at t = 9.507 and lost 3e-2 rad)
-        if (rho > 0.0_wp .and. 3.3_wp/rho > 2.0_wp*core%ida%last_step() .and. .not. core%monitor%in_singular) then
-            core%explicit_votes = core%explicit_votes + 1
-        else
-            core%explicit_votes = 0
-        end if
-        ! two checks in a row; after each return to IDA twice as many (at most 64), so that
-        ! a problem at the border between the two does not switch at every check
-        yes = (core%explicit_votes >= 2*2**min(core%back_switches, 5))
-    end function explicit_would_do
-
-    ! integrator=auto: back to the explicit method at t, IDA's state there.
-    subroutine switch_to_dopri5(core, t)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t
-        real(c_double), pointer :: u(:)
-        integer :: stat
-        u => core%ida%state()
-        core%z_rk = u(1:core%n)
-        call core%rk%start(core%model, t, core%z_rk, core%ida%last_step(), stat)
-        core%active = integrator_dopri5
-        core%switches = core%switches + 1
-        core%back_switches = core%back_switches + 1
-        core%explicit_votes = 0
-        call log_event(core, 't = '//format_real(t)//': ida -> dopri5 (the explicit method''s stable step '// &
-                       'exceeds twice IDA''s)')
-    end subroutine switch_to_dopri5
-
-    ! Append a line to the events log; after max_events lines only the count grows.
-    subroutine log_event(core, text)
-        type(solver_core), intent(inout) :: core
-        character(len=*), intent(in) :: text
-        integer, parameter :: max_events = 50
-        core%n_events = core%n_events + 1
-        if (core%n_events <= max_events) then
-            core%events = core%events//text//new_line('a')
-        else if (core%n_events == max_events + 1) then
-            core%events = core%events//'(later switches are counted in the statistics only)'//new_line('a')
-        end if
-    end subroutine log_event
-
-    ! The monitor's sample at the end of an accepted IDA step (IDA's state and slope there).
-    subroutine sample_step(core, t)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t
-        real(c_double), pointer :: u(:), up(:)
-        integer :: stat
-        logical :: recoverable
-        if (core%augmented) then
-            call sample_augmented(core, t)
-            return
-        end if
-        u => core%ida%state()
-        up => core%ida%slope()
-        call core%model%evaluate(t, u(1:core%n), stat, recoverable)
-        if (stat == regdae_success) call core%monitor%sample(t, core%model, u(1:core%n), up(1:core%n))
-    end subroutine sample_step
-
-    ! The monitor's sample of the augmented formulation at IDA's state.
-    subroutine sample_augmented(core, t)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t
-        real(c_double), pointer :: u(:), up(:)
-        real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g, &
-                    sums(2)
-        integer :: dstat, istat, wstat
-        u => core%ida%state()
-        up => core%ida%slope()
-        drift = 0.0_wp
-        invariant = 0.0_wp
-        sigma = huge(1.0_wp)
-        dstat = 0
-        istat = 0
-        select type (sys => core%ida%system)
-        type is (augmented_system)
-            call sys%unpack(u, up, q=q, v=v, a=a)
-            drift = sys%drift(t, u, dstat)
-            if (dstat /= 0) drift = huge(1.0_wp)
-            sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
-            if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
-                call sys%diagonal_scales(gb, g)
-                if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
-            end if
-            if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
-        end select
-        call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
-        if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
-        if (core%monitor%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
-            select type (sys => core%ida%system)
-            type is (augmented_system)
-                call sys%unpack(u, up, y=y)
-                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums)
-                call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v))
-            end select
-        end if
-    end subroutine sample_augmented
-
-    ! The automatic weights of the augmented formulation follow the motion: a new
-    ! look at the rate at (t, q, v) with the accelerations a (IDA's v'); new
-    ! weights into the system when it moved by the rule's hysteresis.
-    subroutine follow_weights_augmented(core, t, q, v, a)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t, q(:), v(:), a(:)
-        real(wp) :: f(core%nx), mdiag(core%nx), ell, rate, sigma_pred, gamma, gamma0, gamma1
-        integer :: stat
-        select type (sys => core%ida%system)
-        type is (augmented_system)
-            stat = 0
-            call sys%problem%forces(t, q, v, f, stat)   ! M and G at q are in sys from the sample
-            if (stat /= 0) return
-            call mass_diagonal(sys, mdiag)
-            call augmented_motion_scales(sys, t, q, v, a, f/mdiag, core%monitor%weights%ell, .false., ell, rate, &
-                                         sigma_pred, stat, .false.)
-            if (stat /= 0) return
-            core%monitor%weights%ell = ell
-            if (.not. core%monitor%new_rate(t, rate)) return
-            call baumgarte_weights(core%monitor%weights%rate, gamma, gamma0, gamma1)
-            if (core%opts%index == 3) then
-                sys%gamma0 = gamma0
-                sys%gamma1 = gamma1
-            else
-                sys%gamma0 = 0.0_wp
-                sys%gamma1 = gamma
-            end if
-        end select
-    end subroutine follow_weights_augmented
 
     ! check_jacobians: the user's G (constraint_jacobian) against central
     ! difference quotients of g at (t0, x0); regdae_err_jacobian names the worst entry.
@@ -1293,9 +905,9 @@ contains
         real(wp), intent(in) :: t0, q0(:), v0(:)
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), g0(sys%st%constraint%nnz()), scale, row, rate, gmax, &
+        real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), g0(sys%st%constraint%nnz()), scale, rate, gmax, &
                     kinetic, power, y_zero(sys%m), ell, sigma_pred, gamma, gamma0, gamma1
-        integer :: i, k, ustat
+        integer :: i, ustat
         logical :: recoverable, weights_auto, work_check
         stat = 0
         msg = ''
@@ -1311,11 +923,7 @@ contains
             scale = 0.0_wp
             gmax = 0.0_wp
             do i = 1, sys%m
-                row = 0.0_wp
-                do k = gp%row_start(i), gp%row_start(i + 1) - 1
-                    row = row + g0(k)**2/mdiag(gp%cols(k))
-                end do
-                scale = max(scale, row)
+                scale = max(scale, gb_row_scale(sys, g0, mdiag, i))
                 gmax = max(gmax, norm2(g0(gp%row_start(i):gp%row_start(i + 1) - 1)))
             end do
             if (.not. (scale > 0.0_wp)) scale = 1.0_wp
@@ -1399,111 +1007,6 @@ contains
             sys%eps = core%opts%eps
         end if
     end subroutine augmented_eps
-
-    ! M's diagonal (1 where M has none, and everywhere if one is not positive).
-    subroutine mass_diagonal(sys, mdiag)
-        type(augmented_system), intent(in) :: sys
-        real(wp), intent(out) :: mdiag(:)
-        integer :: i, k
-        mdiag = 1.0_wp
-        do i = 1, sys%n
-            k = sys%st%mass%position(i, i)
-            if (k > 0) mdiag(i) = sys%mvals(k)
-        end do
-        if (.not. all(mdiag > 0.0_wp)) mdiag = 1.0_wp
-    end subroutine mass_diagonal
-
-    ! The scales of regdae_auto_rules' dense_motion_scales for the augmented
-    ! formulation at (t, q, v) with the accelerations acc and free (the applied
-    ! forces' M_kk^-1 f_k): the sparse G along v and acc (or free), the length
-    ! (at least ell_before), the rate, and at a singular start (predict) the
-    ! predicted GB scale max_i sum_k G_pred,ik^2 / M_kk (-1: no row vanishes).
-    ! stat: the user's constraint_jacobian_values.
-    subroutine augmented_motion_scales(sys, t, q, v, acc, free, ell_before, predict, ell, rate, sigma_pred, stat, &
-                                       stiffness)
-        type(augmented_system), intent(inout) :: sys
-        real(wp), intent(in) :: t, q(:), v(:), acc(:), free(:), ell_before
-        logical, intent(in) :: predict
-        logical, intent(in) :: stiffness   ! the forces' frequency counts (t0)
-        real(wp), intent(out) :: ell, rate, sigma_pred
-        integer, intent(out) :: stat
-        real(wp) :: g0(sys%st%constraint%nnz()), g1(sys%st%constraint%nnz()), dg(sys%st%constraint%nnz()), &
-                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, d, change, row, k_force
-        integer :: i, k, pass
-        logical :: degenerate
-        stat = 0
-        sigma_pred = -1.0_wp
-        gnorm = 0.0_wp
-        hnorm = 0.0_wp
-        dg = 0.0_wp
-        ell_x = rms(q)
-        if (.not. (ell_x > 0.0_wp)) ell_x = 1.0_wp
-        d = central_difference_step(maxval(abs(q)))
-        associate (gp => sys%st%constraint)
-            do pass = 1, 2
-                if (pass == 1) w = v
-                if (pass == 2) w = merge(acc, free, maxval(abs(acc)) > 0.0_wp)
-                if (.not. (maxval(abs(w)) > 0.0_wp .and. maxval(abs(w)) < huge(1.0_wp))) cycle
-                w = w/maxval(abs(w))
-                call sys%problem%constraint_jacobian_values(t, q - d*w, gp, g0, stat)
-                if (stat == 0) call sys%problem%constraint_jacobian_values(t, q + d*w, gp, g1, stat)
-                if (stat /= 0) return
-                do i = 1, sys%m
-                    associate (a => gp%row_start(i), b => gp%row_start(i + 1) - 1)
-                        change = norm2(g1(a:b) - g0(a:b))/(2.0_wp*d)
-                        gnorm(i) = max(gnorm(i), 0.5_wp*norm2(g1(a:b) + g0(a:b)))
-                        if (.not. (change*d > 1.0e3_wp*epsilon(1.0_wp)*gnorm(i))) change = 0.0_wp
-                        if (change > hnorm(i)) then
-                            hnorm(i) = change
-                            dg(a:b) = (g1(a:b) - g0(a:b))/(2.0_wp*d)
-                        end if
-                    end associate
-                end do
-            end do
-            ell = max(constraint_length(gnorm, hnorm, ell_x), ell_before)
-            k_force = 0.0_wp
-            if (stiffness) k_force = force_stiffness()
-            rate = motion_rate(.true., v, acc, free, ell, k_force)
-            if (.not. predict .or. sys%m == 0) return
-            call sys%problem%constraint_jacobian_values(t, q, gp, g0, stat)
-            if (stat /= 0) return
-            call mass_diagonal(sys, mdiag)
-            degenerate = .false.
-            do i = 1, sys%m
-                if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
-                    degenerate = .true.
-                    g0(gp%row_start(i):gp%row_start(i + 1) - 1) = g0(gp%row_start(i):gp%row_start(i + 1) - 1) + &
-                        predict_shift*ell_x*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
-                end if
-            end do
-            if (.not. degenerate) return
-            sigma_pred = 0.0_wp
-            do i = 1, sys%m
-                row = 0.0_wp
-                do k = gp%row_start(i), gp%row_start(i + 1) - 1
-                    row = row + g0(k)**2/mdiag(gp%cols(k))
-                end do
-                sigma_pred = max(sigma_pred, row)
-            end do
-        end associate
-    contains
-        ! |d (M_kk^-1 f)/dq| along the generic direction (central differences of the forces)
-        real(wp) function force_stiffness() result(k)
-            real(wp) :: fp(sys%n), fm(sys%n), md(sys%n), wg(sys%n), dq
-            integer :: s1, s2
-            k = 0.0_wp
-            wg = generic_direction(sys%n)
-            dq = central_difference_step(maxval(abs(q)))
-            s1 = 0
-            s2 = 0
-            call sys%problem%forces(t, q + dq*wg, v, fp, s1)
-            call sys%problem%forces(t, q - dq*wg, v, fm, s2)
-            if (s1 /= 0 .or. s2 /= 0) return
-            call mass_diagonal(sys, md)
-            k = rms((fp - fm)/md)/(2.0_wp*dq)
-            if (.not. (k*dq > 1.0e3_wp*epsilon(1.0_wp)*max(rms(free), tiny(1.0_wp)))) k = 0.0_wp
-        end function force_stiffness
-    end subroutine augmented_motion_scales
 
     ! Can an integrator take a first step from (t0, z0) with slope zp0? The
     ! step that keeps the local error near the tolerance is about 1/|zp0|_w,
@@ -2327,13 +1830,6 @@ contains
         character(len=*), intent(in) :: text
         if (associated(self%core)) call log_event(self%core, text)
     end subroutine engine_note_event
-
-    ! A new core with its model (both at fixed addresses until destroy).
-    subroutine new_core(core)
-        type(solver_core), pointer, intent(out) :: core
-        allocate (core)
-        allocate (core%model)
-    end subroutine new_core
 
     ! The smallest interval an integrator can step across at t and tout:
     ! 4 epsilon max(|t|, |tout|) (IDA's own test for tout too close to t0), and

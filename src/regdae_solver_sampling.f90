@@ -1,0 +1,149 @@
+!> The solution monitor's start and samples (`regdae_monitor`) on the state of
+!! one problem (`regdae_solver_core`): the monitor set up from core%opts at the
+!! start of the dense formulations and of the augmented one, the sample at the
+!! end of an accepted IDA step, and along the run the augmented formulation's
+!! automatic weights (from `regdae_augmented_rules`). One concept, the monitor
+!! fed from the integrators' state, used by the front and by the switching policy
+!! (`regdae_integrator_switching`), which starts the monitor when IDA starts from t0.
+module regdae_solver_sampling
+    use, intrinsic :: iso_c_binding, only: c_double
+    use regdae_kinds, only: wp
+    use regdae_status, only: regdae_success
+    use regdae_options, only: resolved_work_tol, method_direct
+    use regdae_augmented_system, only: augmented_system
+    use regdae_auto_rules, only: baumgarte_weights
+    use regdae_work_energy, only: kinetic_energy_and_power
+    use regdae_augmented_rules, only: mass_diagonal, augmented_motion_scales
+    use regdae_solver_core, only: solver_core
+    implicit none
+    private
+
+    public :: start_monitor, start_monitor_augmented, sample_step
+
+contains
+
+    !> The monitor from (t0, z0) with its slope zp0 (dense formulations): the checks
+    !! and automatic scales of core%opts, the first sample.
+    subroutine start_monitor(core, t0, z0, zp0)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t0, z0(:), zp0(:)
+        ! the velocity check looks at the positions' velocities, z(nx+1:2nx), of order >= 2
+        call core%monitor%reset(core%opts%singular_threshold, core%model%eps, merge(core%nx, 0, core%second_order), &
+                                core%opts%jump_tol, core%opts%drift_tol, core%opts%invariant_tol, &
+                                merge(resolved_work_tol(core%opts), 0.0_wp, core%model%is_mechanical()))
+        call core%monitor%automatic(core%eps_factor, core%model%eps, core%drift_factor, core%opts%rtol, &
+                                    maxval(core%atol_z(1:core%nx)), core%model%method == method_direct, &
+                                    core%sigma_pred0)
+        if (core%follow_weights) call core%monitor%follow_weights(core%nx, core%second_order .and. &
+                                                                  size(z0) >= 2*core%nx, core%rate0, core%ell0, t0)
+        core%monitor%work_floor = core%work_floor
+        core%monitor%work_rate = core%rate0
+        call core%monitor%set_resolution(core%opts%resolution_tol)
+        call core%monitor%sample(t0, core%model, z0, zp0)
+        core%sampled_t = t0
+    end subroutine start_monitor
+
+    !> The monitor of the augmented formulation from t with the eps in force: the
+    !! checks and automatic scales of core%opts, the first sample (IDA's state at t).
+    subroutine start_monitor_augmented(core, t, eps)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, eps
+        call core%monitor%reset(core%opts%singular_threshold, eps, core%nx, core%opts%jump_tol, &
+                                core%opts%drift_tol, core%opts%invariant_tol, resolved_work_tol(core%opts))
+        call core%monitor%automatic(core%eps_factor, eps, core%drift_factor, core%opts%rtol, &
+                                    maxval(core%atol_z(1:core%nx)), core%opts%method == method_direct, &
+                                    core%sigma_pred0)
+        if (core%follow_weights) call core%monitor%follow_weights(0, .true., core%rate0, core%ell0, t)
+        core%monitor%work_floor = core%work_floor
+        core%monitor%work_rate = core%rate0
+        call sample_augmented(core, t)
+        core%sampled_t = t
+    end subroutine start_monitor_augmented
+
+    !> The monitor's sample at the end of an accepted IDA step (IDA's state and slope there).
+    subroutine sample_step(core, t)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t
+        real(c_double), pointer :: u(:), up(:)
+        integer :: stat
+        logical :: recoverable
+        if (core%augmented) then
+            call sample_augmented(core, t)
+            return
+        end if
+        u => core%ida%state()
+        up => core%ida%slope()
+        call core%model%evaluate(t, u(1:core%n), stat, recoverable)
+        if (stat == regdae_success) call core%monitor%sample(t, core%model, u(1:core%n), up(1:core%n))
+    end subroutine sample_step
+
+    ! The monitor's sample of the augmented formulation at IDA's state.
+    subroutine sample_augmented(core, t)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t
+        real(c_double), pointer :: u(:), up(:)
+        real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g, &
+                    sums(2)
+        integer :: dstat, istat, wstat
+        u => core%ida%state()
+        up => core%ida%slope()
+        drift = 0.0_wp
+        invariant = 0.0_wp
+        sigma = huge(1.0_wp)
+        dstat = 0
+        istat = 0
+        select type (sys => core%ida%system)
+        type is (augmented_system)
+            call sys%unpack(u, up, q=q, v=v, a=a)
+            drift = sys%drift(t, u, dstat)
+            if (dstat /= 0) drift = huge(1.0_wp)
+            sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
+            if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
+                call sys%diagonal_scales(gb, g)
+                if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
+            end if
+            if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
+        end select
+        call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
+        if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
+        if (core%monitor%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
+            select type (sys => core%ida%system)
+            type is (augmented_system)
+                call sys%unpack(u, up, y=y)
+                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums)
+                call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v))
+            end select
+        end if
+    end subroutine sample_augmented
+
+    ! The automatic weights of the augmented formulation follow the motion: a new
+    ! look at the rate at (t, q, v) with the accelerations a (IDA's v'); new
+    ! weights into the system when it moved by the rule's hysteresis.
+    subroutine follow_weights_augmented(core, t, q, v, a)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, q(:), v(:), a(:)
+        real(wp) :: f(core%nx), mdiag(core%nx), ell, rate, sigma_pred, gamma, gamma0, gamma1
+        integer :: stat
+        select type (sys => core%ida%system)
+        type is (augmented_system)
+            stat = 0
+            call sys%problem%forces(t, q, v, f, stat)   ! M and G at q are in sys from the sample
+            if (stat /= 0) return
+            call mass_diagonal(sys, mdiag)
+            call augmented_motion_scales(sys, t, q, v, a, f/mdiag, core%monitor%weights%ell, .false., ell, rate, &
+                                         sigma_pred, stat, .false.)
+            if (stat /= 0) return
+            core%monitor%weights%ell = ell
+            if (.not. core%monitor%new_rate(t, rate)) return
+            call baumgarte_weights(core%monitor%weights%rate, gamma, gamma0, gamma1)
+            if (core%opts%index == 3) then
+                sys%gamma0 = gamma0
+                sys%gamma1 = gamma1
+            else
+                sys%gamma0 = 0.0_wp
+                sys%gamma1 = gamma
+            end if
+        end select
+    end subroutine follow_weights_augmented
+
+end module regdae_solver_sampling
