@@ -131,7 +131,8 @@ Issue 19's targets, from this run:
 | the error estimate's cost stated, and how often it bounds the true error within a factor 10 | $(est_get within10) of $(est_get outputs) outputs within a factor 10, $(est_get bounds) at least a tenth of the true error; ${est_ratio}x the instructions of the defaults (table below) | stated |
 
 Cells per class on this run, and in brackets on the baseline (the library before this issue, at
-29c5eaf, the same grids: \`drivers/report/trust_baseline.txt\`):
+29c5eaf, the same grids: \`drivers/report/trust_baseline.txt\`; chain_long's baseline was judged
+without the reference methods, against the units alone):
 
 | grid | cells | ok | warned | silent | false alarm | failed | undecided | no reference | false alarms of the cells |
 |---|---|---|---|---|---|---|---|---|---|
@@ -204,8 +205,8 @@ between its rtols):
 $(echo "$cost_rows" | awk '{ printf "| %s | %s | %s | %s | %s | %s | %s | %.1f |\n", $1, $2, $3, ($4 == "-") ? "-" : sprintf("%.2f", $4), ($5 == "-") ? "-" : sprintf("%.2f", $5), $6, $7, $8 }')
 
 Where it goes: the passes' companions (at rtol/10 from each pass's checkpoint to its end) and,
-from rtol 1e-7 down where consecutive levels share the eps floor, the two eps probes, each a
-companion too; \`pass_check=no\` leaves the automatic rules' share (the landing and the probing of
+from rtol 1e-7 down where consecutive levels share the eps floor, the eps probes, each a
+companion too (the second only where it can change the verdict); \`pass_check=no\` leaves the automatic rules' share (the landing and the probing of
 the approach), 1.0-1.3x the baseline.
 
 **The error estimate** against the true error (\`sh drivers/report/error_estimate.sh build/bin\`;
