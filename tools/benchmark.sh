@@ -9,13 +9,14 @@
 # minutes on 2 cores at d82beff, the trust grids 12 of them. (drivers/bench's redundant crank with
 # formulation=multiplier or augmented stalled the whole run until the pass ends stopped chattering
 # on the rounding noise of sigma_min: 3.5M pass checks, now 6.)
-# Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only]   (--reuse: redraw from the raw
+# Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only | --sweep-only]   (--reuse: redraw from the raw
 #        outputs of the last run, kept in build/benchmark/; --reuse-trust: run everything but the
 #        trust grids, taken from the last `sh drivers/report/trust_grids.sh build` in
 #        build/report/trust/; --trust-only: issue 19's section alone, from those grids, with the
 #        error estimate and the cost of trust measured again, spliced into doc/performance.md;
 #        --memory-only: issue 20's memory section alone, drivers/report/chain_memory.sh measured
-#        again (45 s) and spliced in before the trust grids)
+#        again (45 s) and spliced in before the trust grids; --sweep-only: issue 13's sweeps on 1 and 2
+#        MPI ranks measured again (about 7 minutes) and their section spliced in)
 set -eu
 cd "$(dirname "$0")/.."
 sh tools/install-deps.sh --figures
@@ -38,6 +39,99 @@ splice() {
         !skip { print }' doc/performance.md >"$tmp/performance.md"
     mv "$tmp/performance.md" doc/performance.md
 }
+# Issue 13's measurement: the tuned stability grid through drivers/sweep on 1 and on 2 MPI ranks
+# (wall seconds of the whole sweep), and the cost of a sweep row against a single driver run.
+sweep_measure() {
+    sh drivers/report/sweep_tables.sh stability >"$raw/sweep_stability_table.txt"
+    sh drivers/report/sweep_tables.sh crank_map 10 10 >"$raw/sweep_map_table.txt"
+    rm -f "$raw/sweep_1.txt" "$raw/sweep_2.txt" "$raw/sweep_map.txt"
+    wall() { s=$(date +%s.%N); "$@" >/dev/null 2>&1; e=$(date +%s.%N); awk -v s="$s" -v e="$e" 'BEGIN { printf "%.2f", e - s }'; }
+    root=""; [ "$(id -u)" = 0 ] && root=--allow-run-as-root
+    {
+        echo "serial $(wall build/bin/sweep table="$raw/sweep_stability_table.txt" out="$raw/sweep_1.txt" progress=0)"
+        if command -v mpirun >/dev/null; then
+            # shellcheck disable=SC2086
+            echo "mpi2 $(wall mpirun -np 2 --oversubscribe $root build/bin/sweep table="$raw/sweep_stability_table.txt" \
+                out="$raw/sweep_2.txt" progress=0)"
+        fi
+        echo "map100 $(wall build/bin/sweep table="$raw/sweep_map_table.txt" out="$raw/sweep_map.txt" progress=0)"
+        echo "ex52 $(wall build/bin/ex52)"
+    } >"$raw/sweep_times.txt.new" && mv "$raw/sweep_times.txt.new" "$raw/sweep_times.txt"
+}
+# The section "Sweeps on MPI ranks" from the raw outputs of sweep_measure, on stdout.
+sweep_section() {
+    t1=$(awk '$1 == "serial" { print $2 }' "$raw/sweep_times.txt")
+    t2=$(awk '$1 == "mpi2" { print $2 }' "$raw/sweep_times.txt")
+    tmap=$(awk '$1 == "map100" { print $2 }' "$raw/sweep_times.txt")
+    tex=$(awk '$1 == "ex52" { print $2 }' "$raw/sweep_times.txt")
+    solve_sum=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) s += substr($i, 9) } END { printf "%.1f", s }' "$raw/sweep_1.txt")
+    map_solve=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) { s += substr($i, 9); n++ } } END { printf "%.1f", 1000 * s / n }' "$raw/sweep_map.txt")
+    speedup=$(awk -v a="$t1" -v b="${t2:-0}" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "-" }')
+    # the rows of at least 5 s: how many, and their range
+    long_rows=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/ && substr($i, 9) + 0 >= 5) n++ } END { print n + 0 }' "$raw/sweep_1.txt")
+    long_range=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) { v = substr($i, 9) + 0; if (v >= 5) { if (lo == "" || v < lo) lo = v; if (v > hi) hi = v } } }
+        END { if (lo == "") print "none"; else printf "%.1f-%.1f s", lo, hi }' "$raw/sweep_1.txt")
+    bench_rows=$(sh drivers/report/sweep_tables.sh bench | grep -vc '^#')
+    same=$(if [ -f "$raw/sweep_2.txt" ] && cmp -s "$raw/sweep_1.txt" "$raw/sweep_2.txt" 2>/dev/null; then echo "identical files"; else
+        awk 'FNR == 1 { f++ } $1 ~ /^[0-9]+$/ { line = $0; gsub(/ seconds=[^ ]*/, "", line); gsub(/ crc=[^ ]*/, "", line); if (f == 1) a[$1] = line; else if (a[$1] != line) d++ } END { printf "%d rows differ outside seconds and crc", d }' "$raw/sweep_1.txt" "$raw/sweep_2.txt"; fi)
+    cat <<TXT
+## Sweeps on MPI ranks
+
+\`drivers/sweep\` ([sweep.md](sweep.md)) runs a table of runs, one result line per row (appended as
+rows finish, the file in row order at the end), on MPI ranks with dynamic load balancing (rank 0
+hands out the rows, the estimated most expensive first, and runs rows itself). The
+project's own sweeps run through it: \`sh drivers/report/sweep_tables.sh stability\` writes the
+tuned stability grid's 768 cells as a table (its options; the sweep gives each cell's status and
+errors, \`drivers/stability\` its classes), \`sweep_tables.sh crank_map N_TH N_W\` the slider-crank
+starts of sweep.md's map, and then
+
+    build/bin/sweep table=grid.txt out=grid_results.txt                        # one process
+    mpirun -np 2 --oversubscribe build/bin/sweep table=grid.txt out=grid_results.txt   # 2 ranks
+
+Measured by this script on this 2-core machine (wall seconds of the whole sweep, nothing else
+running): the stability grid in ${t1} s on one rank and ${t2:-(no mpirun)} s on 2 ranks, a speedup
+of **${speedup}x** (target 1.8x; the rows' own solve seconds sum to ${solve_sum} s on one rank, ${long_rows}
+rows of 5 s or more among them (${long_range}), which the default \`order=cost\` starts first); both runs give the same results
+(${same}). The cost of a row: the 10 x 10 crank map (100 rows of \`ex52\`'s
+run with its CVODE reference at 1e-13) took ${tmap} s on one rank, $(awk -v t="$tmap" 'BEGIN { printf "%.0f", 10 * t }') ms a row, of which
+${map_solve} ms is regdae's solve (the rest the reference and the checks of the row); a single
+\`ex52\` process with the same work takes ${tex} s of wall time (the process start, its reference
+and its 1001 printed outputs; one run, timed with date): a sweep row costs about what a driver
+process costs, without a process per row.
+
+The benchmark's tolerance sweeps of regdae run through it as well:
+
+    sh drivers/report/sweep_tables.sh bench >bench_table.txt      # or: bench crank, bench ex51
+    mpirun -np 2 --oversubscribe build/bin/sweep table=bench_table.txt out=bench_results.txt
+
+writes \`bench\`'s regdae rows as a table (${bench_rows} rows in \`bench\`'s order: its 9 slider-crank
+configurations and 6 of Example 5.1 at each rtol = atol = 1e-3 ... 1e-10, then its extra crank
+tolerances) and runs them: a status, the error (\`max_err_th\`, \`max_err_x\`) and the counts per
+row. The oracles and IDA peers (not regdae) and the other problems stay in \`drivers/bench\`. The
+slider-crank rows at index 3 carry \`curvature_source=analytic\` (\`bench\`'s g_xx(v, v)): the crank rows
+and Example 5.1's eliminated rows give \`bench\`'s errors and counts in every printed digit (111
+of the 140 rows all of them, 3 more the error; a failed run's error is taken up to its last good
+output), but Example 5.1's output times differ from \`bench\`'s by an ulp at 23 of 201, which
+moves the multiplier formulation's rows: those errors and counts differ (the header of \`sweep_tables.sh\` says how). Nor are the seconds the same
+quantity: a sweep row's \`seconds\` is one run's solve (\`init\` and the advances, the multiplier
+computed at every output; not the reference, not the row's checks), cold or warm as it comes,
+\`bench\`'s the median of at least 5 repetitions in one process (each with its \`init\`; no
+multiplier at the outputs, which saves the crank at 1e-6 about 0.3 ms of 0.7 with \`dopri5\`):
+compare seconds within one tool, not across the two.
+
+TXT
+}
+if [ "${1:-}" = "--sweep-only" ]; then
+    # Issue 13's section alone: the sweeps measured again, the section spliced in before
+    # "Machine and commands"
+    sweep_measure
+    commit=$(git rev-parse --short HEAD 2>/dev/null || echo '?')
+    sweep_section | awk -v c="$commit" -v d="$(date -u +%F)" 'NR == 2 { print ""; print "(This section regenerated alone, by `sh tools/benchmark.sh --sweep-only` at commit " c \
+        ", " d "; the other sections are from their own runs.)" } { print }' >"$tmp/sweep_section.md"
+    splice "$tmp/sweep_section.md" "Sweeps on MPI ranks" "Machine and commands"
+    echo "regdae: the Sweeps on MPI ranks section of doc/performance.md regenerated"
+    exit 0
+fi
 if [ "${1:-}" = "--trust-only" ]; then
     # Issue 19's section alone: the trust grids of the last trust_grids.sh run, the error estimate
     # and the cost of trust measured again, the section replaced in doc/performance.md (inserted
@@ -101,23 +195,7 @@ if [ "${1:-}" != "--reuse" ]; then
     } | grep -v -e '^#' -e '^summary' >"$raw/unchecked.txt.new" && mv "$raw/unchecked.txt.new" "$raw/unchecked.txt"
     sh drivers/report/chain_bench.sh run build/bin "$raw"   # chain.txt, chain_slider.txt, chain_stiff.txt
     sh drivers/report/chain_memory.sh run build/bin "$raw/chain_memory.txt"   # issue 20: 1024 ... 100000 links
-    # Issue 13: the tuned stability grid through drivers/sweep on 1 and on 2 MPI ranks (wall
-    # seconds of the whole sweep), and the cost of a sweep row against a single driver run.
-    sh drivers/report/sweep_tables.sh stability >"$raw/sweep_stability_table.txt"
-    sh drivers/report/sweep_tables.sh crank_map 10 10 >"$raw/sweep_map_table.txt"
-    rm -f "$raw/sweep_1.txt" "$raw/sweep_2.txt" "$raw/sweep_map.txt"
-    wall() { s=$(date +%s.%N); "$@" >/dev/null 2>&1; e=$(date +%s.%N); awk -v s="$s" -v e="$e" 'BEGIN { printf "%.2f", e - s }'; }
-    root=""; [ "$(id -u)" = 0 ] && root=--allow-run-as-root
-    {
-        echo "serial $(wall build/bin/sweep table="$raw/sweep_stability_table.txt" out="$raw/sweep_1.txt" progress=0)"
-        if command -v mpirun >/dev/null; then
-            # shellcheck disable=SC2086
-            echo "mpi2 $(wall mpirun -np 2 --oversubscribe $root build/bin/sweep table="$raw/sweep_stability_table.txt" \
-                out="$raw/sweep_2.txt" progress=0)"
-        fi
-        echo "map100 $(wall build/bin/sweep table="$raw/sweep_map_table.txt" out="$raw/sweep_map.txt" progress=0)"
-        echo "ex52 $(wall build/bin/ex52)"
-    } >"$raw/sweep_times.txt.new" && mv "$raw/sweep_times.txt.new" "$raw/sweep_times.txt"
+    sweep_measure
     # Issue 19: the trust grids (about 30 minutes on 2 cores), the error estimate against the true
     # error, the cost of trust in instructions (callgrind)
     [ "$reuse_trust" = yes ] || sh drivers/report/trust_grids.sh build
@@ -655,63 +733,7 @@ TXT
 cat "$tmp/chain_sections.md"
 cat "$tmp/memory_section.md"
 cat "$tmp/trust_section.md"
-t1=$(awk '$1 == "serial" { print $2 }' "$raw/sweep_times.txt")
-t2=$(awk '$1 == "mpi2" { print $2 }' "$raw/sweep_times.txt")
-tmap=$(awk '$1 == "map100" { print $2 }' "$raw/sweep_times.txt")
-tex=$(awk '$1 == "ex52" { print $2 }' "$raw/sweep_times.txt")
-solve_sum=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) s += substr($i, 9) } END { printf "%.1f", s }' "$raw/sweep_1.txt")
-map_solve=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) { s += substr($i, 9); n++ } } END { printf "%.1f", 1000 * s / n }' "$raw/sweep_map.txt")
-speedup=$(awk -v a="$t1" -v b="${t2:-0}" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "-" }')
-bench_rows=$(sh drivers/report/sweep_tables.sh bench | grep -vc '^#')
-same=$(if [ -f "$raw/sweep_2.txt" ] && cmp -s "$raw/sweep_1.txt" "$raw/sweep_2.txt" 2>/dev/null; then echo "identical files"; else
-    awk 'FNR == 1 { f++ } $1 ~ /^[0-9]+$/ { line = $0; gsub(/ seconds=[^ ]*/, "", line); gsub(/ crc=[^ ]*/, "", line); if (f == 1) a[$1] = line; else if (a[$1] != line) d++ } END { printf "%d rows differ outside seconds and crc", d }' "$raw/sweep_1.txt" "$raw/sweep_2.txt"; fi)
-cat <<TXT
-## Sweeps on MPI ranks
-
-\`drivers/sweep\` ([sweep.md](sweep.md)) runs a table of runs, one result line per row (appended as
-rows finish, the file in row order at the end), on MPI ranks with dynamic load balancing (rank 0
-hands out the rows, the estimated most expensive first, and runs rows itself). The
-project's own sweeps run through it: \`sh drivers/report/sweep_tables.sh stability\` writes the
-tuned stability grid's 768 cells as a table (its options; the sweep gives each cell's status and
-errors, \`drivers/stability\` its classes), \`sweep_tables.sh crank_map N_TH N_W\` the slider-crank
-starts of sweep.md's map, and then
-
-    build/bin/sweep table=grid.txt out=grid_results.txt                        # one process
-    mpirun -np 2 --oversubscribe build/bin/sweep table=grid.txt out=grid_results.txt   # 2 ranks
-
-Measured by this script on this 2-core machine (wall seconds of the whole sweep, nothing else
-running): the stability grid in ${t1} s on one rank and ${t2:-(no mpirun)} s on 2 ranks, a speedup
-of **${speedup}x** (target 1.8x; the rows' own solve seconds sum to ${solve_sum} s on one rank, six
-rows of 14-22 s among them, which the default \`order=cost\` starts first; in table order the last
-of them started late and left one rank alone at the end: 1.71x); both runs give the same results
-(${same}). The cost of a row: the 10 x 10 crank map (100 rows of \`ex52\`'s
-run with its CVODE reference at 1e-13) took ${tmap} s on one rank, $(awk -v t="$tmap" 'BEGIN { printf "%.0f", 10 * t }') ms a row, of which
-${map_solve} ms is regdae's solve (the rest the reference and the checks of the row); a single
-\`ex52\` process with the same work takes ${tex} s of wall time (the process start, its reference
-and its 1001 printed outputs; one run, timed with date): a sweep row costs about what a driver
-process costs, without a process per row.
-
-The benchmark's tolerance sweeps of regdae run through it as well:
-
-    sh drivers/report/sweep_tables.sh bench >bench_table.txt      # or: bench crank, bench ex51
-    mpirun -np 2 --oversubscribe build/bin/sweep table=bench_table.txt out=bench_results.txt
-
-writes \`bench\`'s regdae rows as a table (${bench_rows} rows in \`bench\`'s order: its 9 slider-crank
-configurations and 6 of Example 5.1 at each rtol = atol = 1e-3 ... 1e-10, then its extra crank
-tolerances) and runs them: a status, the error (\`max_err_th\`, \`max_err_x\`) and the counts per
-row. The oracles and IDA peers (not regdae) and the other problems stay in \`drivers/bench\`. The
-slider-crank rows at index 3 carry \`curvature_source=analytic\` (\`bench\`'s g_xx(v, v)): the crank rows
-and Example 5.1's eliminated rows give \`bench\`'s errors and counts in every printed digit (111
-of the 140 rows all of them, 3 more the error; a failed run's error is taken up to its last good
-output), but Example 5.1's output times differ from \`bench\`'s by an ulp at 23 of 201, which
-moves the multiplier formulation's rows: those errors and counts differ (the header of \`sweep_tables.sh\` says how). Nor are the seconds the same
-quantity: a sweep row's \`seconds\` is one run's solve (\`init\` and the advances, the multiplier
-computed at every output; not the reference, not the row's checks), cold or warm as it comes,
-\`bench\`'s the median of at least 5 repetitions in one process (each with its \`init\`; no
-multiplier at the outputs, which saves the crank at 1e-6 about 0.3 ms of 0.7 with \`dopri5\`):
-compare seconds within one tool, not across the two.
-
-TXT
+sweep_section
 cat <<'TXT'
 ## Machine and commands
 
