@@ -64,13 +64,14 @@ sweep_section() {
     t2=$(awk '$1 == "mpi2" { print $2 }' "$raw/sweep_times.txt")
     tmap=$(awk '$1 == "map100" { print $2 }' "$raw/sweep_times.txt")
     tex=$(awk '$1 == "ex52" { print $2 }' "$raw/sweep_times.txt")
-    solve_sum=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) s += substr($i, 9) } END { printf "%.1f", s }' "$raw/sweep_1.txt")
     map_solve=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) { s += substr($i, 9); n++ } } END { printf "%.1f", 1000 * s / n }' "$raw/sweep_map.txt")
     speedup=$(awk -v a="$t1" -v b="${t2:-0}" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "-" }')
-    # the rows of at least 5 s: how many, and their range
-    long_rows=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/ && substr($i, 9) + 0 >= 5) n++ } END { print n + 0 }' "$raw/sweep_1.txt")
-    long_range=$(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) { v = substr($i, 9) + 0; if (v >= 5) { if (lo == "" || v < lo) lo = v; if (v > hi) hi = v } } }
-        END { if (lo == "") print "none"; else printf "%.1f-%.1f s", lo, hi }' "$raw/sweep_1.txt")
+    # one pass over the one-rank rows' solve seconds: their sum; the rows of at least 5 s, how
+    # many and their range
+    set -- $(awk '$1 ~ /^[0-9]+$/ { for (i = 1; i <= NF; i++) if ($i ~ /^seconds=/) { v = substr($i, 9) + 0; s += v
+            if (v >= 5) { n++; if (lo == "" || v < lo) lo = v; if (v > hi) hi = v } } }
+        END { printf "%.1f %d %s\n", s, n, (lo == "" ? "none" : sprintf("%.1f-%.1f_s", lo, hi)) }' "$raw/sweep_1.txt")
+    solve_sum=$1 long_rows=$2 long_range=$(echo "$3" | tr _ ' ')
     bench_rows=$(sh drivers/report/sweep_tables.sh bench | grep -vc '^#')
     same=$(if [ -f "$raw/sweep_2.txt" ] && cmp -s "$raw/sweep_1.txt" "$raw/sweep_2.txt" 2>/dev/null; then echo "identical files"; else
         awk 'FNR == 1 { f++ } $1 ~ /^[0-9]+$/ { line = $0; gsub(/ seconds=[^ ]*/, "", line); gsub(/ crc=[^ ]*/, "", line); if (f == 1) a[$1] = line; else if (a[$1] != line) d++ } END { printf "%d rows differ outside seconds and crc", d }' "$raw/sweep_1.txt" "$raw/sweep_2.txt"; fi)
