@@ -44,6 +44,12 @@ module test_radau
         procedure :: rhs => dae_rhs
     end type index1_dae
 
+    !> An index-2 DAE: y' = z, 0 = sin t - y (M = diag(1, 0)): y = sin t, z = cos t.
+    type, extends(radau_system) :: index2_dae
+    contains
+        procedure :: rhs => index2_rhs
+    end type index2_dae
+
     !> Van der Pol: y1' = y2, y2' = mu ((1 - y1^2) y2 - y1).
     type, extends(radau_system) :: van_der_pol
         real(wp) :: mu = 1.0e6_wp
@@ -69,6 +75,7 @@ contains
         tests = [new_test('coefficients', coefficients), new_test('order_fixed_steps', order_fixed_steps), &
                  new_test('prothero_robinson_adaptive', pr_adaptive), new_test('prothero_robinson_fixed', pr_fixed), &
                  new_test('stiff_linear_exact', stiff_linear_exact), new_test('dae_index1_exact', dae_index1_exact), &
+                 new_test('dae_index2', dae_index2), &
                  new_test('tolerance_proportionality', tolerance_proportionality), &
                  new_test('dense_output', dense_output), new_test('van_der_pol_counts', van_der_pol_counts), &
                  new_test('rhs_failures', rhs_failures), new_test('bad_input', bad_input)]
@@ -179,6 +186,18 @@ contains
         u(2) = sin(t)
         u(3) = u(1)*u(2)
     end function dae_exact
+
+    subroutine index2_rhs(self, t, u, f, stat, recoverable)
+        class(index2_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        f(1) = u(2)
+        f(2) = sin(t) - u(1)
+        stat = regdae_success
+        recoverable = .true.
+    end subroutine index2_rhs
 
     subroutine vdp_rhs(self, t, u, f, stat, recoverable)
         class(van_der_pol), intent(inout) :: self
@@ -437,6 +456,33 @@ contains
             call chk%true(err <= 10*opts%rtol, 'index-1 DAE within 10 rtol')
         end do
     end subroutine dae_index1_exact
+
+    !> The index-2 DAE with dae_index = (1, 2): the error of the index-2 component
+    !! enters the test multiplied by h. Radau IIA's orders on index 2 (Hairer & Wanner
+    !! II, VII.4): 5 for y, 3 for z at the step points.
+    subroutine dae_index2(chk)
+        type(checker), intent(inout) :: chk
+        type(index2_dae) :: sys
+        type(radau_options) :: opts
+        real(wp) :: u(2), tols(3), erry(3), errz(3)
+        integer :: stat, k
+        type(radau_stats) :: st
+        opts%mass = [1.0_wp, 0.0_wp]
+        opts%dae_index = [1, 2]
+        do k = 1, size(tols)
+            tols(k) = 10.0_wp**(-3 - 2*k)
+            opts%rtol = tols(k)
+            opts%atol = tols(k)
+            call run(sys, 0.0_wp, [0.0_wp, 1.0_wp], 3.0_wp, opts, u, stat, st)
+            call chk%equal(stat, regdae_success, 'index-2 DAE run')
+            erry(k) = abs(u(1) - sin(3.0_wp))
+            errz(k) = abs(u(2) - cos(3.0_wp))
+            write (*, '(a,es8.1,a,es10.3,a,es10.3,a,i0,a,i0)') '    rtol = ', tols(k), ': error y ', erry(k), &
+                ', z ', errz(k), ', steps ', st%accepted, ', rejected ', st%rejected
+        end do
+        call chk%true(all(erry <= 10*tols), 'index-2 DAE: y within 10 rtol')
+        call chk%true(all(errz <= 100*tols), 'index-2 DAE: z within 100 rtol')
+    end subroutine dae_index2
 
     !> The error at t = 10 on the limit cycle for rtol = atol = 1e-4 ... 1e-10 falls with the tolerance.
     subroutine tolerance_proportionality(chk)
