@@ -30,6 +30,18 @@ module test_radau
         procedure :: jacobian => pr_jacobian
     end type prothero_robinson
 
+    !> The limit cycle as 2 u' = 2 F(u) (mass = (2, 2)).
+    type, extends(limit_cycle) :: doubled_limit_cycle
+    contains
+        procedure :: rhs => doubled_rhs
+    end type doubled_limit_cycle
+
+    !> Prothero-Robinson without its analytic Jacobian (difference quotients).
+    type, extends(prothero_robinson) :: pr_quotients
+    contains
+        procedure :: has_jacobian => pr_no_jacobian
+    end type pr_quotients
+
     !> y' = Q D Q^T y, Q a Householder reflector, D = diag(-1, -1e4, -1e6).
     type, extends(radau_system) :: stiff_linear
         real(wp) :: a(3, 3) = 0
@@ -77,7 +89,8 @@ contains
                  new_test('stiff_linear_exact', stiff_linear_exact), new_test('dae_index1_exact', dae_index1_exact), &
                  new_test('dae_index2', dae_index2), &
                  new_test('tolerance_proportionality', tolerance_proportionality), &
-                 new_test('dense_output', dense_output), new_test('van_der_pol_counts', van_der_pol_counts), &
+                 new_test('mass_and_jacobian', mass_and_jacobian), new_test('dense_output', dense_output), &
+                 new_test('van_der_pol_counts', van_der_pol_counts), &
                  new_test('rhs_failures', rhs_failures), new_test('bad_input', bad_input)]
     end function radau_tests
 
@@ -130,6 +143,21 @@ contains
         stat = regdae_success
         recoverable = .true.
     end subroutine pr_jacobian
+
+    subroutine doubled_rhs(self, t, u, f, stat, recoverable)
+        class(doubled_limit_cycle), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        call limit_cycle_rhs(self, t, u, f, stat, recoverable)
+        f = 2*f
+    end subroutine doubled_rhs
+
+    logical function pr_no_jacobian(self)
+        class(pr_quotients), intent(in) :: self
+        pr_no_jacobian = .false.
+    end function pr_no_jacobian
 
     subroutine stiff_linear_rhs(self, t, u, f, stat, recoverable)
         class(stiff_linear), intent(inout) :: self
@@ -505,6 +533,42 @@ contains
         write (*, '(a,f6.3)') '    slope of log error against log rtol: ', slope
         call chk%true(slope >= 0.8_wp, 'tolerance proportionality (slope >= 0.8)')
     end subroutine tolerance_proportionality
+
+    !> A general constant diagonal M: 2 u' = 2 F(u) gives u' = F(u)'s solution (to
+    !! rounding: the same steps, E_1 and E_2 scaled by 2); difference quotients
+    !! instead of Prothero-Robinson's analytic Jacobian: the same accuracy (the
+    !! quotient of a linear F is exact to about sqrt(u) relative, Newton's rate ~1e-8).
+    subroutine mass_and_jacobian(chk)
+        type(checker), intent(inout) :: chk
+        type(limit_cycle) :: plain
+        type(doubled_limit_cycle) :: doubled
+        type(prothero_robinson) :: pr
+        type(pr_quotients) :: prq
+        type(radau_options) :: opts
+        real(wp) :: u1(2), u2(2), v1(1), v2(1)
+        integer :: stat
+        type(radau_stats) :: s1, s2
+        opts%rtol = 1.0e-8_wp
+        opts%atol = 1.0e-8_wp
+        call run(plain, 0.0_wp, [0.5_wp, 0.0_wp], 3.0_wp, opts, u1, stat, s1)
+        call chk%equal(stat, regdae_success, 'M = I run')
+        opts%mass = [2.0_wp, 2.0_wp]
+        call run(doubled, 0.0_wp, [0.5_wp, 0.0_wp], 3.0_wp, opts, u2, stat, s2)
+        call chk%equal(stat, regdae_success, 'M = 2 I run')
+        call chk%true(maxval(abs(u1 - u2)) <= 1.0e-12_wp, 'M = 2 I: the solution of M = I')
+        call chk%equal(s2%accepted, s1%accepted, 'M = 2 I: the steps of M = I')
+        deallocate (opts%mass)
+        opts%rtol = 1.0e-6_wp
+        opts%atol = 1.0e-6_wp
+        call run(pr, 0.0_wp, [0.0_wp], 2.0_wp, opts, v1, stat, s1)
+        call chk%equal(stat, regdae_success, 'analytic Jacobian run')
+        call run(prq, 0.0_wp, [0.0_wp], 2.0_wp, opts, v2, stat, s2)
+        call chk%equal(stat, regdae_success, 'difference quotients run')
+        write (*, '(a,2es10.3,a,i0,a,i0,a,i0)') '    errors analytic / quotients ', abs(v1 - sin(2.0_wp)), &
+            abs(v2 - sin(2.0_wp)), ', steps ', s1%accepted, ' / ', s2%accepted, ', F with quotients ', s2%rhs_evals
+        call chk%true(abs(v2(1) - sin(2.0_wp)) <= 10*opts%rtol, 'difference quotients: accuracy')
+        call chk%true(s2%rhs_evals > s1%rhs_evals, 'difference quotients: their evaluations counted')
+    end subroutine mass_and_jacobian
 
     !> The continuous extension inside each step against the exact solution: its
     !! error O(h^4) (the collocation polynomial, stage order 3) stays within 10 rtol
