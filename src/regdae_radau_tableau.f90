@@ -114,7 +114,7 @@ contains
     end function inverse3
 
     pure function cross(x, y) result(z)
-        real(wp), intent(in) :: x(3), y(3)
+        real(wp), intent(in) :: x(:), y(:)   ! size 3 (assumed shape: matrix rows without copies)
         real(wp) :: z(3)
         z = [x(2)*y(3) - x(3)*y(2), x(3)*y(1) - x(1)*y(3), x(1)*y(2) - x(2)*y(1)]
     end function cross
