@@ -7,7 +7,7 @@ module regdae_lapack
     implicit none
     private
 
-    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv, dgesvd, dgbtrf, dgbtrs
+    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv, dgesvd, dgbtrf, dgbtrs, dgetrf, dgetrs, zgetrf, zgetrs
 
     interface
         !> Solve A X = B, A symmetric positive definite (Cholesky).
@@ -88,6 +88,44 @@ module regdae_lapack
             real(wp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dgbtrs
+
+        !> LU factorization of a general matrix with partial pivoting.
+        subroutine dgetrf(m, n, a, lda, ipiv, info)
+            import :: wp
+            integer, intent(in) :: m, n, lda
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: ipiv(*), info
+        end subroutine dgetrf
+
+        !> Solve with the LU factors of dgetrf.
+        subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: wp
+            character, intent(in) :: trans
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(wp), intent(in) :: a(lda, *)
+            integer, intent(in) :: ipiv(*)
+            real(wp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dgetrs
+
+        !> LU factorization of a general complex matrix with partial pivoting.
+        subroutine zgetrf(m, n, a, lda, ipiv, info)
+            import :: wp
+            integer, intent(in) :: m, n, lda
+            complex(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: ipiv(*), info
+        end subroutine zgetrf
+
+        !> Solve with the complex LU factors of zgetrf.
+        subroutine zgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: wp
+            character, intent(in) :: trans
+            integer, intent(in) :: n, nrhs, lda, ldb
+            complex(wp), intent(in) :: a(lda, *)
+            integer, intent(in) :: ipiv(*)
+            complex(wp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine zgetrs
     end interface
 
 end module regdae_lapack

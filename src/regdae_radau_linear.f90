@@ -1,0 +1,97 @@
+!> The two Newton matrices of the Radau IIA integrator (Hairer & Wanner, Solving
+!! ODEs II, section IV.8): with the transformation T that brings \(A^{-1}\) to
+!! \(\mathrm{diag}(\gamma, [\alpha, -\beta; \beta, \alpha])\), the simplified Newton
+!! system of the 3n stage unknowns splits into
+!! $$ E_1 = \frac{\gamma}{h} M - J \;(\text{real}, n \times n), \qquad
+!!    E_2 = \frac{\alpha + i\beta}{h} M - J \;(\text{complex}, n \times n), $$
+!! M the (diagonal) mass matrix and J the Jacobian of the right-hand side.
+!!
+!! Dense LU with partial pivoting (LAPACK dgetrf/dgetrs, zgetrf/zgetrs). The complex
+!! system is factored as a complex n x n matrix, not as the real 2n x 2n matrix
+!! [E_r, -E_i; E_i, E_r]: measured with the reference LAPACK of this machine, the
+!! factorization (with its assembly) is 1.5x (n = 4), 1.9x (8), 2.8x (16), 3.3x (30),
+!! 3.9x (45) and 4.1x (60) cheaper in complex form, one solve 1.5x-2.4x.
+module regdae_radau_linear
+    use regdae_kinds, only: wp
+    use regdae_status, only: regdae_success, regdae_err_singular, regdae_err_lapack
+    use regdae_lapack, only: dgetrf, dgetrs, zgetrf, zgetrs
+    implicit none
+    private
+
+    public :: radau_newton_matrices
+
+    !> The LU factors of E_1 and E_2 and a complex work vector.
+    type :: radau_newton_matrices
+        integer :: n = 0
+        real(wp), allocatable :: e1(:, :)       !! LU factors of E_1
+        integer, allocatable :: ipiv1(:)
+        complex(wp), allocatable :: e2(:, :)    !! LU factors of E_2
+        integer, allocatable :: ipiv2(:)
+        complex(wp), allocatable :: work(:)
+    contains
+        !> Allocate for n unknowns.
+        procedure :: init => matrices_init
+        !> Form and factor E_1 and E_2 from J, M and the three factors.
+        procedure :: factor => matrices_factor
+        !> Solve E_1 x = b in place.
+        procedure :: solve_real => matrices_solve_real
+        !> Solve E_2 (x + i y) = b + i c in place (x, y overwrite b, c).
+        procedure :: solve_complex => matrices_solve_complex
+    end type radau_newton_matrices
+
+contains
+
+    subroutine matrices_init(self, n)
+        class(radau_newton_matrices), intent(inout) :: self
+        integer, intent(in) :: n   !! number of unknowns
+        if (allocated(self%e1)) deallocate (self%e1, self%ipiv1, self%e2, self%ipiv2, self%work)
+        self%n = n
+        allocate (self%e1(n, n), self%ipiv1(n), self%e2(n, n), self%ipiv2(n), self%work(n))
+    end subroutine matrices_init
+
+    !> E_1 = fac_real M - J, E_2 = (fac_alpha + i fac_beta) M - J, both factored.
+    !! stat: regdae_success, regdae_err_singular (an exactly zero pivot: the caller
+    !! reduces the step) or regdae_err_lapack.
+    subroutine matrices_factor(self, jac, mass, fac_real, fac_alpha, fac_beta, stat)
+        class(radau_newton_matrices), intent(inout) :: self
+        real(wp), intent(in) :: jac(:, :)    !! J, n x n
+        real(wp), intent(in) :: mass(:)      !! the diagonal of M
+        real(wp), intent(in) :: fac_real     !! gamma / h
+        real(wp), intent(in) :: fac_alpha    !! alpha / h
+        real(wp), intent(in) :: fac_beta     !! beta / h
+        integer, intent(out) :: stat
+        integer :: i, info
+        complex(wp) :: fac_c
+        fac_c = cmplx(fac_alpha, fac_beta, wp)
+        self%e1 = -jac
+        self%e2 = cmplx(-jac, 0.0_wp, wp)
+        do i = 1, self%n
+            self%e1(i, i) = self%e1(i, i) + fac_real*mass(i)
+            self%e2(i, i) = self%e2(i, i) + fac_c*mass(i)
+        end do
+        call dgetrf(self%n, self%n, self%e1, self%n, self%ipiv1, info)
+        if (info == 0) call zgetrf(self%n, self%n, self%e2, self%n, self%ipiv2, info)
+        stat = regdae_success
+        if (info > 0) stat = regdae_err_singular
+        if (info < 0) stat = regdae_err_lapack
+    end subroutine matrices_factor
+
+    subroutine matrices_solve_real(self, b)
+        class(radau_newton_matrices), intent(inout) :: self
+        real(wp), intent(inout) :: b(:)   !! right-hand side in, solution out
+        integer :: info
+        call dgetrs('N', self%n, 1, self%e1, self%n, self%ipiv1, b, self%n, info)
+    end subroutine matrices_solve_real
+
+    subroutine matrices_solve_complex(self, b, c)
+        class(radau_newton_matrices), intent(inout) :: self
+        real(wp), intent(inout) :: b(:)   !! real part of the right-hand side in, of the solution out
+        real(wp), intent(inout) :: c(:)   !! imaginary part, likewise
+        integer :: info
+        self%work = cmplx(b, c, wp)
+        call zgetrs('N', self%n, 1, self%e2, self%n, self%ipiv2, self%work, self%n, info)
+        b = real(self%work, wp)
+        c = aimag(self%work)
+    end subroutine matrices_solve_complex
+
+end module regdae_radau_linear
