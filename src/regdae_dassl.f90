@@ -435,20 +435,18 @@ contains
         else if (info(info_vector_tol) == 1 .and. any(rtol(1:n_tol) /= rtol(1))) then
             ! ATOL per component (DREGDAE: N entries; DREGDAEM: 2N, q then q'); regdae's rtol
             ! is one number
-            msg = 'INFO(2) = 1: regdae has one relative tolerance; RTOL(1:'//format_int(n_tol)// &
-                  ') must be equal (ATOL may vary)'
-        else if (info(info_intermediate) == 1) then
-            msg = 'INFO(3) = 1 (intermediate output) is not available: DREGDAE returns at TOUT; set INFO(3) = 0'
+            msg = 'INFO(2) = 1 with unequal RTOL(1:'//format_int(n_tol)//'): regdae has one relative tolerance '// &
+                  '(its integrators take a scalar rtol); give RTOL equal entries and set the scale of each '// &
+                  'component through ATOL, which may vary'
         end if
         do i = 2, 11
             if (len(msg) == 0 .and. info(i) /= 0 .and. info(i) /= 1) &
                 msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' must be 0 or 1'
         end do
-        do i = 5, 15
+        do i = 3, 15
             if (len(msg) > 0) exit
-            if (info(i) /= 0 .and. any(i == [5, 6, 9, 10, 12, 13, 14, 15])) &
-                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)// &
-                      ', which DREGDAE does not have: set it to 0'
+            if (info(i) /= 0 .and. any(i == [info_intermediate, 5, 6, 9, 10, 12, 13, 14, 15])) &
+                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)
         end do
         if (len(msg) > 0) return
         if (info(info_method) < 0 .or. info(info_method) > method_direct) then
@@ -504,16 +502,34 @@ contains
         end if
     end function tolerances
 
-    ! What DASSL's (and DDASPK's) INFO(i) asks for.
+    ! What DASSL's (and DDASPK's) INFO(i) asks for, why DREGDAE does not have it, and
+    ! what to do instead.
     pure function dassl_feature(i) result(text)
         integer, intent(in) :: i
         character(len=:), allocatable :: text
         select case (i)
-        case (5); text = 'a JAC routine (regdae forms its Jacobians itself)'
-        case (6); text = 'a banded matrix (IWORK(1), IWORK(2))'
-        case (9); text = 'a maximum order (IWORK(3))'
-        case (10); text = 'nonnegative solutions'
-        case default; text = 'a DDASPK option'
+        case (3)
+            text = 'a return after every step, which DREGDAE does not have (the singular-pass checks and the '// &
+                   'integrator switching work between output times): set INFO(3) = 0 and ask for closer TOUT'
+        case (5)
+            text = 'a JAC routine, which DREGDAE does not take (it forms the Jacobian of the regularized system '// &
+                   'itself from GX and difference quotients): set INFO(5) = 0'
+        case (6)
+            text = 'a banded matrix (IWORK(1), IWORK(2)), which DREGDAE does not take (its systems are dense; the '// &
+                   'band solver serves the declared structure of large mechanisms in the Fortran and C APIs, '// &
+                   'linear_solver=band): set INFO(6) = 0'
+        case (9)
+            text = 'a maximum order (IWORK(3)), which DREGDAE does not pass on (IDA uses orders up to 5): set '// &
+                   'INFO(9) = 0, and a smaller HMAX (INFO(7)) if the steps must stay short'
+        case (10)
+            text = 'nonnegative solutions, which DREGDAE does not enforce (it passes no constraints to IDA): set '// &
+                   'INFO(10) = 0 and check the signs after each return'
+        case (12, 13, 15)
+            text = 'DDASPK''s Krylov method (INFO(12), (13), (15)), which DREGDAE does not have (its Newton '// &
+                   'systems are solved directly): set INFO(12), INFO(13) and INFO(15) to 0'
+        case default
+            text = 'the initial values alone (DDASPK''s INFO(14)), which DREGDAE does not stop at (it checks '// &
+                   'g(x0, t0) = 0 and computes y(t0) at every start, then integrates): set INFO(14) = 0'
         end select
     end function dassl_feature
 

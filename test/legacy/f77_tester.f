@@ -125,10 +125,21 @@ C     RWORK too small
       CALL DREGDAEFREE(IWORK, 22)
 C     INFO entries: intermediate output, JAC, DDASPK's, a method
 C     that is none, an index for DREGDAE, not 0/1 (INFO(2): VECTOR)
-      CALL ONEBAD(3, 1, 'INFO(3) = 1 (intermediate', NCHK)
+C     (each message says why, and what to set instead)
+      CALL ONEBAD(3, 1, 'return after every step', NCHK)
+      CALL ONEBAD(3, 1, 'set INFO(3) = 0', NCHK)
       CALL ONEBAD(5, 1, 'a JAC routine', NCHK)
+      CALL ONEBAD(5, 1, 'set INFO(5) = 0', NCHK)
       CALL ONEBAD(6, 1, 'a banded matrix', NCHK)
-      CALL ONEBAD(12, 1, 'a DDASPK option', NCHK)
+      CALL ONEBAD(6, 1, 'set INFO(6) = 0', NCHK)
+      CALL ONEBAD(9, 1, 'a maximum order', NCHK)
+      CALL ONEBAD(9, 1, 'set INFO(9) = 0', NCHK)
+      CALL ONEBAD(10, 1, 'nonnegative solutions', NCHK)
+      CALL ONEBAD(10, 1, 'set INFO(10) = 0', NCHK)
+      CALL ONEBAD(12, 1, 'Krylov method', NCHK)
+      CALL ONEBAD(13, 1, 'set INFO(12), INFO(13)', NCHK)
+      CALL ONEBAD(14, 1, 'set INFO(14) = 0', NCHK)
+      CALL ONEBAD(15, 1, 'Krylov method', NCHK)
       CALL ONEBAD(16, 7, 'INFO(16) = 7 is not a method', NCHK)
       CALL ONEBAD(17, 2, 'INFO(17) = 2', NCHK)
       CALL ONEBAD(18, 3, 'the index is for DREGDAEM', NCHK)
@@ -584,8 +595,9 @@ C
       RT(2) = 1.0D-5
       CALL TRYVEC(1, RT, AT, XL, IDID, MSG)
       CALL CHECK(IDID .EQ. -33 .AND.
-     *     INDEX(MSG, 'one relative tolerance') .GT. 0,
-     *     'unequal RTOL(i) refused', NCHK)
+     *     INDEX(MSG, 'one relative tolerance') .GT. 0 .AND.
+     *     INDEX(MSG, 'through ATOL') .GT. 0,
+     *     'unequal RTOL(i) refused, saying what to do', NCHK)
       END
 C
 C     ---- WARN --------------------------------------------------------
