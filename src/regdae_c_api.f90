@@ -28,6 +28,7 @@ module regdae_c_api
     use regdae_c_routines, only: c_routines
     use regdae_c_records, only: c_options, c_stats, to_c_options, to_c_stats
     use regdae_c_strings, only: c_string
+    use regdae_parse, only: has_outer_blank
     implicit none
     private
 
@@ -731,12 +732,19 @@ contains
         end subroutine pattern_or_dense
     end subroutine declare_structure
 
-    ! An option from its text (the drivers' parser); the message names the caller.
+    ! An option from its text (the drivers' parser); the message names the caller. A
+    ! C string has its own length: a blank around the key or the value is refused (the
+    ! parser, written for blank-padded Fortran texts, would ignore it).
     integer(c_int) function set_text_option(s, key, value, who) result(status)
         type(c_session), intent(inout) :: s
         character(len=*), intent(in) :: key, value, who
         character(len=:), allocatable :: msg
         integer :: stat
+        if (has_outer_blank(key) .or. has_outer_blank(value)) then
+            status = refuse(s, who//': key "'//key//'" or value "'//value//'" begins or ends with a blank: '// &
+                            'keys and values are read exactly as given')
+            return
+        end if
         call set_option(s%opts, key, value, stat, msg)
         if (stat /= regdae_success) msg = who//': '//msg
         status = record(s, stat, msg)

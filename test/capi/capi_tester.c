@@ -472,6 +472,21 @@ static void problems(void)
         CHECK(err < 1e-4);
         if (err >= 1e-4) printf("  K particles, variant %d: error %g: %s\n", status, err, regdae_message(s));
     }
+    /* a C string has its own length: blanks around a key or a value are refused, and the
+       options stay as they were */
+    {
+        static const char *padded[][2] = {{"rtol", "1e-3 "}, {"rtol", " 1e-3"}, {"rtol", "1e-3\t"},
+                                          {"rtol ", "1e-3"}, {"max_steps", "100 "}, {"method", "direct "}};
+        int k;
+        regdae_set_option(s, "rtol", "1e-6");
+        for (k = 0; k < (int)(sizeof padded / sizeof padded[0]); k++) {
+            CHECK(regdae_set_option(s, padded[k][0], padded[k][1]) == REGDAE_ERR_BAD_INPUT &&
+                  says(s, "begins or ends with a blank"));
+        }
+        CHECK(regdae_get_options(s, &opts) == REGDAE_SUCCESS && opts.rtol == 1e-6 &&
+              opts.method == REGDAE_METHOD_TRUST_REGION && opts.max_steps == 100000);
+        CHECK(regdae_set_option(s, "rtol", "1e-3") == REGDAE_SUCCESS);
+    }
     regdae_destroy(&s);
 }
 
