@@ -369,6 +369,23 @@ static void bad_input(void)
     CHECK(regdae_set_formulation(s, REGDAE_FORMULATION_AUGMENTED) == REGDAE_SUCCESS);
     CHECK(regdae_init(s, 0.0, x0, 2, v0, 2) == REGDAE_ERR_STRUCTURE && says(s, "outside the sparsity pattern"));
 
+    /* a C string has its own length: blanks around a key or a value are refused, and the
+       options stay as they were */
+    {
+        static const char *padded[][2] = {{"rtol", "1e-3 "}, {"rtol", " 1e-3"}, {"rtol", "1e-3\t"},
+                                          {"rtol ", "1e-3"}, {"max_steps", "100 "}, {"method", "direct "}};
+        int k;
+        regdae_solver *s = regdae_create();
+        regdae_set_option(s, "rtol", "1e-6");
+        for (k = 0; k < (int)(sizeof padded / sizeof padded[0]); k++) {
+            CHECK(regdae_set_option(s, padded[k][0], padded[k][1]) == REGDAE_ERR_BAD_INPUT &&
+                  says(s, "begins or ends with a blank"));
+        }
+        CHECK(regdae_get_options(s, &opts) == REGDAE_SUCCESS && opts.rtol == 1e-6 &&
+              opts.method == REGDAE_METHOD_TRUST_REGION && opts.max_steps == 100000);
+        CHECK(regdae_set_option(s, "rtol", "1e-3") == REGDAE_SUCCESS);
+        regdae_destroy(&s);
+    }
     regdae_destroy(&s);
     CHECK(s == NULL);
     regdae_destroy(&s); /* twice: nothing happens */
@@ -471,21 +488,6 @@ static void problems(void)
            augmented (lambda is IDA's interpolated unknown there); 40 times that */
         CHECK(err < 1e-4);
         if (err >= 1e-4) printf("  K particles, variant %d: error %g: %s\n", status, err, regdae_message(s));
-    }
-    /* a C string has its own length: blanks around a key or a value are refused, and the
-       options stay as they were */
-    {
-        static const char *padded[][2] = {{"rtol", "1e-3 "}, {"rtol", " 1e-3"}, {"rtol", "1e-3\t"},
-                                          {"rtol ", "1e-3"}, {"max_steps", "100 "}, {"method", "direct "}};
-        int k;
-        regdae_set_option(s, "rtol", "1e-6");
-        for (k = 0; k < (int)(sizeof padded / sizeof padded[0]); k++) {
-            CHECK(regdae_set_option(s, padded[k][0], padded[k][1]) == REGDAE_ERR_BAD_INPUT &&
-                  says(s, "begins or ends with a blank"));
-        }
-        CHECK(regdae_get_options(s, &opts) == REGDAE_SUCCESS && opts.rtol == 1e-6 &&
-              opts.method == REGDAE_METHOD_TRUST_REGION && opts.max_steps == 100000);
-        CHECK(regdae_set_option(s, "rtol", "1e-3") == REGDAE_SUCCESS);
     }
     regdae_destroy(&s);
 }
