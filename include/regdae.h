@@ -380,9 +380,10 @@ int regdae_set_pattern_values(regdae_solver *solver, int which, regdae_point_fn 
  * jump_tol, drift_tol, invariant_tol, resolution_tol, work_tol, taylor_h,
  * mass_damping, integrator, linear_solver, check_jacobians, pass_check, pass_tol,
  * error_estimate; a test checks this
- * list against the options). Numbers are read strictly ("1e-3", ".5"; not "1-3").
- * An unknown key or a bad value gives REGDAE_ERR_BAD_INPUT, a message naming it,
- * and leaves the options unchanged.
+ * list against the options). Numbers are read strictly ("1e-3", ".5"; not "1-3"),
+ * and a key or value is taken as given: a blank before or after it ("1e-3 ") is
+ * refused. An unknown key or a bad value gives REGDAE_ERR_BAD_INPUT, a message
+ * naming it, and leaves the options unchanged.
  */
 int regdae_set_option(regdae_solver *solver, const char *key, const char *value);
 
