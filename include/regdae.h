@@ -39,7 +39,7 @@
  *   for bit. One defect of the compiler stands in the way of more: gfortran 12
  *   keeps the length of a text that a function returns in a static variable
  *   (valgrind --tool=helgrind reports races on these, slen.N, in regdae_init,
- *   regdae_advance and regdae_set_real_option), so texts built at the same moment
+ *   regdae_advance and regdae_set_real_option, and on nothing else), so texts built at the same moment
  *   in two threads may come out with a wrong length. Until the library is built
  *   with a compiler without it: read messages, and set options (the setters pass
  *   values as text), from one thread at a time; the integration itself does not
