@@ -17,7 +17,8 @@
 !! own: a `character(len=32)` variable holding `1e-3` ends in 28 blanks, which are
 !! padding, not input. Where a text does have its own length (a C string, a
 !! command-line argument), a blank before or after it is part of what was typed:
-!! those doors refuse such a text (`1e-3 `) before reading it, with `has_outer_blank`.
+!! the C door refuses such a text (`1e-3 `) before reading it, with `has_outer_blank`
+!! (the drivers' command line does not, yet).
 module regdae_parse
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
