@@ -18,13 +18,17 @@ C     -std=legacy.
      *     X(1), Y(1), ERR
 C
 C     Every option at its default (0), then the choices: INFO(16) = 2,
-C     the trust-region method; INFO(17) = 1, GT is supplied.
+C     the trust-region method; INFO(17) = 1, GT is supplied. IWORK
+C     zeroed: a start reads IWORK(19:22) to free a solver left there.
       DO 10 I = 1, 20
          INFO(I) = 0
    10 CONTINUE
       DO 20 I = 1, LRW
          RWORK(I) = 0.0D0
    20 CONTINUE
+      DO 25 I = 1, LIW
+         IWORK(I) = 0
+   25 CONTINUE
       INFO(16) = 2
       INFO(17) = 1
       RTOL = 1.0D-8

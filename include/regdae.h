@@ -22,12 +22,28 @@
  *   then says what and where. Status codes are those of src/regdae_status.f90.
  * - NULL pointers, lengths that do not match the problem and unknown option keys
  *   give REGDAE_ERR_BAD_INPUT and a message naming the argument; a NULL handle
- *   gives REGDAE_ERR_BAD_INPUT alone (there is nowhere to keep a message).
+ *   gives REGDAE_ERR_BAD_INPUT alone (there is nowhere to keep a message:
+ *   regdae_message(NULL) is a static text saying so). regdae_status_string(status)
+ *   describes any status without a handle.
  * - Every array comes with its length; a length must equal the problem's size.
  * - Matrices are stored column by column (Fortran and LAPACK order): entry
  *   (i, j), 0-based, of an r x c matrix a is a[i + j*r].
- * - All state lives in the handle: any number of handles can be used side by
- *   side, one handle by one thread at a time.
+ * - Threads: all state of a solver lives in its handle (regdae's sources declare
+ *   no global or static variable that is written; the static texts of
+ *   regdae_version, regdae_status_string and regdae_message(NULL) are never
+ *   written), and SUNDIALS' serial vectors and IDA keep theirs in their own
+ *   objects. One handle is used by one thread at a time (calls on a handle are
+ *   not synchronized); its callbacks run in the thread that called it. Separate
+ *   handles in separate threads: ctest capi.threads runs two handles in two POSIX
+ *   threads on the same problems and gets what one handle run serially gets, bit
+ *   for bit. One defect of the compiler stands in the way of more: gfortran 12
+ *   keeps the length of a text that a function returns in a static variable
+ *   (valgrind --tool=helgrind reports races on these, slen.N, in regdae_init,
+ *   regdae_advance and regdae_set_real_option, and on nothing else), so texts built at the same moment
+ *   in two threads may come out with a wrong length. Until the library is built
+ *   with a compiler without it: read messages, and set options (the setters pass
+ *   values as text), from one thread at a time; the integration itself does not
+ *   depend on those texts (the test above).
  * - Callbacks return 0 on success, > 0 for a recoverable failure (the integrator
  *   retries with a smaller step: e.g. x left the domain of f) and < 0 to stop the
  *   integration (REGDAE_ERR_USER_CALLBACK; the message names the callback, the
@@ -43,6 +59,14 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* ---- Version ----------------------------------------------------------------- */
+
+/** The version of this header: CMakeLists.txt's project(VERSION) (ctest capi.version).
+ *  regdae_version() gives the library's at run time. */
+#define REGDAE_VERSION_MAJOR 0
+#define REGDAE_VERSION_MINOR 1
+#define REGDAE_VERSION_PATCH 0
 
 /* ---- Status codes (src/regdae_status.f90; doc/api.md section 4) ------------ */
 
@@ -242,9 +266,24 @@ void regdae_destroy(regdae_solver **solver);
 /**
  * The message of the last call on this solver: what went wrong, with the time
  * and the quantity; "" after success. Owned by the solver, valid until its next
- * call. NULL for a NULL solver.
+ * call. For a NULL solver a static text saying so; never NULL.
  */
 const char *regdae_message(const regdae_solver *solver);
+
+/**
+ * The fixed description of a status code (the Fortran API's status_message):
+ * "success", "invalid input", ... (regdae_message adds the details of a call).
+ * A static text, never NULL; for a code that is no regdae status a text that
+ * says so ("unknown status code (not a regdae status)").
+ */
+const char *regdae_status_string(int status);
+
+/**
+ * The version of the library linked, "MAJOR.MINOR.PATCH" (a static text, never
+ * NULL), and its three numbers in *major, *minor, *patch (each may be NULL).
+ * Compare with REGDAE_VERSION_* to catch a header of another version.
+ */
+const char *regdae_version(int *major, int *minor, int *patch);
 
 /* ---- The problem -------------------------------------------------------------
  * One of regdae_set_first_order, regdae_set_second_order, regdae_set_mechanical
@@ -341,9 +380,10 @@ int regdae_set_pattern_values(regdae_solver *solver, int which, regdae_point_fn 
  * jump_tol, drift_tol, invariant_tol, resolution_tol, work_tol, taylor_h,
  * mass_damping, integrator, linear_solver, check_jacobians, pass_check, pass_tol,
  * error_estimate; a test checks this
- * list against the options). Numbers are read strictly ("1e-3", ".5"; not "1-3").
- * An unknown key or a bad value gives REGDAE_ERR_BAD_INPUT, a message naming it,
- * and leaves the options unchanged.
+ * list against the options). Numbers are read strictly ("1e-3", ".5"; not "1-3"),
+ * and a key or value is taken as given: a blank before or after it ("1e-3 ") is
+ * refused. An unknown key or a bad value gives REGDAE_ERR_BAD_INPUT, a message
+ * naming it, and leaves the options unchanged.
  */
 int regdae_set_option(regdae_solver *solver, const char *key, const char *value);
 
@@ -446,6 +486,11 @@ static inline int regdae_set_max_steps(regdae_solver *solver, int max_steps)
  * The options: after a successful regdae_init those in force, every REGDAE_AUTO
  * resolved to the value at t0 (formulation, linear_solver and lsq to the choice
  * made; singular_threshold stays REGDAE_AUTO, a rule); before, those set so far.
+ * integrator after init: REGDAE_INTEGRATOR_IDA or _DOPRI5 when that integrator
+ * was chosen, and for REGDAE_INTEGRATOR_AUTO on a formulation other than
+ * eliminated (IDA does the whole run there); REGDAE_INTEGRATOR_AUTO on the
+ * eliminated formulation, where the switching policy is in force (dopri5 while
+ * the system is not stiff, IDA where it is; regdae_stats.switches counts them).
  */
 int regdae_get_options(const regdae_solver *solver, regdae_options *options);
 

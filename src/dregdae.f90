@@ -14,7 +14,8 @@
 !! Problems: DREGDAE solves x' = f(x, t) - B(x, t) y, 0 = g(x, t) (paper, eq. 2.1);
 !! DREGDAEM solves M(q) q'' = f(q, q', t) + G^T lambda, 0 = g(q, t) (eq. 1.2).
 !! User routines (declared EXTERNAL by the caller; IRES = 0 on entry, -1: try a
-!! smaller step, other nonzero values: stop with IDID = -11):
+!! smaller step, other nonzero values: stop with IDID = -11; messages name them as
+!! this argument list does, e.g. "G returned IRES = -2 at t = ..."):
 !!     SUBROUTINE F(T, X, FX, IRES, RPAR, IPAR)       FX(N)     = f(x, t)
 !!     SUBROUTINE B(T, X, BX, IRES, RPAR, IPAR)       BX(N, M)  = B(x, t)
 !!     SUBROUTINE G(T, X, GV, IRES, RPAR, IPAR)       GV(M)     = g(x, t)
@@ -91,8 +92,9 @@ subroutine dregdaemsg(iwork, liw, msg)
     call dassl_message(iwork, liw, msg)
 end subroutine dregdaemsg
 
-!> Free the solver that IWORK holds (call it when a problem is done; a new
-!! problem with INFO(1) = 0 on the same IWORK reuses it instead).
+!> Free what IWORK holds: the solver, or after a refused start its message (call it
+!! when a problem is done, whatever IDID was; a start with INFO(1) = 0 on the same
+!! IWORK frees it too).
 subroutine dregdaefree(iwork, liw)
     use regdae_dassl, only: dassl_free
     implicit none

@@ -12,10 +12,12 @@ module regdae_c_api
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_funptr, c_null_ptr, c_null_char, &
                                            c_null_funptr, c_associated, c_f_pointer, c_loc
     use regdae_kinds, only: wp
-    use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_not_initialized, regdae_err_user_callback
+    use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_not_initialized, regdae_err_user_callback, &
+                             status_codes, status_texts, status_text_len, unknown_status_text
     use regdae_format, only: format_int, format_real
     use regdae_options, only: solver_options, set_option, option_auto, method_name, integrator_name, formulation_name, &
-                              lsq_name, exclusion_name, excluded_name, linear_solver_name
+                              lsq_name, exclusion_name, excluded_name, linear_solver_name, integrator_auto, integrator_ida, &
+                              formulation_eliminated
     use regdae_sparsity, only: sparsity_pattern, pattern_from_entries, dense_pattern
     use regdae_mechanical_problem, only: mechanical_structure
     use regdae_solver_trust, only: regdae_solver
@@ -26,6 +28,7 @@ module regdae_c_api
     use regdae_c_routines, only: c_routines
     use regdae_c_records, only: c_options, c_stats, to_c_options, to_c_stats
     use regdae_c_strings, only: c_string
+    use regdae_parse, only: has_outer_blank
     implicit none
     private
 
@@ -36,6 +39,22 @@ module regdae_c_api
     integer, parameter, public :: pattern_constraint = 2  !! G, m x n
     integer, parameter, public :: pattern_force_q = 3     !! d(f - M a)/dq, n x n
     integer, parameter, public :: pattern_force_v = 4     !! df/dq', n x n
+
+    !> The version of regdae: CMakeLists.txt's project(VERSION), REGDAE_VERSION_* in
+    !! include/regdae.h (ctest capi.version checks all three against each other).
+    integer, parameter, public :: regdae_version_major = 0, regdae_version_minor = 1, regdae_version_patch = 0
+
+    ! The texts C receives as `const char *` that outlive every call: the status
+    ! descriptions, the version and the message of a NULL handle. Initialized here and
+    ! never written (protected: no procedure assigns them), so any number of threads
+    ! may read them at once; the only module variables of the library, because C needs
+    ! an address that stays valid and a parameter has none.
+    character(len=status_text_len, kind=c_char), target, protected :: c_status_texts(size(status_codes)) = status_texts
+    character(len=len(unknown_status_text), kind=c_char), target, protected :: c_unknown_status = unknown_status_text
+    character(len=6, kind=c_char), target, protected :: c_version = '0.1.0'//c_null_char
+    character(len=*, kind=c_char), parameter :: null_handle_text = &
+        'regdae: no solver (a NULL handle: regdae_create returned NULL, or regdae_destroy has freed it)'//c_null_char
+    character(len=len(null_handle_text), kind=c_char), target, protected :: c_null_handle = null_handle_text
 
     ! What a handle points at.
     type :: c_session
@@ -52,7 +71,7 @@ module regdae_c_api
         real(wp), allocatable :: atol_vector(:)      ! regdae_set_atol_vector (unallocated: the atol option)
     end type c_session
 
-    public :: regdae_create, regdae_destroy, regdae_message
+    public :: regdae_create, regdae_destroy, regdae_message, regdae_status_string, regdae_version
     public :: regdae_set_first_order, regdae_set_second_order, regdae_set_mechanical, regdae_set_curvature, &
               regdae_set_invariant, regdae_set_pattern, regdae_set_pattern_values, &
               regdae_pattern_position
@@ -94,15 +113,48 @@ contains
     end subroutine regdae_destroy
 
     !> `const char *regdae_message(const regdae_solver *solver)`: the message of the
-    !! last call on the handle ("" after success); NULL for a NULL handle.
+    !! last call on the handle ("" after success); for a NULL handle a static text
+    !! saying so (never NULL).
     type(c_ptr) function regdae_message(handle) bind(C, name='regdae_message')
         type(c_ptr), value :: handle
         type(c_session), pointer :: s
-        regdae_message = c_null_ptr
+        regdae_message = c_loc(c_null_handle)
         if (.not. c_associated(handle)) return
         call c_f_pointer(handle, s)
         regdae_message = c_loc(s%message(1))
     end function regdae_message
+
+    !> `const char *regdae_status_string(int status)`: the fixed description of a
+    !! status code (`status_message` of the Fortran API), a static text; for a code
+    !! that is no regdae status, a static text saying so (never NULL).
+    type(c_ptr) function regdae_status_string(code) bind(C, name='regdae_status_string')
+        integer(c_int), value :: code
+        integer :: k
+        regdae_status_string = c_loc(c_unknown_status)
+        do k = 1, size(status_codes)
+            if (status_codes(k) == code) regdae_status_string = c_loc(c_status_texts(k))
+        end do
+    end function regdae_status_string
+
+    !> `const char *regdae_version(int *major, int *minor, int *patch)`: the library's
+    !! version as a static text ("0.1.0"), and its three numbers in the ints that are
+    !! not NULL.
+    type(c_ptr) function regdae_version(major, minor, patch) bind(C, name='regdae_version')
+        type(c_ptr), value :: major, minor, patch
+        call put(major, regdae_version_major)
+        call put(minor, regdae_version_minor)
+        call put(patch, regdae_version_patch)
+        regdae_version = c_loc(c_version)
+    contains
+        subroutine put(p, value)
+            type(c_ptr), intent(in) :: p
+            integer, intent(in) :: value
+            integer(c_int), pointer :: target_int
+            if (.not. c_associated(p)) return
+            call c_f_pointer(p, target_int)
+            target_int = int(value, c_int)
+        end subroutine put
+    end function regdae_version
 
     ! --- the problem ------------------------------------------------------------------
 
@@ -348,6 +400,10 @@ contains
             opts%formulation = s%solver%formulation()
             opts%linear_solver = s%solver%linear_solver()
             if (s%solver%lsq_method() /= 0) opts%lsq = s%solver%lsq_method()
+            ! integrator=auto serves with dopri5 on the eliminated formulation only: on the
+            ! others IDA does the whole run (regdae_solver_front's start)
+            if (opts%integrator == integrator_auto .and. opts%formulation /= formulation_eliminated) &
+                opts%integrator = integrator_ida
         end if
         call c_f_pointer(out, c)
         c = to_c_options(opts)
@@ -676,12 +732,19 @@ contains
         end subroutine pattern_or_dense
     end subroutine declare_structure
 
-    ! An option from its text (the drivers' parser); the message names the caller.
+    ! An option from its text (the drivers' parser); the message names the caller. A
+    ! C string has its own length: a blank around the key or the value is refused (the
+    ! parser, written for blank-padded Fortran texts, would ignore it).
     integer(c_int) function set_text_option(s, key, value, who) result(status)
         type(c_session), intent(inout) :: s
         character(len=*), intent(in) :: key, value, who
         character(len=:), allocatable :: msg
         integer :: stat
+        if (has_outer_blank(key) .or. has_outer_blank(value)) then
+            status = refuse(s, who//': key "'//key//'" or value "'//value//'" begins or ends with a blank: '// &
+                            'keys and values are read exactly as given')
+            return
+        end if
         call set_option(s%opts, key, value, stat, msg)
         if (stat /= regdae_success) msg = who//': '//msg
         status = record(s, stat, msg)

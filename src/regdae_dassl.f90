@@ -9,9 +9,16 @@
 !! and keeps its address in IWORK(21...) with a mark and a check word in IWORK(19)
 !! and IWORK(20); later calls (INFO(1) = 1), DREGDAEMSG and DREGDAEFREE find it
 !! there and refuse an IWORK whose mark or check word is wrong. Each problem has
-!! its own IWORK: any number can be interleaved. The start does not read IWORK
-!! (DASSL's callers do not initialize it), so it cannot free a solver that IWORK
-!! held before: DREGDAEFREE does that.
+!! its own IWORK: any number can be interleaved. A start on an IWORK that holds a
+!! session (its mark and check word intact) frees that session first, so a restart
+!! the DASSL way (INFO(1) = 0 again, no DREGDAEFREE) leaks nothing; an IWORK that
+!! holds none (DASSL's callers do not initialize it) is only written.
+!!
+!! A refused start allocates no solver: the input is checked first, and the session
+!! then keeps only the refusal's message, for DREGDAEMSG (a start whose solver
+!! `init` fails frees the solver's memory the same way). A continuation refused
+!! because IWORK holds no session cannot keep its message there: it leaves the
+!! reason's code in IWORK(10), which DREGDAEMSG reads first.
 module regdae_dassl
     use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer
     use, intrinsic :: iso_fortran_env, only: error_unit, int64
@@ -56,6 +63,10 @@ module regdae_dassl
     integer, parameter :: iwork_steps = 11, iwork_res_evals = 12, iwork_jac_evals = 13, iwork_err_test_fails = 14, &
                           iwork_conv_fails = 15, iwork_singular_passes = 16, iwork_switches = 17, iwork_status = 18
     integer, parameter :: iwork_mark = 19, iwork_check = 20, iwork_address = 21
+    ! IWORK(10): 0, or the reason a call that found no session in IWORK was refused
+    ! (DASSL keeps an internal counter there; DREGDAE reads none of IWORK(1:10))
+    integer, parameter :: iwork_refusal = 10
+    integer, parameter :: refused_no_solver = 1, refused_after_failure = 2, refused_info1 = 3
     ! Default integers that hold an address (2 for 64-bit addresses and 32-bit integers).
     integer, parameter :: address_words = ceiling(real(storage_size(c_null_ptr))/real(storage_size(0)))
     !> The smallest LIW.
@@ -107,6 +118,7 @@ contains
         type(foreign_first_order) :: problem
         type(solver_options) :: opts
         integer :: stat
+        logical :: init_failed   ! this call's start (INFO(1) = 0) failed in the solver's init
 
         if (.not. open_call(kind_first_order, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
                             opts)) return
@@ -114,14 +126,16 @@ contains
         s%routines%f => f
         s%routines%b => b
         stat = regdae_success
+        init_failed = .false.
         if (info(info_start) == 0) then
             problem%n = n
             problem%m = m
             problem%routines => s%routines
             call s%solver%init(problem, t, x, opts, stat, atol_vector=tolerances(info, atol, n))
+            init_failed = (stat /= regdae_success)
         end if
         if (stat == regdae_success) call s%solver%advance(tout, x, y, stat)
-        call close_call(s, stat, t, tout, info, rwork, iwork, idid)
+        call close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid)
     end subroutine dassl_first_order
 
     !> DREGDAEM: M(q) q'' = f(q, q', t) + G^T lambda, 0 = g(q, t), from T to TOUT.
@@ -147,6 +161,7 @@ contains
         type(foreign_mechanical) :: problem
         type(solver_options) :: opts
         integer :: stat
+        logical :: init_failed   ! this call's start (INFO(1) = 0) failed in the solver's init
 
         if (.not. open_call(kind_mechanical, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
                             opts)) return
@@ -154,14 +169,16 @@ contains
         s%routines%mass => mass
         s%routines%forces => forces
         stat = regdae_success
+        init_failed = .false.
         if (info(info_start) == 0) then
             problem%n = n
             problem%m = m
             problem%routines => s%routines
             call s%solver%init(problem, t, q, v, opts, stat, atol_vector=tolerances(info, atol, 2*n))
+            init_failed = (stat /= regdae_success)
         end if
         if (stat == regdae_success) call s%solver%advance(tout, q, lambda, stat, v=v)
-        call close_call(s, stat, t, tout, info, rwork, iwork, idid)
+        call close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid)
     end subroutine dassl_mechanical
 
     !> DREGDAEMSG: the message of the last call on the problem of IWORK ('' after
@@ -171,9 +188,16 @@ contains
         integer, intent(in) :: iwork(liw)
         character(len=*), intent(out) :: msg
         type(dassl_session), pointer :: s
-        msg = 'DREGDAEMSG: IWORK holds no regdae solver (no call with INFO(1) = 0 yet, or DREGDAEFREE since)'
-        if (.not. session_in(iwork, liw, s)) return
-        msg = s%message
+        if (liw < min_liw) then
+            msg = 'DREGDAEMSG: an IWORK of LIW = '//format_int(liw)//' holds no regdae solver (LIW >= '// &
+                  format_int(min_liw)//' is needed: a call with this LIW is refused for that)'
+        else if (iwork(iwork_refusal) >= refused_no_solver .and. iwork(iwork_refusal) <= refused_info1) then
+            msg = refusal_text(iwork(iwork_refusal))   ! the last call found no session to keep its message
+        else if (session_in(iwork, liw, s)) then
+            msg = s%message
+        else
+            msg = 'DREGDAEMSG: IWORK holds no regdae solver (no call with INFO(1) = 0 yet, or DREGDAEFREE since)'
+        end if
     end subroutine dassl_message
 
     !> DREGDAEFREE: free the solver of IWORK (nothing if it holds none).
@@ -204,8 +228,9 @@ contains
         s%routines%ipar = c_loc(ipar(1))
     end subroutine attach
 
-    ! The checks of a call, the session of IWORK (created or reset by INFO(1) = 0) and,
-    ! at the start, the options. False: IDID = -33 is set and the message printed.
+    ! The checks of a call, the session of IWORK (created by INFO(1) = 0, after the
+    ! one IWORK held is freed) and, at the start, the options. False: IDID = -33 is
+    ! set, the message kept for DREGDAEMSG and printed.
     logical function open_call(kind, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, opts) &
         result(ok)
         integer, intent(in) :: kind, n, m, lrw, liw
@@ -218,67 +243,104 @@ contains
         type(dassl_session), pointer, intent(out) :: s
         type(solver_options), intent(out) :: opts
         character(len=:), allocatable :: msg
-        logical :: held
+        integer :: refusal
 
         ok = .false.
         idid = idid_bad_input
         s => null()
         msg = ''
+        refusal = 0
         if (liw < min_liw) then
             msg = 'LIW = '//format_int(liw)//' is too small: IWORK needs LIW >= '//format_int(min_liw)
         else if (info(info_start) == 0) then
-            ! IWORK is not read: as in DASSL it may hold anything at the start
+            ! The input first (a refused start creates no solver), then the session: the
+            ! one IWORK held (a restart without DREGDAEFREE) is freed first
+            call check_call(t, tout, info, rwork, lrw, msg)
+            if (len(msg) == 0) call options_from(kind, n, m, info, rtol, atol, rwork, opts, msg)
+            call dassl_free(iwork, liw)
             call new_session(iwork, liw, s)
             s%kind = kind
             s%n = n
             s%m = m
-        else
-            ! A continuation, or a refused INFO(1): the session IWORK holds (if any) keeps
-            ! this call's message for DREGDAEMSG, not the one of the call before
-            held = session_in(iwork, liw, s)
-            if (info(info_start) == 1 .and. .not. held) then
-                msg = 'INFO(1) = 1 but IWORK holds no solver: start a problem with INFO(1) = 0 (IWORK must not '// &
-                      'change between the calls of a problem)'
-            else if (info(info_start) == 1) then
+            if (len(msg) == 0) then
+                s%exact_stops = opts%stop_at_output
+                s%routines%gt_supplied = (info(info_gt) == 1)
+            end if
+        else if (session_in(iwork, liw, s)) then
+            ! A continuation, or a refused INFO(1): the session keeps this call's message
+            ! for DREGDAEMSG, not the one of the call before
+            if (info(info_start) == 1) then
                 if (s%kind /= kind .or. s%n /= n .or. s%m /= m) &
                     msg = 'INFO(1) = 1 but IWORK holds another problem ('//trim(merge('DREGDAE ', 'DREGDAEM', &
                           s%kind == kind_first_order))//', N = '//format_int(s%n)//', M = '//format_int(s%m)//')'
             else if (info(info_start) == -1) then
-                msg = 'INFO(1) = -1: the last call failed; set INFO(1) = 1 to try to continue, or 0 to restart'
+                msg = refusal_text(refused_after_failure)
             else
-                msg = 'INFO(1) = '//format_int(info(info_start))//' must be 0 (start) or 1 (continue)'
+                msg = info1_text(info(info_start))
             end if
+            if (len(msg) == 0) call check_call(t, tout, info, rwork, lrw, msg)
+        else
+            ! No session to keep the message: IWORK(10) keeps the reason
+            refusal = refused_info1
+            if (info(info_start) == 1) refusal = refused_no_solver
+            if (info(info_start) == -1) refusal = refused_after_failure
+            msg = refusal_text(refusal)
+            if (refusal == refused_info1) msg = info1_text(info(info_start))
         end if
-        if (len(msg) == 0) then
-            if (lrw < min_lrw) then
-                msg = 'LRW = '//format_int(lrw)//' is too small: RWORK needs LRW >= '//format_int(min_lrw)
-            else if (tout == t) then
-                msg = 'TOUT = '//format_real(tout)//' is equal to T'
-            else if (info(info_tstop) == 1 .and. rwork(rwork_tstop) < tout) then
-                msg = 'INFO(4) = 1 and TSTOP = RWORK(1) = '//format_real(rwork(rwork_tstop))//' is behind TOUT = '// &
-                      format_real(tout)
-            else if (info(info_start) == 0) then
-                call options_from(kind, n, m, info, rtol, atol, rwork, opts, msg)
-                if (len(msg) == 0) then
-                    s%exact_stops = opts%stop_at_output
-                    s%routines%gt_supplied = (info(info_gt) == 1)
-                end if
-            end if
-        end if
+        if (liw >= min_liw) iwork(iwork_refusal) = refusal
         ok = (len(msg) == 0)
         if (ok) return
-        if (associated(s)) then
-            s%message = msg
-            iwork(iwork_status) = regdae_err_bad_input
-        end if
+        if (associated(s)) s%message = msg
+        if (liw >= min_liw) iwork(iwork_status) = regdae_err_bad_input
         info(info_start) = -1
         call report(info, kind, msg)
     end function open_call
 
-    ! After the solver's call: T, the counters, IDID, INFO(1) and the message.
-    subroutine close_call(s, stat, t, tout, info, rwork, iwork, idid)
+    ! The checks of every call that do not depend on the problem: LRW, TOUT, TSTOP.
+    subroutine check_call(t, tout, info, rwork, lrw, msg)
+        real(wp), intent(in) :: t, tout
+        integer, intent(in) :: info(info_length), lrw
+        real(wp), intent(in) :: rwork(lrw)
+        character(len=:), allocatable, intent(inout) :: msg
+        if (lrw < min_lrw) then
+            msg = 'LRW = '//format_int(lrw)//' is too small: RWORK needs LRW >= '//format_int(min_lrw)
+        else if (tout == t) then
+            msg = 'TOUT = '//format_real(tout)//' is equal to T'
+        else if (info(info_tstop) == 1 .and. rwork(rwork_tstop) < tout) then
+            msg = 'INFO(4) = 1 and TSTOP = RWORK(1) = '//format_real(rwork(rwork_tstop))//' is behind TOUT = '// &
+                  format_real(tout)
+        end if
+    end subroutine check_call
+
+    ! The message of a refused INFO(1) (also what DREGDAEMSG says for IWORK(10)).
+    pure function refusal_text(reason) result(text)
+        integer, intent(in) :: reason
+        character(len=:), allocatable :: text
+        select case (reason)
+        case (refused_no_solver)
+            text = 'INFO(1) = 1 but IWORK holds no solver: start a problem with INFO(1) = 0 (IWORK must not '// &
+                   'change between the calls of a problem)'
+        case (refused_after_failure)
+            text = 'INFO(1) = -1: the last call failed; set INFO(1) = 1 to try to continue, or 0 to restart'
+        case default
+            text = 'INFO(1) was neither 0 (start) nor 1 (continue)'
+        end select
+    end function refusal_text
+
+    ! The message of an INFO(1) that is neither 0, 1 nor -1.
+    pure function info1_text(value) result(text)
+        integer, intent(in) :: value
+        character(len=:), allocatable :: text
+        text = 'INFO(1) = '//format_int(value)//' must be 0 (start) or 1 (continue)'
+    end function info1_text
+
+    ! After the solver's call: T, the counters, IDID, INFO(1) and the message (the
+    ! user's routines named as DREGDAE's argument list names them); a start whose
+    ! solver init failed frees the solver's memory (the session keeps the message).
+    subroutine close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid)
         type(dassl_session), intent(inout) :: s
         integer, intent(in) :: stat
+        logical, intent(in) :: init_failed   ! this call's start failed in the solver's init
         real(wp), intent(inout) :: t
         real(wp), intent(in) :: tout
         integer, intent(inout) :: info(info_length)
@@ -301,9 +363,7 @@ contains
         rwork(rwork_estimate) = st%error_estimate
         rwork(rwork_pass_error) = st%pass_error
         s%message = ''
-        if (stat /= regdae_success) s%message = s%solver%message()
-        if (stat == regdae_err_user_callback .and. allocated(s%routines%failure)) &
-            s%message = s%message//' ('//s%routines%failure//')'
+        if (stat /= regdae_success) s%message = in_dassl_words(s%solver%message(), s%routines)
         select case (stat)
         case (regdae_success)
             idid = merge(idid_exact, idid_interpolated, s%exact_stops)
@@ -328,8 +388,37 @@ contains
             info(info_start) = -1
         end if
         if (stat /= regdae_success) call report(info, s%kind, s%message)   ! a failure or a warning
-        if (allocated(s%routines%failure)) deallocate (s%routines%failure)
+        call s%routines%forget_failure()
+        if (init_failed) call s%solver%destroy()
     end subroutine close_call
+
+    ! A message of the solver in the words of DREGDAE's caller: each "user routine
+    ! <name> reported failure (stat = <k>)" becomes what the user's routine did, e.g.
+    ! "G returned IRES = -2", from the door's record of its last failure (which the
+    ! message states too, with T, when it names no routine).
+    function in_dassl_words(message, routines) result(text)
+        character(len=*), intent(in) :: message
+        type(f77_routines), intent(in) :: routines
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: opening = 'user routine ', closing = ' reported failure (stat = '
+        integer :: at, name_end, paren
+        logical :: named
+        text = message
+        if (.not. allocated(routines%said)) return
+        named = .false.
+        do
+            at = index(text, opening)
+            if (at == 0) exit
+            name_end = index(text(at + len(opening):), closing)
+            if (name_end == 0) exit
+            paren = index(text(at + len(opening) + name_end - 1 + len(closing):), ')')
+            if (paren == 0) exit
+            paren = at + len(opening) + name_end - 1 + len(closing) + paren - 1
+            text = text(:at - 1)//routines%said//text(paren + 1:)
+            named = .true.
+        end do
+        if (.not. named) text = text//' ('//routines%failure//')'
+    end function in_dassl_words
 
     ! The options from INFO, RTOL, ATOL and RWORK; msg names the first bad entry.
     subroutine options_from(kind, n, m, info, rtol, atol, rwork, opts, msg)
@@ -346,20 +435,18 @@ contains
         else if (info(info_vector_tol) == 1 .and. any(rtol(1:n_tol) /= rtol(1))) then
             ! ATOL per component (DREGDAE: N entries; DREGDAEM: 2N, q then q'); regdae's rtol
             ! is one number
-            msg = 'INFO(2) = 1: regdae has one relative tolerance; RTOL(1:'//format_int(n_tol)// &
-                  ') must be equal (ATOL may vary)'
-        else if (info(info_intermediate) == 1) then
-            msg = 'INFO(3) = 1 (intermediate output) is not available: DREGDAE returns at TOUT; set INFO(3) = 0'
+            msg = 'INFO(2) = 1 with unequal RTOL(1:'//format_int(n_tol)//'): regdae has one relative tolerance '// &
+                  '(its integrators take a scalar rtol); give RTOL equal entries and set the scale of each '// &
+                  'component through ATOL, which may vary'
         end if
         do i = 2, 11
             if (len(msg) == 0 .and. info(i) /= 0 .and. info(i) /= 1) &
                 msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' must be 0 or 1'
         end do
-        do i = 5, 15
+        do i = 3, 15
             if (len(msg) > 0) exit
-            if (info(i) /= 0 .and. any(i == [5, 6, 9, 10, 12, 13, 14, 15])) &
-                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)// &
-                      ', which DREGDAE does not have: set it to 0'
+            if (info(i) /= 0 .and. any(i == [info_intermediate, 5, 6, 9, 10, 12, 13, 14, 15])) &
+                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)
         end do
         if (len(msg) > 0) return
         if (info(info_method) < 0 .or. info(info_method) > method_direct) then
@@ -415,16 +502,34 @@ contains
         end if
     end function tolerances
 
-    ! What DASSL's (and DDASPK's) INFO(i) asks for.
+    ! What DASSL's (and DDASPK's) INFO(i) asks for, why DREGDAE does not have it, and
+    ! what to do instead.
     pure function dassl_feature(i) result(text)
         integer, intent(in) :: i
         character(len=:), allocatable :: text
         select case (i)
-        case (5); text = 'a JAC routine (regdae forms its Jacobians itself)'
-        case (6); text = 'a banded matrix (IWORK(1), IWORK(2))'
-        case (9); text = 'a maximum order (IWORK(3))'
-        case (10); text = 'nonnegative solutions'
-        case default; text = 'a DDASPK option'
+        case (3)
+            text = 'a return after every step, which DREGDAE does not have (the singular-pass checks and the '// &
+                   'integrator switching work between output times): set INFO(3) = 0 and ask for closer TOUT'
+        case (5)
+            text = 'a JAC routine, which DREGDAE does not take (it forms the Jacobian of the regularized system '// &
+                   'itself from GX and difference quotients): set INFO(5) = 0'
+        case (6)
+            text = 'a banded matrix (IWORK(1), IWORK(2)), which DREGDAE does not take (its systems are dense; the '// &
+                   'band solver serves the declared structure of large mechanisms in the Fortran and C APIs, '// &
+                   'linear_solver=band): set INFO(6) = 0'
+        case (9)
+            text = 'a maximum order (IWORK(3)), which DREGDAE does not pass on (IDA uses orders up to 5): set '// &
+                   'INFO(9) = 0, and a smaller HMAX (INFO(7)) if the steps must stay short'
+        case (10)
+            text = 'nonnegative solutions, which DREGDAE does not enforce (it passes no constraints to IDA): set '// &
+                   'INFO(10) = 0 and check the signs after each return'
+        case (12, 13, 15)
+            text = 'DDASPK''s Krylov method (INFO(12), (13), (15)), which DREGDAE does not have (its Newton '// &
+                   'systems are solved directly): set INFO(12), INFO(13) and INFO(15) to 0'
+        case default
+            text = 'the initial values alone (DDASPK''s INFO(14)), which DREGDAE does not stop at (it checks '// &
+                   'g(x0, t0) = 0 and computes y(t0) at every start, then integrates): set INFO(14) = 0'
         end select
     end function dassl_feature
 

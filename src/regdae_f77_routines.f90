@@ -7,6 +7,8 @@
 !! with the caller's RPAR and IPAR passed through. IRES is 0 on entry; as in
 !! DASSL, IRES = -1 asks for a smaller step (recoverable: `stat` 1) and any
 !! other nonzero value stops the integration (`stat` = IRES, or -IRES if positive).
+!! A failure is recorded in the caller's words ("G returned IRES = -2 at T = ..."),
+!! the routine named as DREGDAE's argument list names it.
 module regdae_f77_routines
     use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_f_pointer
     use regdae_kinds, only: wp
@@ -55,9 +57,14 @@ module regdae_f77_routines
         logical :: gt_supplied = .false.                                   !! INFO(17) = 1
         type(c_ptr) :: rpar = c_null_ptr                                   !! RPAR(1) of the current call
         type(c_ptr) :: ipar = c_null_ptr                                   !! IPAR(1) of the current call
+        !> The last failure in DASSL's words without the time, e.g. `G returned IRES = -2`
+        !! (`failure` adds `at T = ...`); unallocated: none since `forget_failure`.
+        character(len=:), allocatable :: said
     contains
         procedure :: has => f77_has
         procedure :: evaluate => f77_evaluate
+        !> Forget the last failure (`said`, `failure`): done after each call's message.
+        procedure :: forget_failure => f77_forget_failure
     end type f77_routines
 
     public :: f77_point_routine, f77_motion_routine
@@ -115,9 +122,15 @@ contains
         end select
         if (ires == 0) return
         stat = merge(1, -abs(ires), ires == -1)
-        self%failure = 'user routine '//f77_routine_name(which)//' set IRES = '//format_int(ires)//' at T = '// &
-                       format_real(t)
+        self%said = f77_routine_name(which)//' returned IRES = '//format_int(ires)
+        self%failure = self%said//' at T = '//format_real(t)
     end subroutine f77_evaluate
+
+    subroutine f77_forget_failure(self)
+        class(f77_routines), intent(inout) :: self
+        if (allocated(self%said)) deallocate (self%said)
+        if (allocated(self%failure)) deallocate (self%failure)
+    end subroutine f77_forget_failure
 
     ! The name of a routine as DREGDAE's argument list has it: F, B, G, GX, GT, MASS, FORCES.
     pure function f77_routine_name(which) result(name)

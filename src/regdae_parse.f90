@@ -12,13 +12,20 @@
 !!
 !! with leading and trailing blanks ignored, and refuse everything else
 !! (`1-3`, `1e`, `.`, `nan`, `inf`, `0x10`, `1 2`, an empty string, an overflow).
+!!
+!! Blanks around the number are ignored because a Fortran text has no length of its
+!! own: a `character(len=32)` variable holding `1e-3` ends in 28 blanks, which are
+!! padding, not input. Where a text does have its own length (a C string, a
+!! command-line argument), a blank before or after it is part of what was typed:
+!! the C door refuses such a text (`1e-3 `) before reading it, with `has_outer_blank`
+!! (the drivers' command line does not, yet).
 module regdae_parse
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
     implicit none
     private
 
-    public :: parse_real, parse_integer
+    public :: parse_real, parse_integer, has_outer_blank
 
 contains
 
@@ -86,6 +93,16 @@ contains
         k = tmp
         ok = .true.
     end subroutine parse_integer
+
+    !> Does `text` begin or end with a blank or a control character (tab, newline)? A
+    !! door whose texts have their own length (C strings) refuses such a value, so that
+    !! `"1e-3 "` is not taken for `1e-3`.
+    pure logical function has_outer_blank(text)
+        character(len=*), intent(in) :: text   !! the text, at its own length
+        has_outer_blank = .false.
+        if (len(text) == 0) return
+        has_outer_blank = iachar(text(1:1)) <= 32 .or. iachar(text(len(text):len(text))) <= 32
+    end function has_outer_blank
 
     ! The number of decimal digits in s starting at i; i moves past them.
     integer function count_digits(s, i) result(nd)

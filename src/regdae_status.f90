@@ -33,59 +33,55 @@ module regdae_status
 
     public :: status_message
 
+    !> The length of an entry of `status_texts` (the longest text, its NUL and a spare).
+    integer, parameter, public :: status_text_len = 106
+    !> Every status code; `status_texts` has its description at the same position.
+    integer, parameter, public :: status_codes(21) = [regdae_success, regdae_warn_multiplier_undefined, regdae_warn_unresolved, &
+        regdae_err_bad_input, regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_psd, regdae_err_singular, &
+        regdae_err_lapack, regdae_err_sundials, regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, &
+        regdae_err_mass_matrix, regdae_err_branch, regdae_err_drift, regdae_err_invariant, regdae_err_structure, &
+        regdae_err_work, regdae_err_memory, regdae_err_jacobian]
+    !> The fixed description of each code of `status_codes`, NUL-terminated (the C interface
+    !! returns them as static texts: `regdae_status_string`) and blank-padded after the NUL.
+    character(len=status_text_len), parameter, public :: status_texts(21) = [character(len=status_text_len) :: &
+        'success'//achar(0), &
+        'x is valid, but the multiplier is undefined at this time (singular multiplier equation)'//achar(0), &
+        'the integration error near a singular configuration exceeds resolution_tol times the tolerance'//achar(0), &
+        'invalid input'//achar(0), &
+        'inconsistent initial values: the constraint g(x0, t0) = 0 is violated'//achar(0), &
+        'a user-supplied routine reported failure'//achar(0), &
+        'direct regularization needs GB symmetric positive semidefinite'//achar(0), &
+        'singular matrix'//achar(0), &
+        'LAPACK error'//achar(0), &
+        'SUNDIALS setup error'//achar(0), &
+        'the integrator (IDA) failed'//achar(0), &
+        'solver not initialized'//achar(0), &
+        'NaN or Inf encountered'//achar(0), &
+        'the mass matrix M(q) is not symmetric positive definite'//achar(0), &
+        'the velocity jumped across a singular configuration: the solution probably changed branch'//achar(0), &
+        'the position constraint g(x, t) = 0 drifted beyond drift_tol'//achar(0), &
+        'the invariant of the problem changed beyond invariant_tol'//achar(0), &
+        'a matrix has a nonzero entry outside the sparsity pattern the problem declared'//achar(0), &
+        'the work-energy balance failed: the constraint forces did work (energy gained or lost)'//achar(0), &
+        'out of memory: the system refused an allocation'//achar(0), &
+        'a Jacobian (user G, or the Newton matrix from the declared patterns) disagrees with difference quotients'// &
+        achar(0)]
+    !> The description of a code that is none of `status_codes`, NUL-terminated.
+    character(len=*), parameter, public :: unknown_status_text = 'unknown status code (not a regdae status)'//achar(0)
+
 contains
 
     !> Short, fixed description of a status code (the solver adds the details:
-    !! which quantity, at what time).
+    !! which quantity, at what time); `unknown status code (not a regdae status)`
+    !! for a code that is none of `status_codes`.
     pure function status_message(code) result(msg)
         integer, intent(in) :: code          !! a regdae status code
         character(len=:), allocatable :: msg !! its description
-        select case (code)
-        case (regdae_success)
-            msg = 'success'
-        case (regdae_warn_multiplier_undefined)
-            msg = 'x is valid, but the multiplier is undefined at this time (singular multiplier equation)'
-        case (regdae_warn_unresolved)
-            msg = 'the integration error near a singular configuration exceeds resolution_tol times the tolerance'
-        case (regdae_err_bad_input)
-            msg = 'invalid input'
-        case (regdae_err_inconsistent_ic)
-            msg = 'inconsistent initial values: the constraint g(x0, t0) = 0 is violated'
-        case (regdae_err_user_callback)
-            msg = 'a user-supplied routine reported failure'
-        case (regdae_err_not_psd)
-            msg = 'direct regularization needs GB symmetric positive semidefinite'
-        case (regdae_err_singular)
-            msg = 'singular matrix'
-        case (regdae_err_lapack)
-            msg = 'LAPACK error'
-        case (regdae_err_sundials)
-            msg = 'SUNDIALS setup error'
-        case (regdae_err_integration)
-            msg = 'the integrator (IDA) failed'
-        case (regdae_err_not_initialized)
-            msg = 'solver not initialized'
-        case (regdae_err_nonfinite)
-            msg = 'NaN or Inf encountered'
-        case (regdae_err_mass_matrix)
-            msg = 'the mass matrix M(q) is not symmetric positive definite'
-        case (regdae_err_branch)
-            msg = 'the velocity jumped across a singular configuration: the solution probably changed branch'
-        case (regdae_err_drift)
-            msg = 'the position constraint g(x, t) = 0 drifted beyond drift_tol'
-        case (regdae_err_invariant)
-            msg = 'the invariant of the problem changed beyond invariant_tol'
-        case (regdae_err_structure)
-            msg = 'a matrix has a nonzero entry outside the sparsity pattern the problem declared'
-        case (regdae_err_work)
-            msg = 'the work-energy balance failed: the constraint forces did work (energy gained or lost)'
-        case (regdae_err_memory)
-            msg = 'out of memory: the system refused an allocation'
-        case (regdae_err_jacobian)
-            msg = 'a Jacobian (user G, or the Newton matrix from the declared patterns) disagrees with difference quotients'
-        case default
-            msg = 'unknown status code'
-        end select
+        integer :: k
+        msg = unknown_status_text(:len(unknown_status_text) - 1)
+        do k = 1, size(status_codes)
+            if (status_codes(k) == code) msg = status_texts(k)(:index(status_texts(k), achar(0)) - 1)
+        end do
     end function status_message
 
 end module regdae_status

@@ -42,4 +42,10 @@ objdump -p "$tmp/root/$libdir/libregdae.so.$version" | grep -q 'SONAME  *libregd
 check "soname libregdae.so.0" $?
 grep -qx 'prefix=/usr' "$tmp/root/$libdir/pkgconfig/regdae.pc"
 check "regdae.pc: prefix=/usr" $?
+empty=$(cd "$tmp/root" && find . -type d -empty)
+[ -z "$empty" ]
+check "no empty directory${empty:+ (}$(echo $empty)${empty:+)}" $?
+# the sizes the README gives (measured, not checked: they change with every module)
+echo "  $deb: $(du -k --apparent-size "$tmp/$deb" | cut -f1) KiB; Installed-Size $(dpkg-deb -f "$tmp/$deb" \
+    Installed-Size) KiB; the files $(du -sk --apparent-size "$tmp/root" | cut -f1) KiB"
 finish

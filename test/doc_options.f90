@@ -18,7 +18,8 @@
 !! `c_options` in its order, `c_options` has those of `solver_options` (field for
 !! field, as the header says), and the comments of `regdae_set_option`,
 !! `regdae_set_real_option` and `regdae_set_int_option` list every key they take
-!! (all; the real ones; the integer and switch ones) and no other.
+!! (all; the real ones; the integer and switch ones) and no other; the parser's table
+!! (`set_option`) takes every component and every key regdae_set_option's list names.
 !!
 !! Prints one line per failed check and 'N passed, N failed'; exit status 1 if a
 !! check failed, 2 for bad arguments.
@@ -250,6 +251,13 @@ contains
         any_key = comment_of(lines, 'regdae_set_option')
         real_key = comment_of(lines, 'regdae_set_real_option')
         int_key = comment_of(lines, 'regdae_set_int_option')
+        ! the parser's table (set_option's keys) has every component, and every key the
+        ! list of regdae_set_option's comment names
+        do i = 1, size(names)
+            call check(parser_takes(trim(names(i))), 'src/regdae_options.f90: set_option does not take the key `'// &
+                       trim(names(i))//'` of solver_options')
+        end do
+        call check_listed_keys(any_key, file)
         do i = 1, size(names)
             kind = value_kind(trim(values(i)))
             call check_key_listed(any_key, 'regdae_set_option', trim(names(i)), .true., file)
@@ -258,6 +266,40 @@ contains
                                   kind == 'integer' .or. kind == 'logical', file)
         end do
     end subroutine check_header
+
+    ! Does set_option's table have `key` (a bad value, not an unknown key)?
+    logical function parser_takes(key)
+        character(len=*), intent(in) :: key
+        type(solver_options) :: opts
+        character(len=:), allocatable :: msg
+        integer :: stat
+        call set_option(opts, key, '?', stat, msg)
+        parser_takes = index(msg, 'unknown option') == 0
+    end function parser_takes
+
+    ! The key list of regdae_set_option's comment (after "section 2:", up to the ";")
+    ! names only keys that set_option takes.
+    subroutine check_listed_keys(comment, file)
+        character(len=*), intent(in) :: comment, file
+        character(len=:), allocatable :: list, key
+        integer :: start, finish, comma
+        start = index(comment, 'section 2:')
+        call check(start > 0, file//': the comment of regdae_set_option has no key list ("section 2: key, ...;")')
+        if (start == 0) return
+        list = comment(start + len('section 2:'):)
+        finish = index(list, ';')
+        if (finish > 0) list = list(:finish - 1)
+        do while (len_trim(list) > 0)
+            comma = index(list, ',')
+            if (comma == 0) comma = len(list) + 1
+            key = trim(adjustl(list(:comma - 1)))
+            if (index(key, '*') > 0) key = trim(adjustl(key(index(key, '*') + 1:)))   ! a line's " * "
+            call check(parser_takes(key), file//': the comment of regdae_set_option lists `'//key// &
+                       '`, which set_option (src/regdae_options.f90) does not take')
+            if (comma > len(list)) exit
+            list = list(comma + 1:)
+        end do
+    end subroutine check_listed_keys
 
     ! The comment of `function` names `key` if and only if `expected`.
     subroutine check_key_listed(comment, function, key, expected, file)

@@ -14,8 +14,13 @@
  *   warnings   a warning is a status of its own (> 0) with its message, and the
  *              integration goes on after it: REGDAE_WARN_UNRESOLVED on Example 5.1's
  *              approach to t = 0, REGDAE_WARN_MULTIPLIER_UNDEFINED at t = 0
+ *   version    regdae_version against REGDAE_VERSION_*; regdae_status_string of every
+ *              status (static, distinct, never NULL) and of codes that are none
+ *   threads    two handles in two POSIX threads at once, each on the same problems,
+ *              give what one handle gives run serially, bit for bit
  */
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -274,7 +279,7 @@ static void bad_input(void)
     CHECK(regdae_init(NULL, 0.0, x0, 2, NULL, 0) == REGDAE_ERR_BAD_INPUT);
     CHECK(regdae_advance(NULL, 1.0, x, 2, NULL, 0, NULL, 0) == REGDAE_ERR_BAD_INPUT);
     CHECK(regdae_get_statistics(NULL, &st) == REGDAE_ERR_BAD_INPUT);
-    CHECK(regdae_message(NULL) == NULL);
+    CHECK(regdae_message(NULL) != NULL && strstr(regdae_message(NULL), "NULL handle") != NULL);
     regdae_destroy(NULL);
     regdae_destroy(&none);
     CHECK(none == NULL);
@@ -364,6 +369,23 @@ static void bad_input(void)
     CHECK(regdae_set_formulation(s, REGDAE_FORMULATION_AUGMENTED) == REGDAE_SUCCESS);
     CHECK(regdae_init(s, 0.0, x0, 2, v0, 2) == REGDAE_ERR_STRUCTURE && says(s, "outside the sparsity pattern"));
 
+    /* a C string has its own length: blanks around a key or a value are refused, and the
+       options stay as they were */
+    {
+        static const char *padded[][2] = {{"rtol", "1e-3 "}, {"rtol", " 1e-3"}, {"rtol", "1e-3\t"},
+                                          {"rtol ", "1e-3"}, {"max_steps", "100 "}, {"method", "direct "}};
+        int k;
+        regdae_solver *s = regdae_create();
+        regdae_set_option(s, "rtol", "1e-6");
+        for (k = 0; k < (int)(sizeof padded / sizeof padded[0]); k++) {
+            CHECK(regdae_set_option(s, padded[k][0], padded[k][1]) == REGDAE_ERR_BAD_INPUT &&
+                  says(s, "begins or ends with a blank"));
+        }
+        CHECK(regdae_get_options(s, &opts) == REGDAE_SUCCESS && opts.rtol == 1e-6 &&
+              opts.method == REGDAE_METHOD_TRUST_REGION && opts.max_steps == 100000);
+        CHECK(regdae_set_option(s, "rtol", "1e-3") == REGDAE_SUCCESS);
+        regdae_destroy(&s);
+    }
     regdae_destroy(&s);
     CHECK(s == NULL);
     regdae_destroy(&s); /* twice: nothing happens */
@@ -579,6 +601,16 @@ static void options(void)
     CHECK(regdae_advance(s, 1.0, x, 2, NULL, 0, NULL, 0) == REGDAE_SUCCESS);
     CHECK(regdae_get_statistics(s, &st) == REGDAE_SUCCESS);
     CHECK(st.t == 1.0 && st.steps > 0 && st.res_evals >= st.steps && st.h_last > 0.0 && st.h_last <= 0.25);
+    /* integrator auto: on the multiplier formulation IDA does the whole run, and
+       regdae_get_options says so; on the eliminated one the switching is in force */
+    CHECK(regdae_set_integrator(s, REGDAE_INTEGRATOR_AUTO) == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
+    regdae_get_options(s, &opts);
+    CHECK(opts.integrator == REGDAE_INTEGRATOR_IDA && opts.formulation == REGDAE_FORMULATION_MULTIPLIER);
+    CHECK(regdae_set_formulation(s, REGDAE_FORMULATION_ELIMINATED) == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
+    regdae_get_options(s, &opts);
+    CHECK(opts.integrator == REGDAE_INTEGRATOR_AUTO && opts.formulation == REGDAE_FORMULATION_ELIMINATED);
     regdae_destroy(&s);
 }
 
@@ -710,6 +742,124 @@ static void warnings(void)
     regdae_destroy(&s);
 }
 
+/* ---- version and status texts -------------------------------------------------------- */
+
+static void version(void)
+{
+    static const int codes[] = {REGDAE_SUCCESS, REGDAE_WARN_MULTIPLIER_UNDEFINED, REGDAE_WARN_UNRESOLVED,
+                                REGDAE_ERR_BAD_INPUT, REGDAE_ERR_INCONSISTENT_IC, REGDAE_ERR_USER_CALLBACK,
+                                REGDAE_ERR_NOT_PSD, REGDAE_ERR_SINGULAR, REGDAE_ERR_LAPACK, REGDAE_ERR_SUNDIALS,
+                                REGDAE_ERR_INTEGRATION, REGDAE_ERR_NOT_INITIALIZED, REGDAE_ERR_NONFINITE,
+                                REGDAE_ERR_MASS_MATRIX, REGDAE_ERR_BRANCH, REGDAE_ERR_DRIFT, REGDAE_ERR_INVARIANT,
+                                REGDAE_ERR_STRUCTURE, REGDAE_ERR_JACOBIAN, REGDAE_ERR_WORK, REGDAE_ERR_MEMORY};
+    static const int not_codes[] = {-1, 3, 100, -100, -119, -33};
+    const int n_codes = (int)(sizeof codes / sizeof codes[0]);
+    char expected[64];
+    const char *text;
+    int major = -1, minor = -1, patch = -1, i, j, distinct = 1;
+
+    /* the library's version is the header's */
+    text = regdae_version(&major, &minor, &patch);
+    snprintf(expected, sizeof expected, "%d.%d.%d", REGDAE_VERSION_MAJOR, REGDAE_VERSION_MINOR, REGDAE_VERSION_PATCH);
+    CHECK(text != NULL && strcmp(text, expected) == 0);
+    CHECK(major == REGDAE_VERSION_MAJOR && minor == REGDAE_VERSION_MINOR && patch == REGDAE_VERSION_PATCH);
+    CHECK(regdae_version(NULL, NULL, NULL) == text); /* static: the same text each time */
+    major = -1;
+    CHECK(strcmp(regdae_version(&major, NULL, NULL), expected) == 0 && major == REGDAE_VERSION_MAJOR);
+
+    /* every status has its own static text; the texts are the Fortran API's */
+    CHECK(strcmp(regdae_status_string(REGDAE_SUCCESS), "success") == 0);
+    CHECK(strcmp(regdae_status_string(REGDAE_ERR_BAD_INPUT), "invalid input") == 0);
+    CHECK(strstr(regdae_status_string(REGDAE_ERR_MEMORY), "out of memory") != NULL);
+    for (i = 0; i < n_codes; i++) {
+        text = regdae_status_string(codes[i]);
+        CHECK(text != NULL && strlen(text) > 0 && strstr(text, "unknown") == NULL);
+        CHECK(regdae_status_string(codes[i]) == text);
+        for (j = 0; j < i; j++) distinct = distinct && strcmp(regdae_status_string(codes[j]), text) != 0;
+    }
+    CHECK(distinct);
+    for (i = 0; i < (int)(sizeof not_codes / sizeof not_codes[0]); i++) {
+        text = regdae_status_string(not_codes[i]);
+        CHECK(text != NULL && strstr(text, "unknown status code") != NULL);
+    }
+}
+
+/* ---- threads -------------------------------------------------------------------------- */
+
+/* What one run of thread_problems writes: the circle (first order, integrator auto) at 40
+   outputs, x and y; the K particles (structured: augmented, KLU) at 8 outputs, q and
+   lambda; the statuses. */
+#define CIRCLE_OUTPUTS 40
+#define PARTICLE_OUTPUTS 8
+typedef struct {
+    double circle[CIRCLE_OUTPUTS][3];
+    double particles[PARTICLE_OUTPUTS][3 * K];
+    int status;
+} thread_result;
+
+static void *thread_problems(void *arg)
+{
+    thread_result *r = (thread_result *)arg;
+    const double x0[2] = {1.0, 0.0};
+    double q[2 * K], v[2 * K];
+    int diag[2 * K], grow[2 * K], gcol[2 * K], j, k;
+    regdae_solver *s = circle_solver(NULL);
+
+    memset(r, 0, sizeof *r);
+    r->status = regdae_init(s, 0.0, x0, 2, NULL, 0);
+    for (k = 0; k < CIRCLE_OUTPUTS && r->status == REGDAE_SUCCESS; k++) {
+        r->status = regdae_advance(s, 0.25 * (k + 1), r->circle[k], 2, &r->circle[k][2], 1, NULL, 0);
+    }
+    for (j = 0; j < 2 * K; j++) {
+        diag[j] = j;
+        grow[j] = j / 2;
+        gcol[j] = j;
+    }
+    regdae_set_mechanical(s, 2 * K, K, k_mass, k_forces, k_g, k_gx, NULL, NULL);
+    regdae_set_pattern(s, REGDAE_PATTERN_MASS, 2 * K, diag, diag);
+    regdae_set_pattern(s, REGDAE_PATTERN_CONSTRAINT, 2 * K, grow, gcol);
+    regdae_set_pattern(s, REGDAE_PATTERN_FORCE_Q, 0, NULL, NULL);
+    regdae_set_pattern(s, REGDAE_PATTERN_FORCE_V, 0, NULL, NULL);
+    k_start(q, v);
+    if (r->status == REGDAE_SUCCESS) r->status = regdae_init(s, 0.0, q, 2 * K, v, 2 * K);
+    for (k = 0; k < PARTICLE_OUTPUTS && r->status == REGDAE_SUCCESS; k++) {
+        r->status = regdae_advance(s, 0.25 * (k + 1), r->particles[k], 2 * K, &r->particles[k][2 * K], K, v, 2 * K);
+    }
+    regdae_destroy(&s);
+    return NULL;
+}
+
+static void threads(void)
+{
+    thread_result serial, parallel[2];
+    pthread_t id[2];
+    int round, i, started;
+
+#ifdef REGDAE_TEST_NO_THREADS
+    /* a library built with gfortran's -fcheck=recursion stops a second thread entering a
+       procedure another thread is in ("Recursive call to nonrecursive procedure") */
+    printf("  skipped: the library checks recursion (-fcheck=all), which threads trip\n");
+    return;
+#endif
+
+    thread_problems(&serial);
+    CHECK(serial.status == REGDAE_SUCCESS);
+    /* the circle is right (so the comparison below compares solutions) */
+    CHECK(fabs(serial.circle[CIRCLE_OUTPUTS - 1][0] - cos(10.0)) < 1e-5 &&
+          fabs(serial.particles[PARTICLE_OUTPUTS - 1][0] - cos(0.25 * PARTICLE_OUTPUTS)) < 1e-4);
+    for (round = 0; round < 3; round++) {
+        started = 0;
+        for (i = 0; i < 2; i++) started += pthread_create(&id[i], NULL, thread_problems, &parallel[i]) == 0;
+        CHECK(started == 2);
+        for (i = 0; i < started; i++) pthread_join(id[i], NULL);
+        for (i = 0; i < started; i++) {
+            CHECK(parallel[i].status == REGDAE_SUCCESS);
+            CHECK(memcmp(parallel[i].circle, serial.circle, sizeof serial.circle) == 0);
+            CHECK(memcmp(parallel[i].particles, serial.particles, sizeof serial.particles) == 0);
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -717,7 +867,7 @@ int main(int argc, char **argv)
         void (*run)(void);
     } suites[] = {{"bad_input", bad_input}, {"problems", problems}, {"handles", handles},
                   {"callbacks", callbacks}, {"options", options}, {"atol_vector", atol_vector},
-                  {"warnings", warnings}};
+                  {"warnings", warnings}, {"version", version}, {"threads", threads}};
     const int n_suites = (int)(sizeof suites / sizeof suites[0]);
     int i, ran = 0;
     for (i = 0; i < n_suites; i++) {
@@ -728,7 +878,7 @@ int main(int argc, char **argv)
     }
     if (ran == 0) {
         printf("capi_tester: unknown suite \"%s\" (bad_input, problems, handles, callbacks, options, atol_vector, "
-               "warnings)\n",
+               "warnings, version, threads)\n",
                argv[1]);
         return 2;
     }

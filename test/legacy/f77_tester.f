@@ -20,6 +20,12 @@ C               Example 5.1's singularity unresolved), 4 (Baumgarte's
 C               multiplier undefined at T = 0); the run goes on after
 C               it; DREGDAEMSG gives the last call's message, also after
 C               a refused call
+C     RESTART   INFO(1) = 0 again on the same IWORK without DREGDAEFREE
+C               (after a success, a refused start, an inconsistent x0)
+C               gives a fresh run, bit for bit, and frees the old solver
+C               (ctest valgrind.f77_restart: no leak); DREGDAEMSG holds
+C               the last call's message, also when IWORK(20) was
+C               corrupted for a call and restored
       PROGRAM F77TST
       IMPLICIT NONE
       CHARACTER*16 SUITE
@@ -34,10 +40,11 @@ C               a refused call
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'IRES') CALL IRESTS(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'VECTOR') CALL VECTOR(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'WARN') CALL WARN(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'RESTART') CALL RESTRT(NCHK)
       IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
          WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
      *        SUITE(1:LEN_TRIM(SUITE)),
-     *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN)'
+     *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN, RESTART)'
          STOP 2
       END IF
       WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
@@ -118,10 +125,21 @@ C     RWORK too small
       CALL DREGDAEFREE(IWORK, 22)
 C     INFO entries: intermediate output, JAC, DDASPK's, a method
 C     that is none, an index for DREGDAE, not 0/1 (INFO(2): VECTOR)
-      CALL ONEBAD(3, 1, 'INFO(3) = 1 (intermediate', NCHK)
+C     (each message says why, and what to set instead)
+      CALL ONEBAD(3, 1, 'return after every step', NCHK)
+      CALL ONEBAD(3, 1, 'set INFO(3) = 0', NCHK)
       CALL ONEBAD(5, 1, 'a JAC routine', NCHK)
+      CALL ONEBAD(5, 1, 'set INFO(5) = 0', NCHK)
       CALL ONEBAD(6, 1, 'a banded matrix', NCHK)
-      CALL ONEBAD(12, 1, 'a DDASPK option', NCHK)
+      CALL ONEBAD(6, 1, 'set INFO(6) = 0', NCHK)
+      CALL ONEBAD(9, 1, 'a maximum order', NCHK)
+      CALL ONEBAD(9, 1, 'set INFO(9) = 0', NCHK)
+      CALL ONEBAD(10, 1, 'nonnegative solutions', NCHK)
+      CALL ONEBAD(10, 1, 'set INFO(10) = 0', NCHK)
+      CALL ONEBAD(12, 1, 'Krylov method', NCHK)
+      CALL ONEBAD(13, 1, 'set INFO(12), INFO(13)', NCHK)
+      CALL ONEBAD(14, 1, 'set INFO(14) = 0', NCHK)
+      CALL ONEBAD(15, 1, 'Krylov method', NCHK)
       CALL ONEBAD(16, 7, 'INFO(16) = 7 is not a method', NCHK)
       CALL ONEBAD(17, 2, 'INFO(17) = 2', NCHK)
       CALL ONEBAD(18, 3, 'the index is for DREGDAEM', NCHK)
@@ -376,7 +394,7 @@ C     IRES = -2 from there.
       SUBROUTINE IRESTS(NCHK)
       INTEGER NCHK(2), INFO(20), IWORK(22), IPAR(2), IDID, MODE
       DOUBLE PRECISION RWORK(20), RPAR(2), T, X(2), Y(1)
-      CHARACTER*300 MSG
+      CHARACTER*600 MSG
       DO 10 MODE = 1, 2
          CALL CLEAR(INFO, RWORK, IWORK)
          CALL CIRCLE0(T, X, IPAR)
@@ -392,11 +410,14 @@ C     IRES = -2 from there.
          CALL DREGDAEMSG(IWORK, 22, MSG)
          IF (MODE .EQ. 1) THEN
             CALL CHECK(IDID .EQ. -108 .AND.
-     *           INDEX(MSG, 'cannot get past') .GT. 0,
+     *           INDEX(MSG, 'cannot get past') .GT. 0 .AND.
+     *           INDEX(MSG, 'G returned IRES = -1') .GT. 0 .AND.
+     *           INDEX(MSG, 'user routine') .EQ. 0,
      *           'IRES = -1: IDID -108', NCHK)
          ELSE
             CALL CHECK(IDID .EQ. -11 .AND.
-     *           INDEX(MSG, 'user routine G set IRES = -2') .GT. 0,
+     *           INDEX(MSG, 'G returned IRES = -2 at t = 1.5') .GT. 0
+     *           .AND. INDEX(MSG, 'user routine') .EQ. 0,
      *           'IRES = -2: IDID -11', NCHK)
          END IF
          CALL CHECK(INFO(1) .EQ. -1 .AND. T .GE. 1.0D0 .AND.
@@ -405,6 +426,81 @@ C     IRES = -2 from there.
      *        '    MESSAGE: ', MSG(1:LEN_TRIM(MSG))
          CALL DREGDAEFREE(IWORK, 22)
    10 CONTINUE
+      END
+C
+C     ---- RESTART -----------------------------------------------------
+      SUBROUTINE RESTRT(NCHK)
+      INTEGER NCHK(2), INFO(20), IWORK(22), IPAR(2), IDID, K, KEEP
+      DOUBLE PRECISION RWORK(20), RPAR(2), T, X(2), Y(1), FRESH(2)
+      CHARACTER*300 MSG
+C     a fresh run to T = 2 (the reference), freed
+      CALL CLEAR(INFO, RWORK, IWORK)
+      CALL CIRCLE0(T, X, IPAR)
+      CALL CSTEP(T, X, Y, 2.0D0, INFO, IDID, RWORK, IWORK, RPAR, IPAR)
+      FRESH(1) = X(1)
+      FRESH(2) = X(2)
+      CALL DREGDAEFREE(IWORK, 22)
+C     the same IWORK restarted three times without DREGDAEFREE: after
+C     a success, after a refused start (INFO(3) = 1), after x0 off the
+C     circle (IDID = -12); each restart runs as the fresh run
+      CALL CLEAR(INFO, RWORK, IWORK)
+      DO 10 K = 1, 3
+         INFO(1) = 0
+         CALL CIRCLE0(T, X, IPAR)
+         CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK, RPAR,
+     *        IPAR)
+         CALL CHECK(IDID .EQ. 3, 'a run to T = 1', NCHK)
+         INFO(1) = 0
+         IF (K .EQ. 2) THEN
+            INFO(3) = 1
+            CALL CIRCLE0(T, X, IPAR)
+            CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK, RPAR,
+     *           IPAR)
+            CALL DREGDAEMSG(IWORK, 22, MSG)
+            CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'INFO(3)') .GT. 0,
+     *           'a refused start: IDID -33, its message', NCHK)
+            INFO(3) = 0
+            INFO(1) = 0
+         ELSE IF (K .EQ. 3) THEN
+            CALL BADX0(INFO, RWORK, IWORK, IDID, MSG)
+            CALL CHECK(IDID .EQ. -12 .AND. INDEX(MSG, 'ic_tol') .GT. 0,
+     *           'a start with x0 off: IDID -12, its message', NCHK)
+            INFO(1) = 0
+         END IF
+         CALL CIRCLE0(T, X, IPAR)
+         CALL CSTEP(T, X, Y, 2.0D0, INFO, IDID, RWORK, IWORK, RPAR,
+     *        IPAR)
+         CALL DREGDAEMSG(IWORK, 22, MSG)
+         CALL CHECK(IDID .EQ. 3 .AND. X(1) .EQ. FRESH(1) .AND.
+     *        X(2) .EQ. FRESH(2) .AND. MSG .EQ. ' ',
+     *        'the restart runs as a fresh run, bit for bit', NCHK)
+   10 CONTINUE
+C     IWORK(20) corrupted for one call: refused, with the message; the
+C     message stays after IWORK(20) is restored; the next call goes on
+      KEEP = IWORK(20)
+      IWORK(20) = IWORK(20) + 1
+      CALL CSTEP(T, X, Y, 3.0D0, INFO, IDID, RWORK, IWORK, RPAR, IPAR)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND.
+     *     INDEX(MSG, 'IWORK holds no solver') .GT. 0,
+     *     'IWORK(20) corrupted: IDID -33, the message', NCHK)
+      IWORK(20) = KEEP
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(INDEX(MSG, 'IWORK holds no solver') .GT. 0,
+     *     'IWORK(20) restored: still the refusal''s message', NCHK)
+      INFO(1) = 1
+      CALL CSTEP(T, X, Y, 3.0D0, INFO, IDID, RWORK, IWORK, RPAR, IPAR)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. 3 .AND. MSG .EQ. ' ' .AND.
+     *     ABS(X(1) - COS(3.0D0)) .LT. 1.0D-6,
+     *     'restored: the run goes on to T = 3', NCHK)
+C     INFO(1) = -1 refused, with its message, after a failure
+      INFO(1) = -1
+      CALL CSTEP(T, X, Y, 4.0D0, INFO, IDID, RWORK, IWORK, RPAR, IPAR)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'INFO(1) = -1') .GT. 0,
+     *     'INFO(1) = -1: refused, its message', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
       END
 C
 C     ---- the problems ------------------------------------------------
@@ -461,15 +557,13 @@ C     The circle from (1, 0) to TOUT = 1 with the tolerances RT, AT
 C     (INFO(2) = 1: vectors of length 2); X, IDID and the message.
       SUBROUTINE TRYVEC(IVEC, RT, AT, X, IDID, MSG)
       EXTERNAL CF, CB, CG, CGX
-      INTEGER IVEC, IDID, INFO(20), IWORK(22), IPAR(2), I
+      INTEGER IVEC, IDID, INFO(20), IWORK(22), IPAR(2)
       DOUBLE PRECISION RT(2), AT(2), X(2), Y(2), RWORK(20), RPAR(2), T
       CHARACTER*(*) MSG
-      DO 10 I = 1, 20
-         INFO(I) = 0
-         RWORK(I) = 0.0D0
-   10 CONTINUE
+C     IWORK zeroed too: a start reads IWORK(19:22) to free what an
+C     earlier problem left there (doc/api.md section 8)
+      CALL CLEAR(INFO, RWORK, IWORK)
       INFO(2) = IVEC
-      INFO(20) = -1
       T = 0.0D0
       X(1) = 1.0D0
       X(2) = 0.0D0
@@ -501,8 +595,9 @@ C
       RT(2) = 1.0D-5
       CALL TRYVEC(1, RT, AT, XL, IDID, MSG)
       CALL CHECK(IDID .EQ. -33 .AND.
-     *     INDEX(MSG, 'one relative tolerance') .GT. 0,
-     *     'unequal RTOL(i) refused', NCHK)
+     *     INDEX(MSG, 'one relative tolerance') .GT. 0 .AND.
+     *     INDEX(MSG, 'through ATOL') .GT. 0,
+     *     'unequal RTOL(i) refused, saying what to do', NCHK)
       END
 C
 C     ---- WARN --------------------------------------------------------
