@@ -48,10 +48,14 @@ module regdae_solver_front
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
-    use regdae_solver_core, only: solver_core, new_core, log_event
+    use regdae_solver_core, only: solver_core, new_core, log_event, active_integrator
     use regdae_augmented_rules, only: mass_diagonal, gb_row_scale, augmented_motion_scales
-    use regdae_solver_sampling, only: start_monitor, start_monitor_augmented, sample_step
-    use regdae_integrator_switching, only: switch_to_ida, explicit_would_do, switch_to_dopri5
+    use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
+    use regdae_integrator, only: integrator, outcome_reached, outcome_pass_end, outcome_stiff, outcome_nonstiff, &
+                                 outcome_alarm, outcome_failed, outcome_exhausted
+    use regdae_dopri5_integrator, only: dopri5_integrator, dopri5_in_slot
+    use regdae_ida_integrator, only: ida_integrator, ida_in_slot
+    use regdae_integrator_switching, only: hand_over
     implicit none
     private
 
@@ -427,6 +431,7 @@ contains
         integer, intent(out) :: stat
         type(solver_core), pointer :: core
         type(augmented_system) :: sys
+        type(ida_integrator), pointer :: ida
         real(wp), allocatable :: u0(:), up0(:), id(:)
         character(len=:), allocatable :: msg
 
@@ -464,19 +469,20 @@ contains
         call augmented_eps(core, sys, t0, u0)
         core%excluded = sys%excluded_unknowns(opts%excluded)
         if (opts%exclusion == exclusion_off) core%excluded = .false.
-        call core%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
-                             sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
+        ida => ida_in_slot(core)
+        call ida%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
+                            sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
         if (stat /= regdae_success) then
             call fail(stat, msg)
             return
         end if
-        call core%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
+        call ida%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
         if (stat /= regdae_success) then
             call fail(stat, 'at the initial point: '//msg)
             return
         end if
         if (opts%check_jacobians) then
-            call core%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
+            call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
             if (stat == regdae_success) call check_structured_jacobian(problem, sys, t0, q0, stat, msg)
             if (stat /= regdae_success) then
                 call fail(stat, msg)
@@ -629,6 +635,8 @@ contains
         type(solver_options), intent(in) :: opts
         integer, intent(out) :: stat
         type(solver_core), pointer :: core
+        type(dopri5_integrator), pointer :: dopri5
+        type(ida_integrator), pointer :: ida
         character(len=:), allocatable :: msg
         real(wp), allocatable :: y0(:), zp0(:)
         integer :: lsq, n, m, nx
@@ -725,8 +733,8 @@ contains
             core%switching = (core%active == integrator_dopri5)
         end if
         if (core%active == integrator_dopri5) then
-            core%z_rk = z0
-            call core%rk%start(core%model, t0, z0, opts%h_init, stat)
+            dopri5 => dopri5_in_slot(core)
+            call dopri5%start(t0, z0, stat, msg, h0=opts%h_init)
             if (stat /= regdae_success) then
                 call fail(stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
                 return
@@ -734,9 +742,8 @@ contains
             call self%record(regdae_success, '', stat)
             return
         end if
-        call core%ida%create(new_regularized_system(core%model, n, core%neq), opts, linear_solver_dense, core%excluded, t0, &
-                             [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg, &
-                             [core%atol_z, spread(opts%atol, 1, core%neq - n)])
+        ida => ida_in_slot(core)
+        call ida%start(t0, z0, stat, msg, zp=zp0, y=y0)
         if (stat /= regdae_success) then
             call fail(stat, msg)
             return
@@ -1093,11 +1100,13 @@ contains
                                           !! n: f - B y from the regularized equation at the state
                                           !! (augmented formulation: IDA's interpolated v')
         type(solver_core), pointer :: core
+        class(integrator), pointer :: stepper
+        type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
         logical :: recoverable
-        integer :: nx
-        real(wp) :: t_reached
+        integer :: nx, outcome
+        real(wp) :: t_reached, t_stop
 
         core => self%core
         if (.not. associated(core)) then
@@ -1110,118 +1119,70 @@ contains
             return
         end if
         nx = core%nx
-        if (size(x) /= nx) then
-            call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(nx))
-            return
-        end if
-        if (present(y)) then
-            if (size(y) /= core%m) then
-                call fail(regdae_err_bad_input, 'advance: y must have length '//format_int(core%m))
-                return
-            end if
-        end if
-        if (present(v)) then
-            if (.not. core%second_order .or. size(v) /= nx) then
-                call fail(regdae_err_bad_input, 'advance: v is for second-order problems, length '//format_int(nx))
-                return
-            end if
-        end if
-        if (present(a)) then
-            if (.not. core%second_order .or. size(a) /= nx) then
-                call fail(regdae_err_bad_input, 'advance: a is for second-order problems, length '//format_int(nx))
-                return
-            end if
-        end if
-        if (.not. ieee_is_finite(tout)) then
-            call fail(regdae_err_bad_input, 'advance: tout is NaN or Inf')
-            return
-        end if
-        if (tout < core%t) then
-            call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout)// &
-                      ' is before the current time '//format_real(core%t))
-            return
-        end if
-        if (.not. core%started .and. tout > core%t .and. tout - core%t < time_resolution(core%t, tout)) then
-            ! No first step fits (IDA: "tout too close to t0"); later, IDA and dopri5
-            ! step across such intervals.
-            call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout, 16)// &
-                      ' is too close to t0 = '//format_real(core%t, 16)//' to start the integration: tout - t0 = '// &
-                      format_real(tout - core%t)//' is below the time resolution '// &
-                      format_real(time_resolution(core%t, tout))// &
-                      ' (4 epsilon max(|t0|, |tout|), at least sqrt(tiny) = 1.5E-154)')
-            return
-        end if
+        if (.not. outputs_fit()) return
         t_reached = tout
         if (tout > core%t) then
-            ! The active integrator to tout; with integrator=auto the explicit one hands
-            ! over to IDA where the system is stiff, and IDA back where it is not. With
-            ! stop_at_pass_end, the integrator stops early at the end of a singular pass.
+            ! The integrator in charge to tout; with integrator=auto the explicit one hands
+            ! over to the implicit one where the system is stiff, and back where it is not
+            ! (regdae_integrator_switching). With stop_at_pass_end, the integrator stops
+            ! early at the end of a singular pass.
             do
-                if (core%active == integrator_dopri5) then
-                    u => core%z_rk
-                    call core%rk%advance(core%model, tout, core%opts%rtol, core%atol_z, core%opts%h_max, &
-                                         core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat, &
-                                         core%monitor, stop_when_stiff=core%switching, &
-                                         stop_at_pass_end=core%stop_at_pass_end)
-                    if (stat /= regdae_success) then
-                        core%t = core%rk%t
-                        call copy_state()
-                        if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
-                        call fail(stat, core%rk%message)
-                        return
-                    end if
-                    if (core%monitor%alarm) exit
-                    if (core%rk%pass_stop) then
-                        t_reached = core%rk%t
-                        exit
-                    end if
-                    if (.not. core%rk%stiff_detected) exit   ! at tout
-                    call switch_to_ida(core, stat, msg)
+                stepper => active_integrator(core)
+                u => stepper%state()
+                call stepper%advance(tout, t_stop, outcome, stat, msg)
+                select case (outcome)
+                case (outcome_reached)
+                    exit
+                case (outcome_pass_end)
+                    t_reached = t_stop
+                    exit
+                case (outcome_stiff, outcome_nonstiff)
+                    call hand_over(core, outcome, t_stop, stat, msg)
                     if (stat /= regdae_success) then
                         call fail(stat, msg)
                         return
                     end if
-                else
-                    u => core%ida%state()
-                    if (ida_to(tout)) return
-                    if (t_reached < tout) exit                ! stopped at the end of a pass
-                    if (core%active == integrator_ida) exit   ! at tout, else switched to dopri5
-                end if
+                case (outcome_alarm)
+                    core%t = t_stop
+                    call copy_state()
+                    if (branch_alarm()) return
+                case (outcome_failed, outcome_exhausted)
+                    core%t = t_stop
+                    call copy_state()
+                    if (present(y) .and. outcome == outcome_failed) y = ieee_value(1.0_wp, ieee_quiet_nan)
+                    call fail(stat, msg)
+                    return
+                case default
+                    call fail(stat, msg)
+                    return
+                end select
             end do
             core%t = t_reached
             core%started = .true.
         end if
-        if (core%active == integrator_dopri5) then
-            u => core%z_rk
-        else
-            u => core%ida%state()
-        end if
+        stepper => active_integrator(core)
+        u => stepper%state()
         self%t = core%t
         call copy_state()
         if (core%augmented) then
-            ! y is one of IDA's unknowns (interpolated like the others)
+            ! y is one of the implicit integrator's unknowns (interpolated like the others)
             if (present(y)) then
-                call augmented_unpack(y=core%y_work)
+                call sys%unpack(u, u, y=core%y_work)
                 y = core%multiplier_sign*core%y_work
             end if
-            if (present(a)) then
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    call sys%unpack(u, core%ida%slope(), a=a)
-                end select
-            end if
+            if (present(a)) call sys%unpack(u, stepper%slope(), a=a)
             call record_done()
             return
         end if
-        ! The diagnostics come from the accepted steps (IDA's and dopri5's); the
-        ! multiplier is computed only when asked for.
+        ! The diagnostics come from the accepted steps; the multiplier is computed only
+        ! when asked for.
         if (branch_alarm()) return
         if (.not. (present(y) .or. present(a))) then
             call record_done()
             return
         end if
         ! The multiplier (and the acceleration) at an output time come from the
-        ! regularized equation, not from IDA's interpolant.
+        ! regularized equation, not from the integrator's interpolant.
         call core%model%evaluate(core%t, u(1:core%n), stat, recoverable)
         if (stat == regdae_success) call core%model%solve_multiplier(core%t, core%y_work, stat)
         if (stat /= regdae_success) then
@@ -1240,6 +1201,53 @@ contains
         end if
         call record_done()
     contains
+        ! The sizes of the outputs and tout; false (recorded) if one does not fit.
+        logical function outputs_fit() result(ok)
+            ok = .false.
+            if (size(x) /= nx) then
+                call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(nx))
+                return
+            end if
+            if (present(y)) then
+                if (size(y) /= core%m) then
+                    call fail(regdae_err_bad_input, 'advance: y must have length '//format_int(core%m))
+                    return
+                end if
+            end if
+            if (present(v)) then
+                if (.not. core%second_order .or. size(v) /= nx) then
+                    call fail(regdae_err_bad_input, 'advance: v is for second-order problems, length '//format_int(nx))
+                    return
+                end if
+            end if
+            if (present(a)) then
+                if (.not. core%second_order .or. size(a) /= nx) then
+                    call fail(regdae_err_bad_input, 'advance: a is for second-order problems, length '//format_int(nx))
+                    return
+                end if
+            end if
+            if (.not. ieee_is_finite(tout)) then
+                call fail(regdae_err_bad_input, 'advance: tout is NaN or Inf')
+                return
+            end if
+            if (tout < core%t) then
+                call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout)// &
+                          ' is before the current time '//format_real(core%t))
+                return
+            end if
+            if (.not. core%started .and. tout > core%t .and. tout - core%t < time_resolution(core%t, tout)) then
+                ! No first step fits (IDA: "tout too close to t0"); later, IDA and dopri5
+                ! step across such intervals.
+                call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout, 16)// &
+                          ' is too close to t0 = '//format_real(core%t, 16)//' to start the integration: tout - t0 = '// &
+                          format_real(tout - core%t)//' is below the time resolution '// &
+                          format_real(time_resolution(core%t, tout))// &
+                          ' (4 epsilon max(|t0|, |tout|), at least sqrt(tiny) = 1.5E-154)')
+                return
+            end if
+            ok = .true.
+        end function outputs_fit
+
         ! Success at tout, or the resolution warning when the monitor flagged a new
         ! unresolved singular pass during this advance (logged as an event too).
         subroutine record_done()
@@ -1256,85 +1264,17 @@ contains
             end if
         end subroutine record_done
 
-        ! IDA one step at a time (the same steps as IDA_NORMAL) to tout, the monitor
-        ! sampling every accepted step's end and the output times, in time order;
-        ! IDA's interpolant gives the state at tout. With switching, every 20 steps
-        ! whether the explicit method would do (explicit_would_do); true: stopped
-        ! (failure or alarm, recorded).
-        logical function ida_to(t_out) result(stopped)
-            real(wp), intent(in) :: t_out
-            real(wp) :: t_now
-            integer :: ierr, taken
-            stopped = .true.
-            t_now = core%ida%current_time()
-            if (t_now > core%sampled_t .and. t_now <= t_out) then   ! a step end passed over at the last output
-                call core%ida%interpolate(t_now, ierr)
-                if (sample_or_stop(t_now)) return
-            end if
-            taken = 0
-            do while (t_now < t_out)
-                if (taken >= core%opts%max_steps) then
-                    core%t = t_now
-                    call copy_state()
-                    call fail(regdae_err_integration, 'IDA took max_steps = '//format_int(core%opts%max_steps)// &
-                              ' steps without reaching tout = '//format_real(t_out)//' (t = '//format_real(t_now)//')')
-                    return
-                end if
-                call core%ida%step(t_out, core%opts%stop_at_output, t_now, ierr)
-                if (ierr < 0) then
-                    core%t = t_now
-                    call copy_state()
-                    if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
-                    call fail(core%ida%failure_status(), 'IDA failed at t = '//format_real(t_now)//' (flag '// &
-                              format_int(ierr)//'): '//core%ida%ida_message// &
-                              merge_text(' | last residual failure: ', core%ida%pending_message))
-                    return
-                end if
-                taken = taken + 1
-                if (t_now <= t_out) then
-                    if (sample_or_stop(t_now)) return
-                    if (core%stop_at_pass_end .and. core%monitor%pass_ended .and. t_now < t_out) then
-                        t_reached = t_now   ! IDA's state is the step's end
-                        stopped = .false.
-                        return
-                    end if
-                end if
-                if (core%switching .and. t_now < t_out .and. mod(taken, 20) == 0) then
-                    if (explicit_would_do(core, t_now)) then
-                        call switch_to_dopri5(core, t_now)
-                        stopped = .false.
-                        return
-                    end if
-                end if
-            end do
-            if (t_now > t_out) then
-                call core%ida%interpolate(t_out, ierr)
-                if (ierr /= 0) then
-                    call fail(regdae_err_integration, 'IDA could not interpolate at t = '//format_real(t_out))
-                    return
-                end if
-                if (sample_or_stop(t_out)) return
-            end if
-            stopped = .false.
-        end function ida_to
-
+        ! x (and v) from the integrator's state u (the augmented formulation's unpacked).
         subroutine copy_state()
-            if (core%augmented) then
-                call augmented_unpack(q=x)
-                if (present(v)) call augmented_unpack(v=v)
+            sys => stepper%augmented()
+            if (associated(sys)) then
+                call sys%unpack(u, u, q=x)
+                if (present(v)) call sys%unpack(u, u, v=v)
                 return
             end if
             x = u(1:nx)
             if (present(v)) v = u(nx + 1:2*nx)
         end subroutine copy_state
-
-        subroutine augmented_unpack(q, v, y)
-            real(wp), intent(out), optional :: q(:), v(:), y(:)
-            select type (sys => core%ida%system)
-            type is (augmented_system)
-                call sys%unpack(u, u, q=q, v=v, y=y)
-            end select
-        end subroutine augmented_unpack
 
         subroutine fail(code, text)
             integer, intent(in) :: code
@@ -1342,18 +1282,6 @@ contains
             call self%record(code, text, stat)
             if (associated(core)) self%t = core%t
         end subroutine fail
-
-        ! Sample IDA's current state at t; if a check fires, stop there (true).
-        logical function sample_or_stop(t)
-            real(wp), intent(in) :: t
-            sample_or_stop = .false.
-            call sample_step(core, t)
-            core%sampled_t = t
-            if (.not. core%monitor%alarm) return
-            core%t = t
-            call copy_state()
-            sample_or_stop = branch_alarm()
-        end function sample_or_stop
 
         ! The monitor saw the velocity jump across a singular interval, or the
         ! position constraint drift: stop.
@@ -1401,17 +1329,17 @@ contains
     function solver_statistics(self) result(st)
         class(solver_engine), intent(in) :: self
         type(solver_stats) :: st
+        class(integrator), pointer :: active
 
         st%t = self%t
         if (.not. associated(self%core)) return
         associate (core => self%core)
             st%switches = core%switches
-            ! IDA's counts (none if it never ran) plus the explicit integrator's (zero if it never ran)
-            call core%ida%get_statistics(st)
-            st%steps = st%steps + core%rk%steps
-            st%res_evals = st%res_evals + core%rk%evals
-            st%err_test_fails = st%err_test_fails + core%rk%rejects
-            if (core%active == integrator_dopri5) st%h_last = core%rk%h_last
+            ! the implicit integrator's counts (none if it never ran) plus the explicit one's;
+            ! the last step of the one in charge
+            active => active_integrator(core)
+            if (allocated(core%stiff)) call core%stiff%statistics(st, associated(active, core%stiff))
+            if (allocated(core%nonstiff)) call core%nonstiff%statistics(st, associated(active, core%nonstiff))
             st%singular_passes = core%monitor%n_singular
             st%sigma_min = core%monitor%sigma_min
             st%velocity_jump = core%monitor%jump_max
@@ -1507,7 +1435,8 @@ contains
 
         core => self%core
         if (.not. associated(core)) return
-        call core%ida%free()
+        if (allocated(core%stiff)) call core%stiff%free()
+        if (allocated(core%nonstiff)) call core%nonstiff%free()
         if (associated(core%model)) deallocate (core%model)
         deallocate (self%core)
         self%core => null()
@@ -1574,14 +1503,13 @@ contains
 
     real(wp) function engine_integrator_time(self) result(t)
         class(solver_engine), intent(in) :: self
+        class(integrator), pointer :: stepper
         t = self%t
         if (.not. associated(self%core)) return
         t = self%core%t
-        if (self%core%active == integrator_dopri5) then
-            t = self%core%rk%t
-        else if (allocated(self%core%ida%system)) then
-            t = self%core%ida%current_time()
-        end if
+        stepper => active_integrator(self%core)
+        if (.not. associated(stepper)) return
+        if (stepper%ready()) t = stepper%time()
     end function engine_integrator_time
 
     logical function engine_same(self, other) result(same)
@@ -1610,83 +1538,57 @@ contains
     subroutine engine_state(self, z)
         class(solver_engine), intent(in) :: self
         real(wp), intent(out) :: z(:)   !! length state_size()
+        class(integrator), pointer :: stepper
+        type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         integer :: nx
         if (.not. associated(self%core)) return
-        associate (core => self%core)
-            nx = core%nx
-            if (core%active == integrator_dopri5) then
-                z = core%z_rk(1:size(z))
-            else if (core%augmented) then
-                u => core%ida%state()
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    call sys%unpack(u, u, q=z(1:nx), v=z(nx + 1:2*nx))
-                end select
-            else
-                u => core%ida%state()
-                z = u(1:size(z))
-            end if
-        end associate
+        nx = self%core%nx
+        stepper => active_integrator(self%core)
+        u => stepper%state()
+        sys => stepper%augmented()
+        if (associated(sys)) then
+            call sys%unpack(u, u, q=z(1:nx), v=z(nx + 1:2*nx))
+        else
+            z = u(1:size(z))
+        end if
     end subroutine engine_state
 
     subroutine engine_restart_at(self, t, z, stat)
         class(solver_engine), intent(inout) :: self
         real(wp), intent(in) :: t, z(:)
         integer, intent(out) :: stat
-        real(wp), allocatable :: zp(:), y(:), u0(:), up0(:), id(:)
+        class(integrator), pointer :: stepper
         character(len=:), allocatable :: msg
-        logical :: recoverable
-        integer :: nx
         stat = regdae_err_not_initialized
         if (.not. associated(self%core)) return
         associate (core => self%core)
-            nx = core%nx
             core%t = t
             self%t = t
             core%sampled_t = t
-            if (core%active == integrator_dopri5) then
-                core%z_rk = z
-                call core%rk%start(core%model, t, z, core%rk%h_last, stat)
-            else if (core%augmented) then
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    allocate (u0(sys%neq), up0(sys%neq), id(sys%neq))
-                    call sys%initial_guess(z(1:nx), z(nx + 1:2*nx), u0, up0, id)
-                    call core%ida%restart(t, u0, up0, stat)
-                    if (stat == regdae_success) call core%ida%calc_ic(id, t + 1.0e-3_wp*max(1.0_wp, abs(t)), stat, msg)
-                end select
-            else
-                allocate (zp(core%n), y(core%m))
-                call core%model%slope_eliminated(t, z, zp, y, stat, recoverable)
-                if (stat /= regdae_success) return
-                if (core%formulation == formulation_multiplier) then
-                    call core%ida%restart(t, [z, y], [zp, spread(0.0_wp, 1, core%m)], stat)
-                else
-                    call core%ida%restart(t, z, zp, stat)
-                end if
-            end if
-            if (stat == regdae_success .and. core%monitor%work_tol > 0.0_wp) call rebase_work(core, t, z)
+            stepper => active_integrator(core)
+            call stepper%start(t, z, stat, msg, h0=stepper%last_step())
+            if (stat == regdae_success .and. core%monitor%work_tol > 0.0_wp) call rebase_work(core, stepper, t, z)
         end associate
     end subroutine engine_restart_at
 
     ! The work-energy balance goes on from the state z at t (engine_restart_at).
-    subroutine rebase_work(core, t, z)
+    subroutine rebase_work(core, stepper, t, z)
         type(solver_core), intent(inout) :: core
+        class(integrator), intent(in), target :: stepper
         real(wp), intent(in) :: t, z(:)
+        type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:), up(:)
         real(wp) :: kinetic, power, y(core%m), q(core%nx), v(core%nx)
         integer :: wstat
         logical :: recoverable
         wstat = -1
-        if (core%augmented) then
-            u => core%ida%state()
-            up => core%ida%slope()
-            select type (sys => core%ida%system)
-            type is (augmented_system)
-                call sys%unpack(u, up, q=q, v=v, y=y)
-                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass)
-            end select
+        sys => stepper%augmented()
+        if (associated(sys)) then
+            u => stepper%state()
+            up => stepper%slope()
+            call sys%unpack(u, up, q=q, v=v, y=y)
+            call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass)
         else
             call core%model%evaluate(t, z, wstat, recoverable)
             if (wstat == regdae_success) call core%model%work_sample(t, z, kinetic, power, wstat)
@@ -1703,12 +1605,14 @@ contains
         real(wp), intent(in), optional :: eps_scale   !! the companion's eps times this (a probe of the
                                                       !! regularization error)
         type(solver_options) :: opts
+        type(augmented_system), pointer :: sys
         real(wp) :: eps, zs(size(z)), ratio
         integer :: nx, pstat
         stat = regdae_err_not_initialized
         if (.not. associated(self%core)) return
         associate (core => self%core)
             nx = core%nx
+            if (core%augmented) sys => core%stiff%augmented()
             opts = core%opts
             opts%rtol = core%opts%rtol/kappa
             opts%atol = core%opts%atol/kappa
@@ -1725,14 +1629,11 @@ contains
             opts%formulation = core%formulation
             opts%linear_solver = merge(core%linear_solver, linear_solver_auto, core%augmented)
             if (core%augmented) then
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    eps = sys%eps
-                    opts%gamma = sys%gamma1
-                    opts%gamma1 = sys%gamma1
-                    opts%gamma0 = sys%gamma0
-                    if (opts%index == 2) opts%gamma0 = 0.5_wp*sys%gamma1**2
-                end select
+                eps = sys%eps
+                opts%gamma = sys%gamma1
+                opts%gamma1 = sys%gamma1
+                opts%gamma0 = sys%gamma0
+                if (opts%index == 2) opts%gamma0 = 0.5_wp*sys%gamma1**2
             else
                 eps = core%model%eps
                 if (core%model%order == 1) opts%gamma = core%model%w(1)
@@ -1755,16 +1656,13 @@ contains
             ! tolerance, not within the companion's (with a thinner layer it can bounce off the branch)
             zs = z
             if (core%augmented) then
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    if (sys%st%declared) then
-                        call project_structured(sys%problem, sys%st%constraint, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                    else
-                        call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                    end if
-                    call other%init(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
-                                    atol_vector=core%atol_z/kappa)
-                end select
+                if (sys%st%declared) then
+                    call project_structured(sys%problem, sys%st%constraint, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
+                else
+                    call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
+                end if
+                call other%init(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
+                                atol_vector=core%atol_z/kappa)
             else if (allocated(core%model%second)) then
                 call project_second_order(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
                 call other%init(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
@@ -1838,12 +1736,5 @@ contains
         real(wp), intent(in) :: t, tout
         time_resolution = max(4*epsilon(1.0_wp)*max(abs(t), abs(tout)), sqrt(tiny(1.0_wp)))
     end function time_resolution
-
-    pure function merge_text(prefix, text) result(s)
-        character(len=*), intent(in) :: prefix, text
-        character(len=:), allocatable :: s
-        s = ''
-        if (len(text) > 0) s = prefix//text
-    end function merge_text
 
 end module regdae_solver_front
