@@ -158,481 +158,160 @@ module regdae_solver_front
         final :: solver_finalize
     end type solver_engine
 
+    ! The init paths (submodule regdae_solver_init).
+    interface
+        module subroutine solver_init_first(self, problem, t0, x0, opts, stat, atol_vector)
+            class(solver_engine), intent(inout) :: self
+            class(dae_problem), intent(in) :: problem   !! the index-2 DAE (copied)
+            real(wp), intent(in) :: t0                  !! initial time
+            real(wp), intent(in) :: x0(:)               !! x(t0), length n; must satisfy g(x0, t0) = 0
+            type(solver_options), intent(in) :: opts    !! options (validated here)
+            integer, intent(out) :: stat                !! regdae status code
+            real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                              !! (replaces atol, atol_v; second order: positions,
+                                                              !! then velocities; order m: x, ..., x^(m-1))
+        end subroutine solver_init_first
+
+        module subroutine solver_init_second(self, problem, t0, x0, v0, opts, stat, atol_vector)
+            class(solver_engine), intent(inout) :: self
+            class(second_order_problem), intent(in) :: problem   !! the order-2 DAE or mechanical system (copied)
+            real(wp), intent(in) :: t0                  !! initial time
+            real(wp), intent(in) :: x0(:)               !! x(t0), length n; g(x0, t0) = 0
+            real(wp), intent(in) :: v0(:)               !! x'(t0), length n; G v0 + g_t = 0
+            type(solver_options), intent(in) :: opts    !! options (validated here; `index` chooses 2 or 3)
+            integer, intent(out) :: stat
+            real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                              !! (replaces atol, atol_v; second order: positions,
+                                                              !! then velocities; order m: x, ..., x^(m-1))
+        end subroutine solver_init_second
+
+        module subroutine solver_init_higher(self, problem, t0, xs0, opts, stat, atol_vector)
+            class(solver_engine), intent(inout) :: self
+            class(higher_order_problem), intent(in) :: problem   !! the order-m DAE (copied)
+            real(wp), intent(in) :: t0                   !! initial time
+            real(wp), intent(in) :: xs0(:, :)            !! (n, order): x, x', ..., x^(m-1) at t0
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+            real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                              !! (replaces atol, atol_v; second order: positions,
+                                                              !! then velocities; order m: x, ..., x^(m-1))
+        end subroutine solver_init_higher
+
+        module logical function check_input(self, t0, x0, v0, n, m, opts, stat) result(ok)
+            class(solver_engine), intent(inout) :: self
+            real(wp), intent(in) :: t0, x0(:), v0(:)
+            integer, intent(in) :: n, m
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+        end function check_input
+
+        module subroutine solver_start_augmented(self, problem, t0, q0, v0, opts, stat)
+            class(solver_engine), intent(inout) :: self
+            class(mechanical_problem), intent(in) :: problem
+            real(wp), intent(in) :: t0, q0(:), v0(:)
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+        end subroutine solver_start_augmented
+
+        module subroutine solver_start(self, t0, z0, opts, stat)
+            class(solver_engine), intent(inout) :: self
+            real(wp), intent(in) :: t0, z0(:)
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+        end subroutine solver_start
+    end interface
+
+    ! What regdae_solver_trust needs to verify singular passes with companions
+    ! (submodule regdae_solver_passes).
+    interface
+        module subroutine engine_stop_at_pass_ends(self, on)
+            class(solver_engine), intent(inout) :: self
+            logical, intent(in) :: on
+        end subroutine engine_stop_at_pass_ends
+
+        module logical function engine_take_pass_end(self) result(ended)
+            class(solver_engine), intent(inout) :: self
+        end function engine_take_pass_end
+
+        module subroutine engine_checkpoint(self, t, z, frozen, valid)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(out) :: t
+            real(wp), allocatable, intent(out) :: z(:)
+            logical, intent(out) :: frozen, valid
+        end subroutine engine_checkpoint
+
+        module subroutine engine_release_checkpoint(self, t, z)
+            class(solver_engine), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)
+        end subroutine engine_release_checkpoint
+
+        module real(wp) function engine_integrator_time(self) result(t)
+            class(solver_engine), intent(in) :: self
+        end function engine_integrator_time
+
+        module logical function engine_same(self, other) result(same)
+            class(solver_engine), intent(in) :: self, other
+        end function engine_same
+
+        module integer function engine_x_size(self) result(n)
+            class(solver_engine), intent(in) :: self
+        end function engine_x_size
+
+        module real(wp) function engine_time(self) result(t)
+            class(solver_engine), intent(in) :: self
+        end function engine_time
+
+        module integer function engine_state_size(self) result(n)
+            class(solver_engine), intent(in) :: self
+        end function engine_state_size
+
+        module subroutine engine_state(self, z)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(out) :: z(:)   !! length state_size()
+        end subroutine engine_state
+
+        module subroutine engine_restart_at(self, t, z, stat)
+            class(solver_engine), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)
+            integer, intent(out) :: stat
+        end subroutine engine_restart_at
+
+        module subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale)
+            class(solver_engine), intent(in) :: self
+            class(solver_engine), intent(inout) :: other
+            real(wp), intent(in) :: kappa       !! the tolerances' divisor (> 1)
+            real(wp), intent(in) :: t, z(:)     !! the start: a state of self (x, v)
+            integer, intent(out) :: stat
+            real(wp), intent(in), optional :: eps_scale   !! the companion's eps times this (a probe of the
+                                                          !! regularization error)
+        end subroutine engine_start_companion
+
+        module subroutine engine_limit_steps(self, steps)
+            class(solver_engine), intent(inout) :: self
+            integer, intent(in) :: steps   !! >= 1
+        end subroutine engine_limit_steps
+
+        module logical function engine_regularized(self) result(yes)
+            class(solver_engine), intent(in) :: self
+        end function engine_regularized
+
+        module logical function engine_eps_floored(self, kappa_a, kappa_b) result(floored)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(in) :: kappa_a, kappa_b
+        end function engine_eps_floored
+
+        module real(wp) function engine_state_distance(self, za, zb) result(d)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(in) :: za(:), zb(:)
+        end function engine_state_distance
+
+        module subroutine engine_note_event(self, text)
+            class(solver_engine), intent(inout) :: self
+            character(len=*), intent(in) :: text
+        end subroutine engine_note_event
+    end interface
+
 contains
-
-    subroutine solver_init_first(self, problem, t0, x0, opts, stat, atol_vector)
-        class(solver_engine), intent(inout) :: self
-        class(dae_problem), intent(in) :: problem   !! the index-2 DAE (copied)
-        real(wp), intent(in) :: t0                  !! initial time
-        real(wp), intent(in) :: x0(:)               !! x(t0), length n; must satisfy g(x0, t0) = 0
-        type(solver_options), intent(in) :: opts    !! options (validated here)
-        integer, intent(out) :: stat                !! regdae status code
-        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
-                                                          !! (replaces atol, atol_v; second order: positions,
-                                                          !! then velocities; order m: x, ..., x^(m-1))
-
-        if (.not. self%check_input(t0, x0, x0, problem%n, problem%m, opts, stat)) return
-        if (.not. formulation_fits(self, opts, stat)) return
-        call new_core(self%core)
-        if (present(atol_vector)) self%core%atol_z = atol_vector
-        self%core%nx = problem%n
-        select type (problem)
-        class is (linear_dae_problem)
-            self%core%multiplier_sign = -1.0_wp   ! section 3 writes x' = A x + B y + q
-        end select
-        call self%core%model%init_first_order(problem, opts, lsq_normal, stat)
-        if (stat /= 0) then
-            call self%record(regdae_err_memory, self%core%model%message, stat)
-            return
-        end if
-        call self%start(t0, x0, opts, stat)
-    end subroutine solver_init_first
-
-    subroutine solver_init_second(self, problem, t0, x0, v0, opts, stat, atol_vector)
-        class(solver_engine), intent(inout) :: self
-        class(second_order_problem), intent(in) :: problem   !! the order-2 DAE or mechanical system (copied)
-        real(wp), intent(in) :: t0                  !! initial time
-        real(wp), intent(in) :: x0(:)               !! x(t0), length n; g(x0, t0) = 0
-        real(wp), intent(in) :: v0(:)               !! x'(t0), length n; G v0 + g_t = 0
-        type(solver_options), intent(in) :: opts    !! options (validated here; `index` chooses 2 or 3)
-        integer, intent(out) :: stat
-        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
-                                                          !! (replaces atol, atol_v; second order: positions,
-                                                          !! then velocities; order m: x, ..., x^(m-1))
-        class(second_order_problem), allocatable :: copy
-        real(wp) :: gval(problem%m), gnorm
-        integer :: ustat
-        logical :: augmented
-        character(len=:), allocatable :: msg
-
-        if (.not. self%check_input(t0, x0, v0, problem%n, problem%m, opts, stat)) return
-        ! Position and velocity constraints at t0 (the regularized system checks only one of them).
-        allocate (copy, source=problem)
-        ustat = 0
-        call copy%constraint(t0, x0, gval, ustat)
-        gnorm = 0.0_wp
-        if (ustat == 0 .and. problem%m > 0) gnorm = maxval(abs(gval))
-        if (ustat == 0) call initial_velocity_constraint(copy, t0, x0, v0, gval, ustat)
-        if (ustat == regdae_err_memory) then
-            call self%record(regdae_err_memory, 'at the initial point: the system refused the values of G ('// &
-                             'the declared pattern)', stat)
-            return
-        else if (ustat == regdae_err_structure) then
-            call self%record(regdae_err_structure, status_message(regdae_err_structure)//' at the initial point '// &
-                             '(in constraint_jacobian_values)', stat)
-            return
-        else if (ustat /= 0) then
-            call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
-                             'reported failure (stat = '//format_int(ustat)//')', stat)
-            return
-        end if
-        if (problem%m > 0) gnorm = max(gnorm, maxval(abs(gval)))
-        if (.not. (gnorm <= opts%ic_tol)) then
-            call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
-                             '|G v0 + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
-            return
-        end if
-        if (opts%check_jacobians) then
-            call check_second_order_jacobian(copy, t0, x0, ustat, msg)
-            if (ustat /= regdae_success) then
-                call self%record(ustat, msg, stat)
-                return
-            end if
-        end if
-        augmented = .false.
-        select type (copy)
-        class is (mechanical_problem)
-            augmented = use_augmented(copy, opts)
-        end select
-        if (.not. augmented) then
-            if (.not. formulation_fits(self, opts, stat)) return
-        end if
-        call new_core(self%core)
-        if (present(atol_vector)) self%core%atol_z = atol_vector
-        self%core%nx = problem%n
-        self%core%second_order = .true.
-        select type (copy)
-        class is (mechanical_problem)
-            self%core%multiplier_sign = -1.0_wp
-            copy%mass_damping = opts%mass_damping
-            if (augmented) then
-                call self%start_augmented(copy, t0, x0, v0, opts, stat)
-                return
-            end if
-        end select
-        if (opts%index == 3) then
-            call self%core%model%init_second_order(copy, opts, lsq_normal, stat)
-        else
-            call self%core%model%init_first_order(new_velocity_index2(copy), opts, lsq_normal, stat)
-        end if
-        if (stat /= 0) then
-            call self%record(regdae_err_memory, self%core%model%message, stat)
-            return
-        end if
-        call self%start(t0, [x0, v0], opts, stat)
-    end subroutine solver_init_second
-
-    subroutine solver_init_higher(self, problem, t0, xs0, opts, stat, atol_vector)
-        class(solver_engine), intent(inout) :: self
-        class(higher_order_problem), intent(in) :: problem   !! the order-m DAE (copied)
-        real(wp), intent(in) :: t0                   !! initial time
-        real(wp), intent(in) :: xs0(:, :)            !! (n, order): x, x', ..., x^(m-1) at t0
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
-                                                          !! (replaces atol, atol_v; second order: positions,
-                                                          !! then velocities; order m: x, ..., x^(m-1))
-        class(higher_order_problem), allocatable :: copy
-        real(wp) :: gval(problem%m), gt(problem%m), gnorm
-        real(wp), allocatable :: gx(:, :)
-        integer :: ustat, astat
-
-        if (problem%order < 3 .or. size(xs0, 2) /= problem%order) then
-            call self%record(regdae_err_bad_input, 'a higher_order_problem needs order >= 3 and xs0(n, order); '// &
-                             'got order '//format_int(problem%order)//' and '//format_int(size(xs0, 2))// &
-                             ' columns', stat)
-            return
-        end if
-        if (.not. self%check_input(t0, xs0(:, 1), xs0(:, 2), problem%n, problem%m, opts, stat)) return
-        if (.not. formulation_fits(self, opts, stat)) return
-        if (.not. all(ieee_is_finite(xs0))) then
-            call self%record(regdae_err_bad_input, 'xs0 contains NaN or Inf', stat)
-            return
-        end if
-        allocate (gx(problem%m, problem%n), stat=astat)
-        if (astat /= 0) then
-            call self%record(regdae_err_memory, 'out of memory: G at the initial point ('//format_int(problem%m)// &
-                             ' x '//format_int(problem%n)//' reals) was refused', stat)
-            return
-        end if
-        allocate (copy, source=problem)
-        ustat = 0
-        call copy%constraint(t0, xs0(:, 1), gval, ustat)
-        if (ustat == 0) call copy%constraint_jacobian(t0, xs0(:, 1), gx, ustat)
-        if (ustat == 0) call copy%constraint_dt(t0, xs0(:, 1), gt, ustat)
-        if (ustat /= 0) then
-            call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
-                             'reported failure (stat = '//format_int(ustat)//')', stat)
-            return
-        end if
-        gnorm = 0.0_wp
-        if (problem%m > 0) gnorm = max(maxval(abs(gval)), maxval(abs(matmul(gx, xs0(:, 2)) + gt)))
-        if (.not. (gnorm <= opts%ic_tol)) then
-            call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
-                             '|G x0'' + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
-            return
-        end if
-        call new_core(self%core)
-        if (present(atol_vector)) self%core%atol_z = atol_vector
-        self%core%nx = problem%n
-        self%core%second_order = .true.
-        call self%core%model%init_higher_order(copy, opts, lsq_normal, stat)
-        if (stat /= 0) then
-            call self%record(regdae_err_memory, self%core%model%message, stat)
-            return
-        end if
-        call self%start(t0, reshape(xs0, [size(xs0)]), opts, stat)
-    end subroutine solver_init_higher
-
-    ! Common checks of init; false (with stat and message set) if the input is bad.
-    logical function check_input(self, t0, x0, v0, n, m, opts, stat) result(ok)
-        class(solver_engine), intent(inout) :: self
-        real(wp), intent(in) :: t0, x0(:), v0(:)
-        integer, intent(in) :: n, m
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        character(len=:), allocatable :: msg
-        integer :: code
-
-        call self%destroy()
-        self%t = t0
-        self%assigned = .false.
-        ok = .false.
-        call validate_options(opts, code, msg)
-        if (code /= regdae_success) then
-            call self%record(code, msg, stat)
-        else if (n < 1 .or. m < 0 .or. m > n) then
-            call self%record(regdae_err_bad_input, 'problem sizes must satisfy 1 <= n and 0 <= m <= n (n = '// &
-                             format_int(n)//', m = '//format_int(m)//')', stat)
-        else if (size(x0) /= n .or. size(v0) /= n) then
-            call self%record(regdae_err_bad_input, 'x0 (and v0) must have length n = '//format_int(n)// &
-                             '; got '//format_int(size(x0))//' (and '//format_int(size(v0))//')', stat)
-        else if (.not. ieee_is_finite(t0)) then
-            call self%record(regdae_err_bad_input, 't0 is NaN or Inf', stat)
-        else if (.not. (all(ieee_is_finite(x0)) .and. all(ieee_is_finite(v0)))) then
-            call self%record(regdae_err_bad_input, 'x0 (or v0) contains NaN or Inf', stat)
-        else
-            ok = .true.
-        end if
-    end function check_input
-
-    ! G v0 + g_t at t0: from the declared pattern of G for a mechanical problem that
-    ! declares its structure (O(nonzeros) memory), otherwise from the dense G.
-    subroutine initial_velocity_constraint(problem, t0, x0, v0, val, stat)
-        class(second_order_problem), intent(inout) :: problem
-        real(wp), intent(in) :: t0, x0(:), v0(:)
-        real(wp), intent(out) :: val(:)
-        integer, intent(inout) :: stat
-        type(mechanical_structure) :: st
-        select type (problem)
-        class is (mechanical_problem)
-            st = problem%structure()
-            if (st%declared) then
-                call structured_velocity_constraint(problem, st%constraint, t0, x0, v0, val, stat)
-                return
-            end if
-        end select
-        call velocity_constraint(problem, t0, x0, v0, val, stat)
-    end subroutine initial_velocity_constraint
-
-    ! formulation=auto takes the augmented formulation for a mechanical problem
-    ! that declares its structure and is large enough, with M positive definite
-    ! and integrator ida or auto (which is then IDA: the explicit integrator works on
-    ! the eliminated formulation); formulation=augmented always (its setup refuses
-    ! what does not fit).
-    logical function use_augmented(problem, opts)
-        class(mechanical_problem), intent(in) :: problem
-        type(solver_options), intent(in) :: opts
-        type(mechanical_structure) :: st
-        use_augmented = (opts%formulation == formulation_augmented)
-        if (opts%formulation /= formulation_auto) return
-        if (opts%integrator == integrator_dopri5 .or. opts%mass_damping > 0.0_wp .or. problem%n < augmented_min_n) return
-        st = problem%structure()
-        use_augmented = st%declared
-    end function use_augmented
-
-    ! The dense formulations: refuse formulation=augmented and the structured
-    ! linear solvers (the problem is not a mechanical one, or auto chose dense).
-    logical function formulation_fits(self, opts, stat) result(ok)
-        class(solver_engine), intent(inout) :: self
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        ok = .true.
-        if (opts%formulation == formulation_augmented) then
-            call self%record(regdae_err_bad_input, 'formulation=augmented needs a mechanical_problem', stat)
-            ok = .false.
-        else if (opts%linear_solver == linear_solver_band .or. opts%linear_solver == linear_solver_sparse) then
-            call self%record(regdae_err_bad_input, 'linear_solver='//linear_solver_name(opts%linear_solver)// &
-                             ' needs the augmented formulation (a mechanical problem that declares its structure, '// &
-                             'or formulation=augmented); the Newton matrix here is dense', stat)
-            ok = .false.
-        end if
-    end function formulation_fits
-
-    ! The augmented formulation (regdae_augmented_system): the sparse residual on
-    ! IDA with a dense, band or sparse linear solver, consistent initial values by
-    ! IDACalcIC, the diagnostics from IDA's state.
-    subroutine solver_start_augmented(self, problem, t0, q0, v0, opts, stat)
-        class(solver_engine), intent(inout) :: self
-        class(mechanical_problem), intent(in) :: problem
-        real(wp), intent(in) :: t0, q0(:), v0(:)
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        type(solver_core), pointer :: core
-        type(augmented_system) :: sys
-        type(ida_integrator), pointer :: ida
-        real(wp), allocatable :: u0(:), up0(:), id(:)
-        character(len=:), allocatable :: msg
-
-        core => self%core
-        core%opts = opts
-        core%augmented = .true.
-        core%formulation = formulation_augmented
-        core%active = integrator_ida
-        core%events = ''
-        core%n = 2*problem%n
-        core%m = problem%m
-        core%t = t0
-        call set_state_tolerances(core, stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        call sys%setup(problem, opts, stat)
-        if (stat /= regdae_success) then
-            call fail(stat, sys%message)
-            return
-        end if
-        call resolve_augmented_parameters(core, sys, t0, q0, v0, stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        core%neq = sys%neq
-        core%linear_solver = opts%linear_solver
-        ! KLU on the grouped Newton matrix was the fastest per step at every chain size
-        ! measured (N = 2 ... 1024: 1.1-2.4x faster than band and dense, doc/performance.md)
-        if (core%linear_solver == linear_solver_auto) core%linear_solver = linear_solver_sparse
-        allocate (u0(sys%neq), up0(sys%neq), id(sys%neq), core%y_work(core%m))
-        call sys%initial_guess(q0, v0, u0, up0, id)
-        call augmented_eps(core, sys, t0, u0)
-        core%excluded = sys%excluded_unknowns(opts%excluded)
-        if (opts%exclusion == exclusion_off) core%excluded = .false.
-        ida => ida_in_slot(core)
-        call ida%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
-                            sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        call ida%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//msg)
-            return
-        end if
-        if (opts%check_jacobians) then
-            call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
-            if (stat == regdae_success) call check_structured_jacobian(problem, sys, t0, q0, stat, msg)
-            if (stat /= regdae_success) then
-                call fail(stat, msg)
-                return
-            end if
-        end if
-        call start_monitor_augmented(core, t0, core%opts%eps)
-        if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
-            call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
-                      '(override `invariant` of the second-order problem)')
-            return
-        end if
-        call self%record(regdae_success, '', stat)
-    contains
-        subroutine fail(code, text)
-            integer, intent(in) :: code
-            character(len=*), intent(in) :: text
-            call self%record(code, text, stat)
-            call self%destroy()
-        end subroutine fail
-    end subroutine solver_start_augmented
-
-    ! With the model set up: consistent initial values, then the IDA objects.
-    subroutine solver_start(self, t0, z0, opts, stat)
-        class(solver_engine), intent(inout) :: self
-        real(wp), intent(in) :: t0, z0(:)
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        type(solver_core), pointer :: core
-        type(dopri5_integrator), pointer :: dopri5
-        type(ida_integrator), pointer :: ida
-        character(len=:), allocatable :: msg
-        real(wp), allocatable :: y0(:), zp0(:)
-        integer :: lsq, n, m, nx
-        logical :: recoverable
-        real(wp) :: gnorm
-
-        core => self%core
-        core%opts = opts
-        core%n = size(z0)
-        core%m = core%model%m
-        core%t = t0
-        n = core%n
-        m = core%m
-        nx = core%model%n
-
-        call core%model%evaluate(t0, z0, stat, recoverable)
-        if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//core%model%message)
-            return
-        end if
-        gnorm = 0.0_wp
-        if (m > 0) gnorm = maxval(abs(core%model%g))
-        if (.not. (gnorm <= opts%ic_tol)) then
-            call fail(regdae_err_inconsistent_ic, 'inconsistent initial values: max |g(x0, t0)| = '// &
-                      format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol))
-            return
-        end if
-        lsq = opts%lsq
-        if (lsq == lsq_auto) lsq = lsq_checked   ! by conditioning, per solve (regdae_damped_lsq)
-        core%model%lsq = lsq
-        call set_state_tolerances(core, stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        call resolve_auto_parameters(core, t0, z0, stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        allocate (y0(m), zp0(n))
-        call core%model%solve_multiplier(t0, y0, stat)
-        if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//core%model%message)
-            return
-        end if
-        call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
-        call start_monitor(core, t0, z0, zp0)
-        core%t0 = t0
-        ! (allocated explicitly: the reallocating assignment to a component never allocated
-        ! reads its undefined bounds, which UBSan reports as an integer overflow)
-        if (allocated(core%z0)) deallocate (core%z0)
-        allocate (core%z0, source=z0)
-        if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
-            call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
-                      '(override `invariant` of the second-order problem; first-order problems have none)')
-            return
-        end if
-
-        core%neq = n
-        core%formulation = formulation_eliminated
-        if (opts%formulation == formulation_multiplier) core%formulation = formulation_multiplier
-        if (opts%formulation == formulation_multiplier) core%neq = n + m
-        allocate (core%excluded(core%neq), source=.false.)
-        if (opts%exclusion /= exclusion_off) then
-            core%excluded(n + 1:) = .true.
-            if (core%model%order >= 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:n) = .true.
-        end if
-        allocate (core%y_work(m), core%zp_work(n))
-        if (opts%h_init == 0.0_wp) then
-            call check_first_step(core, t0, z0, zp0, stat, msg)
-            if (stat /= regdae_success) then
-                call fail(stat, msg)
-                return
-            end if
-        end if
-        ! integrator=auto: dopri5 first (the eliminated formulation only), IDA created
-        ! when the stiffness test hands over
-        core%active = opts%integrator
-        core%events = ''
-        if (opts%integrator == integrator_auto) then
-            core%active = merge(integrator_dopri5, integrator_ida, core%formulation == formulation_eliminated)
-            ! Regularization layers far thinner than the automatic eps's (a user's eps below
-            ! 1/100 of it): the explicit method steps through them inaccurately, without an
-            ! alarm (doc/methods.md); IDA passes them
-            if (core%active == integrator_dopri5 .and. core%m > 0) then
-                if (core%model%eps < core%eps_auto0/100.0_wp) then
-                    core%active = integrator_ida
-                    call log_event(core, 't = '//format_real(t0)//': ida from the start (eps = '// &
-                                   format_real(core%model%eps)//' is below 1/100 of the automatic eps for this '// &
-                                   'rtol: layers too thin for the explicit method)')
-                end if
-            end if
-            core%switching = (core%active == integrator_dopri5)
-        end if
-        if (core%active == integrator_dopri5) then
-            dopri5 => dopri5_in_slot(core)
-            call dopri5%start(t0, z0, stat, msg, h0=opts%h_init)
-            if (stat /= regdae_success) then
-                call fail(stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
-                return
-            end if
-            call self%record(regdae_success, '', stat)
-            return
-        end if
-        ida => ida_in_slot(core)
-        call ida%start(t0, z0, stat, msg, zp=zp0, y=y0)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        call self%record(regdae_success, '', stat)
-    contains
-        subroutine fail(code, text)
-            integer, intent(in) :: code
-            character(len=*), intent(in) :: text
-            call self%record(code, text, stat)
-            call self%destroy()
-        end subroutine fail
-    end subroutine solver_start
 
     subroutine solver_advance(self, tout, x, y, stat, v, a)
         class(solver_engine), intent(inout) :: self
@@ -1008,274 +687,6 @@ contains
         type(solver_engine), intent(inout) :: self
         call self%destroy()
     end subroutine solver_finalize
-
-    subroutine engine_stop_at_pass_ends(self, on)
-        class(solver_engine), intent(inout) :: self
-        logical, intent(in) :: on
-        if (.not. associated(self%core)) return
-        self%core%stop_at_pass_end = on
-        self%core%monitor%defer_in_pass = on
-    end subroutine engine_stop_at_pass_ends
-
-    logical function engine_take_pass_end(self) result(ended)
-        class(solver_engine), intent(inout) :: self
-        ended = .false.
-        if (.not. associated(self%core)) return
-        ended = self%core%monitor%pass_ended
-        self%core%monitor%pass_ended = .false.
-    end function engine_take_pass_end
-
-    subroutine engine_checkpoint(self, t, z, frozen, valid)
-        class(solver_engine), intent(in) :: self
-        real(wp), intent(out) :: t
-        real(wp), allocatable, intent(out) :: z(:)
-        logical, intent(out) :: frozen, valid
-        t = 0.0_wp
-        frozen = .false.
-        valid = .false.
-        if (.not. associated(self%core)) return
-        associate (mon => self%core%monitor)
-            valid = mon%checkpoint_valid
-            frozen = mon%checkpoint_frozen
-            if (.not. valid) return
-            t = mon%checkpoint_t
-            z = mon%checkpoint_z
-        end associate
-    end subroutine engine_checkpoint
-
-    subroutine engine_release_checkpoint(self, t, z)
-        class(solver_engine), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        if (associated(self%core)) call self%core%monitor%release_checkpoint(t, z)
-    end subroutine engine_release_checkpoint
-
-    real(wp) function engine_integrator_time(self) result(t)
-        class(solver_engine), intent(in) :: self
-        class(integrator), pointer :: stepper
-        t = self%t
-        if (.not. associated(self%core)) return
-        t = self%core%t
-        stepper => active_integrator(self%core)
-        if (.not. associated(stepper)) return
-        if (stepper%ready()) t = stepper%time()
-    end function engine_integrator_time
-
-    logical function engine_same(self, other) result(same)
-        class(solver_engine), intent(in) :: self, other
-        same = .false.
-        if (associated(self%core) .and. associated(other%core)) same = associated(self%core, other%core)
-    end function engine_same
-
-    integer function engine_x_size(self) result(n)
-        class(solver_engine), intent(in) :: self
-        n = 0
-        if (associated(self%core)) n = self%core%nx
-    end function engine_x_size
-
-    real(wp) function engine_time(self) result(t)
-        class(solver_engine), intent(in) :: self
-        t = self%t
-    end function engine_time
-
-    integer function engine_state_size(self) result(n)
-        class(solver_engine), intent(in) :: self
-        n = 0
-        if (associated(self%core)) n = self%core%n
-    end function engine_state_size
-
-    subroutine engine_state(self, z)
-        class(solver_engine), intent(in) :: self
-        real(wp), intent(out) :: z(:)   !! length state_size()
-        class(integrator), pointer :: stepper
-        type(augmented_system), pointer :: sys
-        real(c_double), pointer :: u(:)
-        integer :: nx
-        if (.not. associated(self%core)) return
-        nx = self%core%nx
-        stepper => active_integrator(self%core)
-        u => stepper%state()
-        sys => stepper%augmented()
-        if (associated(sys)) then
-            call sys%unpack(u, u, q=z(1:nx), v=z(nx + 1:2*nx))
-        else
-            z = u(1:size(z))
-        end if
-    end subroutine engine_state
-
-    subroutine engine_restart_at(self, t, z, stat)
-        class(solver_engine), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        integer, intent(out) :: stat
-        class(integrator), pointer :: stepper
-        character(len=:), allocatable :: msg
-        stat = regdae_err_not_initialized
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            core%t = t
-            self%t = t
-            core%sampled_t = t
-            stepper => active_integrator(core)
-            call stepper%start(t, z, stat, msg, h0=stepper%last_step())
-            if (stat == regdae_success .and. core%monitor%work_tol > 0.0_wp) call rebase_work(core, stepper, t, z)
-        end associate
-    end subroutine engine_restart_at
-
-    ! The work-energy balance goes on from the state z at t (engine_restart_at).
-    subroutine rebase_work(core, stepper, t, z)
-        type(solver_core), intent(inout) :: core
-        class(integrator), intent(in), target :: stepper
-        real(wp), intent(in) :: t, z(:)
-        type(augmented_system), pointer :: sys
-        real(c_double), pointer :: u(:), up(:)
-        real(wp) :: kinetic, power, y(core%m), q(core%nx), v(core%nx)
-        integer :: wstat
-        logical :: recoverable
-        wstat = -1
-        sys => stepper%augmented()
-        if (associated(sys)) then
-            u => stepper%state()
-            up => stepper%slope()
-            call sys%unpack(u, up, q=q, v=v, y=y)
-            call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass)
-        else
-            call core%model%evaluate(t, z, wstat, recoverable)
-            if (wstat == regdae_success) call core%model%work_sample(t, z, kinetic, power, wstat)
-        end if
-        if (wstat == 0) call core%monitor%rebase_work(t, kinetic, power)
-    end subroutine rebase_work
-
-    subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale)
-        class(solver_engine), intent(in) :: self
-        class(solver_engine), intent(inout) :: other
-        real(wp), intent(in) :: kappa       !! the tolerances' divisor (> 1)
-        real(wp), intent(in) :: t, z(:)     !! the start: a state of self (x, v)
-        integer, intent(out) :: stat
-        real(wp), intent(in), optional :: eps_scale   !! the companion's eps times this (a probe of the
-                                                      !! regularization error)
-        type(solver_options) :: opts
-        type(augmented_system), pointer :: sys
-        real(wp) :: eps, zs(size(z)), ratio
-        integer :: nx, pstat
-        stat = regdae_err_not_initialized
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            nx = core%nx
-            if (core%augmented) sys => core%stiff%augmented()
-            opts = core%opts
-            opts%rtol = core%opts%rtol/kappa
-            opts%atol = core%opts%atol/kappa
-            if (opts%atol_v /= option_auto) opts%atol_v = core%opts%atol_v/kappa
-            opts%jump_tol = 0.0_wp
-            opts%drift_tol = 0.0_wp
-            opts%work_tol = 0.0_wp
-            opts%invariant_tol = 0.0_wp
-            opts%resolution_tol = 0.0_wp
-            opts%ic_tol = huge(1.0_wp)
-            opts%check_jacobians = .false.
-            opts%h_init = 0.0_wp
-            opts%integrator = merge(integrator_dopri5, integrator_ida, core%active == integrator_dopri5)
-            opts%formulation = core%formulation
-            opts%linear_solver = merge(core%linear_solver, linear_solver_auto, core%augmented)
-            if (core%augmented) then
-                eps = sys%eps
-                opts%gamma = sys%gamma1
-                opts%gamma1 = sys%gamma1
-                opts%gamma0 = sys%gamma0
-                if (opts%index == 2) opts%gamma0 = 0.5_wp*sys%gamma1**2
-            else
-                eps = core%model%eps
-                if (core%model%order == 1) opts%gamma = core%model%w(1)
-                if (core%model%order == 2) then
-                    opts%gamma0 = core%model%w(1)
-                    opts%gamma1 = core%model%w(2)
-                end if
-            end if
-            ! an automatic eps shrinks with the tolerance as its rule says (rtol^2 within its
-            ! bounds; direct: the square root of that): below the rule's floor thinner layers
-            ! are not resolved in double precision, and the companion has the same eps
-            opts%eps = eps
-            if (core%eps_factor > 0.0_wp) then
-                ratio = automatic_eps_factor(opts%rtol)/automatic_eps_factor(core%opts%rtol)
-                if (opts%method == method_direct) ratio = sqrt(ratio)
-                opts%eps = eps*ratio
-            end if
-            if (present(eps_scale)) opts%eps = opts%eps*eps_scale
-            ! the start projected onto the constraints: the solution's drift is within its
-            ! tolerance, not within the companion's (with a thinner layer it can bounce off the branch)
-            zs = z
-            if (core%augmented) then
-                if (sys%st%declared) then
-                    call project_structured(sys%problem, sys%st%constraint, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                else
-                    call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                end if
-                call other%init(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
-                                atol_vector=core%atol_z/kappa)
-            else if (allocated(core%model%second)) then
-                call project_second_order(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                call other%init(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
-                                atol_vector=core%atol_z/kappa)
-            else if (allocated(core%model%higher)) then
-                stat = regdae_err_bad_input   ! order >= 3: not verified
-            else
-                select type (p => core%model%first)
-                type is (velocity_index2_problem)
-                    call project_second_order(p%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                    call other%init(p%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, atol_vector=core%atol_z/kappa)
-                class default
-                    call project_first_order(p, t, zs(1:nx), pstat)
-                    call other%init(p, t, zs(1:nx), opts, stat, atol_vector=core%atol_z/kappa)
-                end select
-            end if
-        end associate
-    end subroutine engine_start_companion
-
-    subroutine engine_limit_steps(self, steps)
-        class(solver_engine), intent(inout) :: self
-        integer, intent(in) :: steps   !! >= 1
-        if (associated(self%core)) self%core%opts%max_steps = max(1, steps)
-    end subroutine engine_limit_steps
-
-    logical function engine_regularized(self) result(yes)
-        class(solver_engine), intent(in) :: self
-        yes = .false.
-        if (associated(self%core)) yes = self%core%opts%method /= method_baumgarte .and. self%core%monitor%regularized()
-    end function engine_regularized
-
-    logical function engine_eps_floored(self, kappa_a, kappa_b) result(floored)
-        class(solver_engine), intent(in) :: self
-        real(wp), intent(in) :: kappa_a, kappa_b
-        floored = .false.
-        if (.not. associated(self%core)) return
-        if (.not. (self%core%eps_factor > 0.0_wp)) return
-        floored = abs(automatic_eps_factor(self%core%opts%rtol/kappa_a) - automatic_eps_factor(self%core%opts%rtol/ &
-                      kappa_b)) <= 1.0e-6_wp*automatic_eps_factor(self%core%opts%rtol/kappa_a)
-    end function engine_eps_floored
-
-    real(wp) function engine_state_distance(self, za, zb) result(d)
-        class(solver_engine), intent(in) :: self
-        real(wp), intent(in) :: za(:), zb(:)
-        integer :: i
-        logical :: skip_v
-        d = 0.0_wp
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            ! the positions (x) only: the error the user reads; right after a pass the
-            ! velocities carry its layer's sensitivity, which the positions integrate away
-            skip_v = core%second_order
-            do i = 1, min(size(za), size(zb), core%n)
-                if (skip_v .and. i > core%nx) cycle
-                d = max(d, abs(za(i) - zb(i))/(core%opts%rtol*abs(zb(i)) + core%atol_z(i)))
-            end do
-        end associate
-        if (.not. (d == d)) d = huge(1.0_wp)
-    end function engine_state_distance
-
-    subroutine engine_note_event(self, text)
-        class(solver_engine), intent(inout) :: self
-        character(len=*), intent(in) :: text
-        if (associated(self%core)) call log_event(self%core, text)
-    end subroutine engine_note_event
 
 
 end module regdae_solver_front
