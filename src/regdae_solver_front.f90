@@ -1,13 +1,17 @@
 !> The regdae solver front: a regularized index-2 or index-3 DAE integrated by
-!! one of the backends, SUNDIALS IDA (`regdae_ida_backend`) or the explicit
-!! Dormand-Prince integrator (`regdae_explicit_rk`). The front checks the
-!! input, computes consistent initial values, drives the backend from output
-!! to output, samples the diagnostics (`regdae_monitor`) and keeps the status
-!! and statistics. The state of one problem is `regdae_solver_core`'s record;
-!! the monitor's start and samples are in `regdae_solver_sampling`, the
-!! switching policy of integrator=auto in `regdae_integrator_switching`, and
-!! the augmented formulation's scales for the automatic rules in
-!! `regdae_augmented_rules`.
+!! the integrators behind one interface (`regdae_integrator`): the explicit
+!! Dormand-Prince (`regdae_dopri5_integrator`) and SUNDIALS IDA on the
+!! eliminated, multiplier or augmented formulation (`regdae_ida_integrator`),
+!! with integrator=auto switching between them (`regdae_integrator_switching`,
+!! its policy in `regdae_switching_policy`). The front is what a user calls:
+!! init (submodule `regdae_solver_init`: the input checked, consistent initial
+!! values, the automatic parameters of `regdae_auto_parameters`, the first
+!! integrator started), advance (written once over the interface: the integrator
+!! in charge to the output time, the outcome acted on, the outputs and the
+!! diagnostics' status), the statistics and the events; and what
+!! regdae_solver_trust needs to verify singular passes (submodule
+!! `regdae_solver_passes`). The state of one problem is `regdae_solver_core`'s
+!! record; the monitor's start and samples are in `regdae_solver_sampling`.
 !!
 !! ```fortran
 !! type(solver_engine) :: solver
@@ -29,36 +33,19 @@ module regdae_solver_front
     use regdae_kinds, only: wp
     use regdae_status
     use regdae_problem, only: dae_problem
-    use regdae_second_order_problem, only: second_order_problem, velocity_constraint
-    use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure, &
-                                         structured_velocity_constraint
+    use regdae_second_order_problem, only: second_order_problem
+    use regdae_mechanical_problem, only: mechanical_problem
     use regdae_higher_order_problem, only: higher_order_problem
-    use regdae_linear_problem, only: linear_dae_problem
-    use regdae_velocity_index2, only: new_velocity_index2, velocity_index2_problem
-    use regdae_projection, only: project_first_order, project_second_order
-    use regdae_sparse_projection, only: project_structured
     use regdae_options
-    use regdae_regularization, only: regularized_dae
-    use regdae_regularized_system, only: new_regularized_system
-    use regdae_augmented_system, only: augmented_system, user_routine_failure
-    use regdae_differences, only: central_difference_step
+    use regdae_augmented_system, only: augmented_system
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: alarm_jump, alarm_invariant, alarm_work
-    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, rms
-    use regdae_work_energy, only: kinetic_energy_and_power
-    use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
-    use regdae_solver_core, only: solver_core, new_core, log_event, active_integrator
-    use regdae_augmented_rules, only: mass_diagonal, gb_row_scale, augmented_motion_scales
-    use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
+    use regdae_solver_core, only: solver_core, log_event, active_integrator
     use regdae_integrator, only: integrator, outcome_reached, outcome_pass_end, outcome_stiff, outcome_nonstiff, &
                                  outcome_alarm, outcome_failed, outcome_exhausted
-    use regdae_dopri5_integrator, only: dopri5_integrator, dopri5_in_slot
-    use regdae_ida_integrator, only: ida_integrator, ida_in_slot
     use regdae_integrator_switching, only: hand_over
-    use regdae_auto_parameters, only: set_state_tolerances, resolve_auto_parameters, resolve_augmented_parameters, &
-                                      augmented_eps, check_first_step, time_resolution
-    use regdae_jacobian_check, only: check_second_order_jacobian, check_structured_jacobian
+    use regdae_auto_parameters, only: time_resolution
     implicit none
     private
 

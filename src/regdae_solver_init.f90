@@ -5,6 +5,17 @@
 !! formulation (solver_start), IDA on the augmented formulation of a mechanical
 !! problem that declares its structure (solver_start_augmented).
 submodule (regdae_solver_front) regdae_solver_init
+    use regdae_second_order_problem, only: velocity_constraint
+    use regdae_mechanical_problem, only: mechanical_structure, structured_velocity_constraint
+    use regdae_linear_problem, only: linear_dae_problem
+    use regdae_velocity_index2, only: new_velocity_index2
+    use regdae_solver_core, only: new_core
+    use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
+    use regdae_dopri5_integrator, only: dopri5_integrator, dopri5_in_slot
+    use regdae_ida_integrator, only: ida_integrator, ida_in_slot
+    use regdae_auto_parameters, only: set_state_tolerances, resolve_auto_parameters, resolve_augmented_parameters, &
+                                      augmented_eps, check_first_step
+    use regdae_jacobian_check, only: check_second_order_jacobian, check_structured_jacobian
     implicit none
 
 contains

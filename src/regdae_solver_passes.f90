@@ -5,6 +5,11 @@
 !! and the events log. They reach the integrator in charge through the
 !! integrator interface (`regdae_integrator`).
 submodule (regdae_solver_front) regdae_solver_passes
+    use regdae_velocity_index2, only: velocity_index2_problem
+    use regdae_projection, only: project_first_order, project_second_order
+    use regdae_sparse_projection, only: project_structured
+    use regdae_auto_rules, only: automatic_eps_factor
+    use regdae_work_energy, only: kinetic_energy_and_power
     implicit none
 
 contains
