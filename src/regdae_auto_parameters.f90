@@ -145,7 +145,7 @@ contains
                 if (wstat == 0) core%work_floor = kinetic
             end if
             if (weights_auto) then
-                call set_auto_weights(opts, rate)
+                call set_auto_weights(core, rate)
                 if (model%order == 1) model%w = [opts%gamma]
                 if (model%order == 2) model%w = [opts%gamma0, opts%gamma1]
             end if
@@ -154,21 +154,24 @@ contains
                                   (model%order == 2 .and. core%auto_gamma0 .and. core%auto_gamma1)
             if (weights_auto .or. eps_auto) call model%evaluate(t0, z0, stat, recoverable)   ! r with the final values
         end associate
-    contains
-        ! the weights left auto from the rate; which ones were auto
-        subroutine set_auto_weights(opts, rate)
-            type(solver_options), intent(inout) :: opts
-            real(wp), intent(in) :: rate
-            real(wp) :: gamma, gamma0, gamma1
-            call baumgarte_weights(rate, gamma, gamma0, gamma1)
+    end subroutine resolve_auto_parameters
+
+    ! The weights of core%opts left auto from the rate of the motion (regdae_auto_rules);
+    ! which ones were auto.
+    subroutine set_auto_weights(core, rate)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: rate
+        real(wp) :: gamma, gamma0, gamma1
+        call baumgarte_weights(rate, gamma, gamma0, gamma1)
+        associate (opts => core%opts)
             core%auto_gamma = (opts%gamma == option_auto)
             core%auto_gamma0 = (opts%gamma0 == option_auto)
             core%auto_gamma1 = (opts%gamma1 == option_auto)
             if (opts%gamma == option_auto) opts%gamma = gamma
             if (opts%gamma1 == option_auto) opts%gamma1 = gamma1
             if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
-        end subroutine set_auto_weights
-    end subroutine resolve_auto_parameters
+        end associate
+    end subroutine set_auto_weights
 
     !> The `auto` parameters for the augmented formulation (the rules of
     !! resolve_auto_parameters with the sparse M and G): s = max_i sum_k G_ik^2 / M_kk
@@ -183,7 +186,7 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), g0(sys%st%constraint%nnz()), scale, rate, gmax, &
-                    kinetic, power, y_zero(sys%m), ell, sigma_pred, gamma, gamma0, gamma1
+                    kinetic, power, y_zero(sys%m), ell, sigma_pred
         integer :: i, ustat
         logical :: recoverable, weights_auto, work_check
         stat = 0
@@ -226,13 +229,7 @@ contains
             core%rate0 = rate
             core%ell0 = ell
             core%sigma_pred0 = sigma_pred
-            call baumgarte_weights(rate, gamma, gamma0, gamma1)
-            core%auto_gamma = (opts%gamma == option_auto)
-            core%auto_gamma0 = (opts%gamma0 == option_auto)
-            core%auto_gamma1 = (opts%gamma1 == option_auto)
-            if (opts%gamma == option_auto) opts%gamma = gamma
-            if (opts%gamma1 == option_auto) opts%gamma1 = gamma1
-            if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
+            call set_auto_weights(core, rate)
             core%follow_weights = merge(core%auto_gamma0 .and. core%auto_gamma1, core%auto_gamma, opts%index == 3)
             if (work_check) then   ! the floor of the work check's energy scale (as for the dense formulations)
                 y_zero = 0.0_wp

@@ -9,7 +9,7 @@
 !! tout. With integrator=auto it asks the switching policy every 20 steps whether
 !! the explicit method would do.
 module regdae_ida_integrator
-    use, intrinsic :: iso_c_binding, only: c_double
+    use, intrinsic :: iso_c_binding, only: c_double, c_associated
     use regdae_kinds, only: wp
     use regdae_status
     use regdae_format, only: format_real, format_int
@@ -224,12 +224,23 @@ contains
         ida_last_step = self%ida%last_step()
     end function ida_last_step
 
-    !> IDA's counters (over its restarts) into st, and its last step.
+    !> IDA's counters (over its restarts) added to st; its last step when active.
     subroutine ida_statistics(self, st, active)
         class(ida_integrator), intent(in) :: self
         type(solver_stats), intent(inout) :: st
         logical, intent(in) :: active
-        call self%ida%get_statistics(st)
+        type(solver_stats) :: own
+        if (.not. c_associated(self%ida%ida_mem)) return   ! never created
+        call self%ida%get_statistics(own)
+        st%steps = st%steps + own%steps
+        st%res_evals = st%res_evals + own%res_evals
+        st%jac_res_evals = st%jac_res_evals + own%jac_res_evals
+        st%jac_evals = st%jac_evals + own%jac_evals
+        st%lin_setups = st%lin_setups + own%lin_setups
+        st%nonlin_iters = st%nonlin_iters + own%nonlin_iters
+        st%err_test_fails = st%err_test_fails + own%err_test_fails
+        st%conv_fails = st%conv_fails + own%conv_fails
+        if (active) st%h_last = own%h_last
     end subroutine ida_statistics
 
     !> The spectral radius of the eliminated formulation's Jacobian at IDA's state.

@@ -267,17 +267,17 @@ contains
         core%t = t0
         call set_state_tolerances(core, stat, msg)
         if (stat /= regdae_success) then
-            call fail(stat, msg)
+            stat = start_failed(self, stat, msg)
             return
         end if
         call sys%setup(problem, opts, stat)
         if (stat /= regdae_success) then
-            call fail(stat, sys%message)
+            stat = start_failed(self, stat, sys%message)
             return
         end if
         call resolve_augmented_parameters(core, sys, t0, q0, v0, stat, msg)
         if (stat /= regdae_success) then
-            call fail(stat, msg)
+            stat = start_failed(self, stat, msg)
             return
         end if
         core%neq = sys%neq
@@ -294,36 +294,29 @@ contains
         call ida%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
                             sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
         if (stat /= regdae_success) then
-            call fail(stat, msg)
+            stat = start_failed(self, stat, msg)
             return
         end if
         call ida%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
         if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//msg)
+            stat = start_failed(self, stat, 'at the initial point: '//msg)
             return
         end if
         if (opts%check_jacobians) then
             call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
             if (stat == regdae_success) call check_structured_jacobian(problem, sys, t0, q0, stat, msg)
             if (stat /= regdae_success) then
-                call fail(stat, msg)
+                stat = start_failed(self, stat, msg)
                 return
             end if
         end if
         call start_monitor_augmented(core, t0, core%opts%eps)
         if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
-            call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
+            stat = start_failed(self, regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
                       '(override `invariant` of the second-order problem)')
             return
         end if
         call self%record(regdae_success, '', stat)
-    contains
-        subroutine fail(code, text)
-            integer, intent(in) :: code
-            character(len=*), intent(in) :: text
-            call self%record(code, text, stat)
-            call self%destroy()
-        end subroutine fail
     end procedure solver_start_augmented
 
     ! With the model set up: consistent initial values, then the IDA objects.
@@ -348,13 +341,13 @@ contains
 
         call core%model%evaluate(t0, z0, stat, recoverable)
         if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//core%model%message)
+            stat = start_failed(self, stat, 'at the initial point: '//core%model%message)
             return
         end if
         gnorm = 0.0_wp
         if (m > 0) gnorm = maxval(abs(core%model%g))
         if (.not. (gnorm <= opts%ic_tol)) then
-            call fail(regdae_err_inconsistent_ic, 'inconsistent initial values: max |g(x0, t0)| = '// &
+            stat = start_failed(self, regdae_err_inconsistent_ic, 'inconsistent initial values: max |g(x0, t0)| = '// &
                       format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol))
             return
         end if
@@ -363,18 +356,18 @@ contains
         core%model%lsq = lsq
         call set_state_tolerances(core, stat, msg)
         if (stat /= regdae_success) then
-            call fail(stat, msg)
+            stat = start_failed(self, stat, msg)
             return
         end if
         call resolve_auto_parameters(core, t0, z0, stat, msg)
         if (stat /= regdae_success) then
-            call fail(stat, msg)
+            stat = start_failed(self, stat, msg)
             return
         end if
         allocate (y0(m), zp0(n))
         call core%model%solve_multiplier(t0, y0, stat)
         if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//core%model%message)
+            stat = start_failed(self, stat, 'at the initial point: '//core%model%message)
             return
         end if
         call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
@@ -385,7 +378,7 @@ contains
         if (allocated(core%z0)) deallocate (core%z0)
         allocate (core%z0, source=z0)
         if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
-            call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
+            stat = start_failed(self, regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
                       '(override `invariant` of the second-order problem; first-order problems have none)')
             return
         end if
@@ -403,7 +396,7 @@ contains
         if (opts%h_init == 0.0_wp) then
             call check_first_step(core, t0, z0, zp0, stat, msg)
             if (stat /= regdae_success) then
-                call fail(stat, msg)
+                stat = start_failed(self, stat, msg)
                 return
             end if
         end if
@@ -430,7 +423,7 @@ contains
             dopri5 => dopri5_in_slot(core)
             call dopri5%start(t0, z0, stat, msg, h0=opts%h_init)
             if (stat /= regdae_success) then
-                call fail(stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
+                stat = start_failed(self, stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
                 return
             end if
             call self%record(regdae_success, '', stat)
@@ -439,17 +432,19 @@ contains
         ida => ida_in_slot(core)
         call ida%start(t0, z0, stat, msg, zp=zp0, y=y0)
         if (stat /= regdae_success) then
-            call fail(stat, msg)
+            stat = start_failed(self, stat, msg)
             return
         end if
         call self%record(regdae_success, '', stat)
-    contains
-        subroutine fail(code, text)
-            integer, intent(in) :: code
-            character(len=*), intent(in) :: text
-            call self%record(code, text, stat)
-            call self%destroy()
-        end subroutine fail
     end procedure solver_start
+
+    ! A start failed: the status (returned) and message recorded, the solver's objects freed.
+    integer function start_failed(self, code, text) result(stat)
+        class(solver_engine), intent(inout) :: self
+        integer, intent(in) :: code
+        character(len=*), intent(in) :: text
+        call self%record(code, text, stat)
+        call self%destroy()
+    end function start_failed
 
 end submodule regdae_solver_init
