@@ -450,7 +450,7 @@ contains
                 return
             end if
             if (.not. core%started .and. tout > core%t .and. tout - core%t < time_resolution(core%t, tout)) then
-                ! No first step fits (IDA: "tout too close to t0"); later, IDA and dopri5
+                ! No first step fits (IDA: "tout too close to t0"); later, the integrators
                 ! step across such intervals.
                 call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout, 16)// &
                           ' is too close to t0 = '//format_real(core%t, 16)//' to start the integration: tout - t0 = '// &
