@@ -23,7 +23,7 @@ module regdae_dopri5_integrator
         type(solver_core), pointer :: core => null()   !! the problem's state (set by the creator)
         type(rk_integrator) :: rk                      !! the method's state
         real(wp), allocatable :: z(:)                  !! the state at the last output time
-    contains
+    contains   ! the interface's procedures (regdae_integrator documents them)
         procedure :: start => dopri5_start
         procedure :: advance => dopri5_advance
         procedure :: state => dopri5_state

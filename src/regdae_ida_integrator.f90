@@ -32,7 +32,7 @@ module regdae_ida_integrator
     type, extends(integrator), public :: ida_integrator
         type(solver_core), pointer :: core => null()   !! the problem's state (set by ida_in_slot)
         type(ida_backend) :: ida                       !! IDA and its callbacks (a fixed address: user_data)
-    contains
+    contains   ! the interface's procedures (regdae_integrator documents them)
         procedure :: start => ida_start
         procedure :: advance => ida_advance
         procedure :: state => ida_state
