@@ -16,6 +16,8 @@ module regdae_explicit_rk
     implicit none
     private
 
+    public :: continuous_extension
+
     !> The integrator's state: the last accepted step [t_old, t] and its end values.
     type, public :: rk_integrator
         real(wp) :: t = 0.0_wp, t_old = 0.0_wp, h = 0.0_wp, h_last = 0.0_wp
@@ -294,9 +296,9 @@ contains
         end subroutine fail
     end subroutine rk_advance
 
-    ! The 4th-order continuous extension (regdae_dopri_tableau) at tp on the last
-    ! accepted step [t_old, t]: its stages k_old (first), k3 ... k6 and k1 (last)
-    ! are intact until the next step.
+    !> The 4th-order continuous extension (regdae_dopri_tableau) at tp on the last
+    !! accepted step [t_old, t]: its stages k_old (first), k3 ... k6 and k1 (last)
+    !! are intact until the next step.
     subroutine continuous_extension(self, tp, zp)
         class(rk_integrator), intent(inout) :: self
         real(wp), intent(in) :: tp

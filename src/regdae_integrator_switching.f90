@@ -1,41 +1,63 @@
-!> The switching policy of integrator=auto between the explicit Dormand-Prince
-!! integrator (`regdae_explicit_rk`) and IDA (`regdae_ida_backend`) on the state
-!! of one problem (`regdae_solver_core`): the switch to IDA when the explicit
-!! method's stiffness test fires (on the eliminated formulation, or the augmented
-!! one for a mechanical problem that declares its structure; from t0 before the
-!! first output), the test on IDA's side whether the explicit method would do
-!! again (the spectral radius by power iteration), and the switch back. The front
-!! asks and switches at its steps; the monitor is restarted through
-!! `regdae_solver_sampling`.
+!> The switches of integrator=auto between the explicit Dormand-Prince
+!! integrator (`regdae_dopri5_integrator`, the core's nonstiff slot) and IDA
+!! (`regdae_ida_integrator`, the stiff slot) on the state of one problem
+!! (`regdae_solver_core`): the hand-over to IDA when the explicit method's
+!! stiffness test fires (on the eliminated formulation, or the augmented one for
+!! a mechanical problem that declares its structure; from t0 before the first
+!! output), and the hand-back when the policy (`regdae_switching_policy`) finds
+!! that the explicit method would do again. The front calls `hand_over` on the
+!! outcomes `outcome_stiff` and `outcome_nonstiff` of the integrators' advance;
+!! the monitor is restarted through `regdae_solver_sampling`.
 module regdae_integrator_switching
-    use, intrinsic :: iso_c_binding, only: c_double
     use regdae_kinds, only: wp
     use regdae_status
     use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
     use regdae_options, only: solver_options, formulation_auto, formulation_augmented, integrator_ida, &
-                              integrator_dopri5, linear_solver_dense, linear_solver_sparse, exclusion_off
-    use regdae_regularized_system, only: new_regularized_system
+                              integrator_dopri5, linear_solver_sparse, exclusion_off
     use regdae_augmented_system, only: augmented_system
     use regdae_format, only: format_real
+    use regdae_integrator, only: outcome_stiff, outcome_nonstiff
     use regdae_solver_core, only: solver_core, log_event
     use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
+    use regdae_ida_integrator, only: ida_integrator, ida_in_slot
     implicit none
     private
 
-    public :: switch_to_ida, explicit_would_do, switch_to_dopri5
+    public :: hand_over, switch_to_ida, switch_to_dopri5
 
 contains
+
+    !> integrator=auto: the switch an integrator's outcome asks for at t_stop:
+    !! outcome_stiff to IDA (switch_to_ida), outcome_nonstiff back to the explicit
+    !! method (switch_to_dopri5).
+    subroutine hand_over(core, outcome, t_stop, stat, msg)
+        type(solver_core), pointer, intent(in) :: core
+        integer, intent(in) :: outcome
+        real(wp), intent(in) :: t_stop
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        stat = regdae_success
+        msg = ''
+        if (outcome == outcome_stiff) then
+            call switch_to_ida(core, stat, msg)
+        else if (outcome == outcome_nonstiff) then
+            call switch_to_dopri5(core, t_stop)
+        end if
+    end subroutine hand_over
 
     !> integrator=auto: the explicit method found the system stiff at rk%t: IDA
     !! takes over there (created at the first switch, restarted at the others).
     subroutine switch_to_ida(core, stat, msg)
-        type(solver_core), intent(inout) :: core
+        type(solver_core), pointer, intent(in) :: core
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         real(wp) :: zp(core%n), y(core%m), t, z(core%n)
-        logical :: recoverable, from_start
-        t = core%rk%t
-        z = core%rk%z
+        real(wp), pointer :: u(:)
+        type(ida_integrator), pointer :: ida
+        logical :: recoverable, from_start, restart
+        t = core%nonstiff%time()
+        u => core%nonstiff%state()
+        z = u
         msg = ''
         ! Stiff before the first output: IDA from t0 (nothing has been returned yet), so
         ! that the run is the one integrator=ida gives, not one that carries the
@@ -58,13 +80,10 @@ contains
             msg = 'switching to IDA at t = '//format_real(t)//': '//core%model%message
             return
         end if
-        if (c_associated_ida(core)) then
-            call core%ida%restart(t, z, zp, stat)
-            if (stat /= regdae_success) msg = 'switching to IDA at t = '//format_real(t)//': FIDAReInit failed'
-        else
-            call core%ida%create(new_regularized_system(core%model, core%n, core%n), core%opts, linear_solver_dense, &
-                                 core%excluded(1:core%n), t, z, zp, stat, msg, core%atol_z)
-        end if
+        ida => ida_in_slot(core)
+        restart = ida%ready()
+        call ida%start(t, z, stat, msg, zp=zp, y=y)
+        if (stat /= regdae_success .and. restart) msg = 'switching to IDA at t = '//format_real(t)//': FIDAReInit failed'
         if (stat /= regdae_success) return
         if (from_start) call start_monitor(core, t, z, zp)
         call now_ida(core, '', from_start)
@@ -79,7 +98,7 @@ contains
         core%active = integrator_ida
         core%switches = core%switches + 1
         core%explicit_votes = 0
-        call log_event(core, 't = '//format_real(core%rk%t)//': dopri5 -> ida'//what//' (the stiffness test fired: '// &
+        call log_event(core, 't = '//format_real(core%nonstiff%time())//': dopri5 -> ida'//what//' (the stiffness test fired: '// &
                        'h |lambda| at the explicit method''s stability limit for 15 steps)'// &
                        trim(merge('; IDA starts from t0', '                    ', from_start)))
     end subroutine now_ida
@@ -105,13 +124,14 @@ contains
     ! consistent u, y, s by IDACalcIC there, the monitor kept (from_start: restarted
     ! at t). There is no switch back to dopri5 from it (explicit_would_do).
     subroutine switch_to_augmented(core, t, z, from_start, stat, msg)
-        type(solver_core), intent(inout) :: core
+        type(solver_core), pointer, intent(in) :: core
         real(wp), intent(in) :: t, z(:)
         logical, intent(in) :: from_start
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         type(augmented_system) :: sys
         type(solver_options) :: opts
+        type(ida_integrator), pointer :: ida
         real(wp), allocatable :: u0(:), up0(:), id(:)
         integer :: nx
         nx = core%nx
@@ -125,16 +145,17 @@ contains
             msg = 'switching to IDA at t = '//format_real(t)//' (augmented formulation): '//sys%message
             return
         end if
-        if (allocated(core%ida%system)) call core%ida%free()
+        ida => ida_in_slot(core)
+        if (ida%ready()) call ida%free()
         allocate (u0(sys%neq), up0(sys%neq), id(sys%neq))
         call sys%initial_guess(z(1:nx), z(nx + 1:2*nx), u0, up0, id)
         core%neq = sys%neq
         core%linear_solver = linear_solver_sparse
         core%excluded = sys%excluded_unknowns(opts%excluded)
         if (opts%exclusion == exclusion_off) core%excluded = .false.
-        call core%ida%create(sys, opts, core%linear_solver, core%excluded, t, u0, up0, stat, msg, &
-                             sys%tolerance_vector(core%atol_z(1:nx), core%atol_z(nx + 1:), opts%atol))
-        if (stat == regdae_success) call core%ida%calc_ic(id, t + 1.0e-3_wp*max(1.0_wp, abs(t)), stat, msg)
+        call ida%ida%create(sys, opts, core%linear_solver, core%excluded, t, u0, up0, stat, msg, &
+                            sys%tolerance_vector(core%atol_z(1:nx), core%atol_z(nx + 1:), opts%atol))
+        if (stat == regdae_success) call ida%ida%calc_ic(id, t + 1.0e-3_wp*max(1.0_wp, abs(t)), stat, msg)
         if (stat /= regdae_success) then
             msg = 'switching to IDA at t = '//format_real(t)//' (augmented formulation): '//msg
             return
@@ -145,87 +166,15 @@ contains
         core%active = integrator_ida
     end subroutine switch_to_augmented
 
-    logical function c_associated_ida(core)
-        type(solver_core), intent(in) :: core
-        c_associated_ida = allocated(core%ida%system)
-    end function c_associated_ida
-
-    ! The spectral radius of dF/dz at (t, z), F the eliminated formulation's slope:
-    ! five power iterations with difference quotients of F, from the last estimate's
-    ! vector, rho = sqrt(|J w_4| |J w_5|) (0: F failed). The model is left evaluated
-    ! at (t, z).
-    real(wp) function spectral_radius(core, t, z) result(rho)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t, z(:)
-        real(wp) :: f0(core%n), f1(core%n), y(core%m), d, wn, norm_now, norm_last
-        integer :: it, stat
-        logical :: recoverable
-        rho = 0.0_wp
-        norm_now = 0.0_wp
-        call core%model%slope_eliminated(t, z, f0, y, stat, recoverable)
-        if (stat /= regdae_success) return
-        if (.not. allocated(core%rho_w)) then
-            allocate (core%rho_w(core%n))
-            core%rho_w = 1.0_wp
-        end if
-        d = sqrt(epsilon(1.0_wp))*max(1.0_wp, maxval(abs(z)))
-        do it = 1, 5
-            wn = norm2(core%rho_w)
-            if (.not. (wn > 0.0_wp)) core%rho_w = 1.0_wp
-            core%rho_w = core%rho_w/norm2(core%rho_w)
-            call core%model%slope_eliminated(t, z + d*core%rho_w, f1, y, stat, recoverable)
-            if (stat /= regdae_success) then
-                rho = 0.0_wp
-                exit
-            end if
-            core%rho_w = (f1 - f0)/d
-            norm_last = norm_now
-            norm_now = norm2(core%rho_w)
-            if (.not. (norm_now > 0.0_wp)) exit
-            ! |J^2 w| / |w| over two iterations: a dominant complex pair (the oscillation
-            ! of a second-order system) makes the single ratios alternate
-            if (it >= 2) rho = sqrt(norm_now*norm_last)
-        end do
-        call core%model%evaluate(t, z, stat, recoverable)   ! the model back at the state
-    end function spectral_radius
-
-    !> integrator=auto, IDA active: would the explicit method do here? Its stable
-    !! step 3.3/rho (rho: the spectral radius of dF/dz, by five power iterations
-    !! with F) against IDA's last step: larger than twice IDA's at two checks in a
-    !! row (20 steps apart) means that IDA's steps are set by accuracy, not stiffness.
-    !! No vote inside a singular interval.
-    logical function explicit_would_do(core, t) result(yes)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t
-        real(c_double), pointer :: u(:)
-        real(wp) :: rho
-        yes = .false.
-        if (core%augmented) return   ! no switch back from the augmented formulation
-        u => core%ida%state()
-        rho = spectral_radius(core, t, u(1:core%n))
-        ! not inside a singular interval: the damped multiplier softens the constraint
-        ! modes there for a moment (gamma sigma^2/(sigma^2 + eps) -> 0), and the explicit
-        ! method would take the pass with the steps of the regular motion (measured:
-        ! ex52 index=2 gamma=1e6 rtol=1e-6 switched back at t = 9.507 and lost 3e-2 rad)
-        if (rho > 0.0_wp .and. 3.3_wp/rho > 2.0_wp*core%ida%last_step() .and. .not. core%monitor%in_singular) then
-            core%explicit_votes = core%explicit_votes + 1
-        else
-            core%explicit_votes = 0
-        end if
-        ! two checks in a row; after each return to IDA twice as many (at most 64), so that
-        ! a problem at the border between the two does not switch at every check
-        yes = (core%explicit_votes >= 2*2**min(core%back_switches, 5))
-    end function explicit_would_do
-
     !> integrator=auto: back to the explicit method at t, IDA's state there.
     subroutine switch_to_dopri5(core, t)
-        type(solver_core), intent(inout) :: core
+        type(solver_core), pointer, intent(in) :: core
         real(wp), intent(in) :: t
-        real(c_double), pointer :: u(:)
+        real(wp), pointer :: u(:)
+        character(len=:), allocatable :: msg
         integer :: stat
-        u => core%ida%state()
-        core%z_rk = u(1:core%n)
-        call core%rk%start(core%model, t, core%z_rk, core%ida%last_step(), stat)
+        u => core%stiff%state()
+        call core%nonstiff%start(t, u(1:core%n), stat, msg, h0=core%stiff%last_step())
         core%active = integrator_dopri5
         core%switches = core%switches + 1
         core%back_switches = core%back_switches + 1

@@ -1,30 +1,30 @@
 !> The state of one problem of the solver front (`regdae_solver_front`): the
-!! model, the backends, the options in force, the counters of integrator=auto
+!! model, the integrators, the options in force, the counters of integrator=auto
 !! and the diagnostics, in one record that the front, the monitor's sampling
-!! (`regdae_solver_sampling`) and the switching policy
-!! (`regdae_integrator_switching`) share; with its allocation (`new_core`) and
+!! (`regdae_solver_sampling`), the integrators (extensions of `regdae_integrator`)
+!! and the switching policy (`regdae_integrator_switching`) share; with its
+!! allocation (`new_core`), the integrator in charge (`active_integrator`) and
 !! the events log (`log_event`). Split from regdae_solver_front so that those
 !! modules can work on the state without depending on the front.
 module regdae_solver_core
     use regdae_kinds, only: wp
-    use regdae_options, only: solver_options, formulation_eliminated, integrator_ida, linear_solver_dense
+    use regdae_options, only: solver_options, formulation_eliminated, integrator_ida, integrator_dopri5, &
+                              linear_solver_dense
     use regdae_regularization, only: regularized_dae
-    use regdae_explicit_rk, only: rk_integrator
-    use regdae_ida_backend, only: ida_backend
+    use regdae_integrator, only: integrator
     use regdae_monitor, only: solution_monitor
     implicit none
     private
 
-    public :: new_core, log_event
+    public :: new_core, log_event, active_integrator
 
     !> The state of one problem: the model, the backend, the options and the
     !! diagnostics; allocated once per init, so that the backend (IDA's user_data)
     !! and the model it evaluates stay at fixed addresses.
     type, public :: solver_core
         type(regularized_dae), pointer :: model => null()   !! the model the backends evaluate (new_core)
-        type(ida_backend) :: ida           !! integrator=ida
-        type(rk_integrator) :: rk          !! integrator=dopri5
-        real(wp), allocatable :: z_rk(:)   !! dopri5: the state at the last output time
+        class(integrator), allocatable :: nonstiff   !! the explicit integrator (integrator=dopri5, auto)
+        class(integrator), allocatable :: stiff      !! the implicit integrator (integrator=ida, auto after a switch)
         type(solver_options) :: opts      !! the options in force, auto values resolved
         integer :: n = 0, m = 0, neq = 0   !! n: size of the state z; neq: IDA unknowns
         integer :: nx = 0                  !! size of x reported to the user
@@ -35,7 +35,8 @@ module regdae_solver_core
         real(wp) :: sampled_t = -huge(1.0_wp)   !! IDA: the last time the monitor sampled
         logical :: augmented = .false.     !! formulation=augmented: the state lives in IDA's vector, y too
         integer :: formulation = formulation_eliminated   !! resolved
-        integer :: active = integrator_ida     !! the integrator now in charge
+        integer :: active = integrator_ida     !! the integrator now in charge: dopri5 (the nonstiff
+                                               !! slot) or another (the stiff slot)
         logical :: switching = .false.         !! integrator=auto: switch between dopri5 and IDA
         integer :: switches = 0                !! switches so far
         integer :: explicit_votes = 0          !! consecutive checks that found the explicit method would do
@@ -64,6 +65,17 @@ module regdae_solver_core
     end type solver_core
 
 contains
+
+    !> The integrator in charge: the nonstiff slot while dopri5 is active, else the stiff one.
+    function active_integrator(core) result(p)
+        type(solver_core), intent(in), target :: core
+        class(integrator), pointer :: p
+        if (core%active == integrator_dopri5) then
+            p => core%nonstiff
+        else
+            p => core%stiff
+        end if
+    end function active_integrator
 
     !> A new core with its model (both at fixed addresses until destroy).
     subroutine new_core(core)

@@ -1,13 +1,17 @@
 !> The regdae solver front: a regularized index-2 or index-3 DAE integrated by
-!! one of the backends, SUNDIALS IDA (`regdae_ida_backend`) or the explicit
-!! Dormand-Prince integrator (`regdae_explicit_rk`). The front checks the
-!! input, computes consistent initial values, drives the backend from output
-!! to output, samples the diagnostics (`regdae_monitor`) and keeps the status
-!! and statistics. The state of one problem is `regdae_solver_core`'s record;
-!! the monitor's start and samples are in `regdae_solver_sampling`, the
-!! switching policy of integrator=auto in `regdae_integrator_switching`, and
-!! the augmented formulation's scales for the automatic rules in
-!! `regdae_augmented_rules`.
+!! the integrators behind one interface (`regdae_integrator`): the explicit
+!! Dormand-Prince (`regdae_dopri5_integrator`) and SUNDIALS IDA on the
+!! eliminated, multiplier or augmented formulation (`regdae_ida_integrator`),
+!! with integrator=auto switching between them (`regdae_integrator_switching`,
+!! its policy in `regdae_switching_policy`). The front is what a user calls:
+!! init (submodule `regdae_solver_init`: the input checked, consistent initial
+!! values, the automatic parameters of `regdae_auto_parameters`, the first
+!! integrator started), advance (written once over the interface: the integrator
+!! in charge to the output time, the outcome acted on, the outputs and the
+!! diagnostics' status), the statistics and the events; and what
+!! regdae_solver_trust needs to verify singular passes (submodule
+!! `regdae_solver_passes`). The state of one problem is `regdae_solver_core`'s
+!! record; the monitor's start and samples are in `regdae_solver_sampling`.
 !!
 !! ```fortran
 !! type(solver_engine) :: solver
@@ -29,37 +33,23 @@ module regdae_solver_front
     use regdae_kinds, only: wp
     use regdae_status
     use regdae_problem, only: dae_problem
-    use regdae_second_order_problem, only: second_order_problem, velocity_constraint
-    use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure, &
-                                         structured_velocity_constraint
+    use regdae_second_order_problem, only: second_order_problem
+    use regdae_mechanical_problem, only: mechanical_problem
     use regdae_higher_order_problem, only: higher_order_problem
-    use regdae_linear_problem, only: linear_dae_problem
-    use regdae_velocity_index2, only: new_velocity_index2, velocity_index2_problem
-    use regdae_projection, only: project_first_order, project_second_order
-    use regdae_sparse_projection, only: project_structured
     use regdae_options
-    use regdae_regularization, only: regularized_dae
-    use regdae_regularized_system, only: new_regularized_system
-    use regdae_augmented_system, only: augmented_system, user_routine_failure
-    use regdae_differences, only: central_difference_step
+    use regdae_augmented_system, only: augmented_system
     use regdae_solver_stats, only: solver_stats
     use regdae_monitor, only: alarm_jump, alarm_invariant, alarm_work
-    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, rms
-    use regdae_work_energy, only: kinetic_energy_and_power
-    use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
-    use regdae_solver_core, only: solver_core, new_core, log_event
-    use regdae_augmented_rules, only: mass_diagonal, gb_row_scale, augmented_motion_scales
-    use regdae_solver_sampling, only: start_monitor, start_monitor_augmented, sample_step
-    use regdae_integrator_switching, only: switch_to_ida, explicit_would_do, switch_to_dopri5
+    use regdae_solver_core, only: solver_core, log_event, active_integrator
+    use regdae_integrator, only: integrator, outcome_reached, outcome_pass_end, outcome_stiff, outcome_nonstiff, &
+                                 outcome_alarm, outcome_failed, outcome_exhausted
+    use regdae_integrator_switching, only: hand_over
+    use regdae_auto_parameters, only: time_resolution
     implicit none
     private
 
     public :: solver_stats
-
-    !> The automatic drift bound: this many times the constraint violation that the
-    !! tolerances on x allow (regdae_scales; doc/methods.md).
-    real(wp), parameter :: drift_factor = 1.0e2_wp
 
     !> A regularized DAE solver on IDA (see the module documentation).
     type, public :: solver_engine
@@ -155,929 +145,160 @@ module regdae_solver_front
         final :: solver_finalize
     end type solver_engine
 
+    ! The init paths (submodule regdae_solver_init).
+    interface
+        module subroutine solver_init_first(self, problem, t0, x0, opts, stat, atol_vector)
+            class(solver_engine), intent(inout) :: self
+            class(dae_problem), intent(in) :: problem   !! the index-2 DAE (copied)
+            real(wp), intent(in) :: t0                  !! initial time
+            real(wp), intent(in) :: x0(:)               !! x(t0), length n; must satisfy g(x0, t0) = 0
+            type(solver_options), intent(in) :: opts    !! options (validated here)
+            integer, intent(out) :: stat                !! regdae status code
+            real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                              !! (replaces atol, atol_v; second order: positions,
+                                                              !! then velocities; order m: x, ..., x^(m-1))
+        end subroutine solver_init_first
+
+        module subroutine solver_init_second(self, problem, t0, x0, v0, opts, stat, atol_vector)
+            class(solver_engine), intent(inout) :: self
+            class(second_order_problem), intent(in) :: problem   !! the order-2 DAE or mechanical system (copied)
+            real(wp), intent(in) :: t0                  !! initial time
+            real(wp), intent(in) :: x0(:)               !! x(t0), length n; g(x0, t0) = 0
+            real(wp), intent(in) :: v0(:)               !! x'(t0), length n; G v0 + g_t = 0
+            type(solver_options), intent(in) :: opts    !! options (validated here; `index` chooses 2 or 3)
+            integer, intent(out) :: stat
+            real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                              !! (replaces atol, atol_v; second order: positions,
+                                                              !! then velocities; order m: x, ..., x^(m-1))
+        end subroutine solver_init_second
+
+        module subroutine solver_init_higher(self, problem, t0, xs0, opts, stat, atol_vector)
+            class(solver_engine), intent(inout) :: self
+            class(higher_order_problem), intent(in) :: problem   !! the order-m DAE (copied)
+            real(wp), intent(in) :: t0                   !! initial time
+            real(wp), intent(in) :: xs0(:, :)            !! (n, order): x, x', ..., x^(m-1) at t0
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+            real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
+                                                              !! (replaces atol, atol_v; second order: positions,
+                                                              !! then velocities; order m: x, ..., x^(m-1))
+        end subroutine solver_init_higher
+
+        module logical function check_input(self, t0, x0, v0, n, m, opts, stat) result(ok)
+            class(solver_engine), intent(inout) :: self
+            real(wp), intent(in) :: t0, x0(:), v0(:)
+            integer, intent(in) :: n, m
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+        end function check_input
+
+        module subroutine solver_start_augmented(self, problem, t0, q0, v0, opts, stat)
+            class(solver_engine), intent(inout) :: self
+            class(mechanical_problem), intent(in) :: problem
+            real(wp), intent(in) :: t0, q0(:), v0(:)
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+        end subroutine solver_start_augmented
+
+        module subroutine solver_start(self, t0, z0, opts, stat)
+            class(solver_engine), intent(inout) :: self
+            real(wp), intent(in) :: t0, z0(:)
+            type(solver_options), intent(in) :: opts
+            integer, intent(out) :: stat
+        end subroutine solver_start
+    end interface
+
+    ! What regdae_solver_trust needs to verify singular passes with companions
+    ! (submodule regdae_solver_passes).
+    interface
+        module subroutine engine_stop_at_pass_ends(self, on)
+            class(solver_engine), intent(inout) :: self
+            logical, intent(in) :: on
+        end subroutine engine_stop_at_pass_ends
+
+        module logical function engine_take_pass_end(self) result(ended)
+            class(solver_engine), intent(inout) :: self
+        end function engine_take_pass_end
+
+        module subroutine engine_checkpoint(self, t, z, frozen, valid)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(out) :: t
+            real(wp), allocatable, intent(out) :: z(:)
+            logical, intent(out) :: frozen, valid
+        end subroutine engine_checkpoint
+
+        module subroutine engine_release_checkpoint(self, t, z)
+            class(solver_engine), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)
+        end subroutine engine_release_checkpoint
+
+        module real(wp) function engine_integrator_time(self) result(t)
+            class(solver_engine), intent(in) :: self
+        end function engine_integrator_time
+
+        module logical function engine_same(self, other) result(same)
+            class(solver_engine), intent(in) :: self, other
+        end function engine_same
+
+        module integer function engine_x_size(self) result(n)
+            class(solver_engine), intent(in) :: self
+        end function engine_x_size
+
+        module real(wp) function engine_time(self) result(t)
+            class(solver_engine), intent(in) :: self
+        end function engine_time
+
+        module integer function engine_state_size(self) result(n)
+            class(solver_engine), intent(in) :: self
+        end function engine_state_size
+
+        module subroutine engine_state(self, z)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(out) :: z(:)   !! length state_size()
+        end subroutine engine_state
+
+        module subroutine engine_restart_at(self, t, z, stat)
+            class(solver_engine), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)
+            integer, intent(out) :: stat
+        end subroutine engine_restart_at
+
+        module subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale)
+            class(solver_engine), intent(in) :: self
+            class(solver_engine), intent(inout) :: other
+            real(wp), intent(in) :: kappa       !! the tolerances' divisor (> 1)
+            real(wp), intent(in) :: t, z(:)     !! the start: a state of self (x, v)
+            integer, intent(out) :: stat
+            real(wp), intent(in), optional :: eps_scale   !! the companion's eps times this (a probe of the
+                                                          !! regularization error)
+        end subroutine engine_start_companion
+
+        module subroutine engine_limit_steps(self, steps)
+            class(solver_engine), intent(inout) :: self
+            integer, intent(in) :: steps   !! >= 1
+        end subroutine engine_limit_steps
+
+        module logical function engine_regularized(self) result(yes)
+            class(solver_engine), intent(in) :: self
+        end function engine_regularized
+
+        module logical function engine_eps_floored(self, kappa_a, kappa_b) result(floored)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(in) :: kappa_a, kappa_b
+        end function engine_eps_floored
+
+        module real(wp) function engine_state_distance(self, za, zb) result(d)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(in) :: za(:), zb(:)
+        end function engine_state_distance
+
+        module subroutine engine_note_event(self, text)
+            class(solver_engine), intent(inout) :: self
+            character(len=*), intent(in) :: text
+        end subroutine engine_note_event
+    end interface
+
 contains
-
-    subroutine solver_init_first(self, problem, t0, x0, opts, stat, atol_vector)
-        class(solver_engine), intent(inout) :: self
-        class(dae_problem), intent(in) :: problem   !! the index-2 DAE (copied)
-        real(wp), intent(in) :: t0                  !! initial time
-        real(wp), intent(in) :: x0(:)               !! x(t0), length n; must satisfy g(x0, t0) = 0
-        type(solver_options), intent(in) :: opts    !! options (validated here)
-        integer, intent(out) :: stat                !! regdae status code
-        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
-                                                          !! (replaces atol, atol_v; second order: positions,
-                                                          !! then velocities; order m: x, ..., x^(m-1))
-
-        if (.not. self%check_input(t0, x0, x0, problem%n, problem%m, opts, stat)) return
-        if (.not. formulation_fits(self, opts, stat)) return
-        call new_core(self%core)
-        if (present(atol_vector)) self%core%atol_z = atol_vector
-        self%core%nx = problem%n
-        select type (problem)
-        class is (linear_dae_problem)
-            self%core%multiplier_sign = -1.0_wp   ! section 3 writes x' = A x + B y + q
-        end select
-        call self%core%model%init_first_order(problem, opts, lsq_normal, stat)
-        if (stat /= 0) then
-            call self%record(regdae_err_memory, self%core%model%message, stat)
-            return
-        end if
-        call self%start(t0, x0, opts, stat)
-    end subroutine solver_init_first
-
-    subroutine solver_init_second(self, problem, t0, x0, v0, opts, stat, atol_vector)
-        class(solver_engine), intent(inout) :: self
-        class(second_order_problem), intent(in) :: problem   !! the order-2 DAE or mechanical system (copied)
-        real(wp), intent(in) :: t0                  !! initial time
-        real(wp), intent(in) :: x0(:)               !! x(t0), length n; g(x0, t0) = 0
-        real(wp), intent(in) :: v0(:)               !! x'(t0), length n; G v0 + g_t = 0
-        type(solver_options), intent(in) :: opts    !! options (validated here; `index` chooses 2 or 3)
-        integer, intent(out) :: stat
-        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
-                                                          !! (replaces atol, atol_v; second order: positions,
-                                                          !! then velocities; order m: x, ..., x^(m-1))
-        class(second_order_problem), allocatable :: copy
-        real(wp) :: gval(problem%m), gnorm
-        integer :: ustat
-        logical :: augmented
-        character(len=:), allocatable :: msg
-
-        if (.not. self%check_input(t0, x0, v0, problem%n, problem%m, opts, stat)) return
-        ! Position and velocity constraints at t0 (the regularized system checks only one of them).
-        allocate (copy, source=problem)
-        ustat = 0
-        call copy%constraint(t0, x0, gval, ustat)
-        gnorm = 0.0_wp
-        if (ustat == 0 .and. problem%m > 0) gnorm = maxval(abs(gval))
-        if (ustat == 0) call initial_velocity_constraint(copy, t0, x0, v0, gval, ustat)
-        if (ustat == regdae_err_memory) then
-            call self%record(regdae_err_memory, 'at the initial point: the system refused the values of G ('// &
-                             'the declared pattern)', stat)
-            return
-        else if (ustat == regdae_err_structure) then
-            call self%record(regdae_err_structure, status_message(regdae_err_structure)//' at the initial point '// &
-                             '(in constraint_jacobian_values)', stat)
-            return
-        else if (ustat /= 0) then
-            call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
-                             'reported failure (stat = '//format_int(ustat)//')', stat)
-            return
-        end if
-        if (problem%m > 0) gnorm = max(gnorm, maxval(abs(gval)))
-        if (.not. (gnorm <= opts%ic_tol)) then
-            call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
-                             '|G v0 + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
-            return
-        end if
-        if (opts%check_jacobians) then
-            call check_second_order_jacobian(copy, t0, x0, ustat, msg)
-            if (ustat /= regdae_success) then
-                call self%record(ustat, msg, stat)
-                return
-            end if
-        end if
-        augmented = .false.
-        select type (copy)
-        class is (mechanical_problem)
-            augmented = use_augmented(copy, opts)
-        end select
-        if (.not. augmented) then
-            if (.not. formulation_fits(self, opts, stat)) return
-        end if
-        call new_core(self%core)
-        if (present(atol_vector)) self%core%atol_z = atol_vector
-        self%core%nx = problem%n
-        self%core%second_order = .true.
-        select type (copy)
-        class is (mechanical_problem)
-            self%core%multiplier_sign = -1.0_wp
-            copy%mass_damping = opts%mass_damping
-            if (augmented) then
-                call self%start_augmented(copy, t0, x0, v0, opts, stat)
-                return
-            end if
-        end select
-        if (opts%index == 3) then
-            call self%core%model%init_second_order(copy, opts, lsq_normal, stat)
-        else
-            call self%core%model%init_first_order(new_velocity_index2(copy), opts, lsq_normal, stat)
-        end if
-        if (stat /= 0) then
-            call self%record(regdae_err_memory, self%core%model%message, stat)
-            return
-        end if
-        call self%start(t0, [x0, v0], opts, stat)
-    end subroutine solver_init_second
-
-    subroutine solver_init_higher(self, problem, t0, xs0, opts, stat, atol_vector)
-        class(solver_engine), intent(inout) :: self
-        class(higher_order_problem), intent(in) :: problem   !! the order-m DAE (copied)
-        real(wp), intent(in) :: t0                   !! initial time
-        real(wp), intent(in) :: xs0(:, :)            !! (n, order): x, x', ..., x^(m-1) at t0
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        real(wp), intent(in), optional :: atol_vector(:)   !! absolute tolerance per component of the state
-                                                          !! (replaces atol, atol_v; second order: positions,
-                                                          !! then velocities; order m: x, ..., x^(m-1))
-        class(higher_order_problem), allocatable :: copy
-        real(wp) :: gval(problem%m), gt(problem%m), gnorm
-        real(wp), allocatable :: gx(:, :)
-        integer :: ustat, astat
-
-        if (problem%order < 3 .or. size(xs0, 2) /= problem%order) then
-            call self%record(regdae_err_bad_input, 'a higher_order_problem needs order >= 3 and xs0(n, order); '// &
-                             'got order '//format_int(problem%order)//' and '//format_int(size(xs0, 2))// &
-                             ' columns', stat)
-            return
-        end if
-        if (.not. self%check_input(t0, xs0(:, 1), xs0(:, 2), problem%n, problem%m, opts, stat)) return
-        if (.not. formulation_fits(self, opts, stat)) return
-        if (.not. all(ieee_is_finite(xs0))) then
-            call self%record(regdae_err_bad_input, 'xs0 contains NaN or Inf', stat)
-            return
-        end if
-        allocate (gx(problem%m, problem%n), stat=astat)
-        if (astat /= 0) then
-            call self%record(regdae_err_memory, 'out of memory: G at the initial point ('//format_int(problem%m)// &
-                             ' x '//format_int(problem%n)//' reals) was refused', stat)
-            return
-        end if
-        allocate (copy, source=problem)
-        ustat = 0
-        call copy%constraint(t0, xs0(:, 1), gval, ustat)
-        if (ustat == 0) call copy%constraint_jacobian(t0, xs0(:, 1), gx, ustat)
-        if (ustat == 0) call copy%constraint_dt(t0, xs0(:, 1), gt, ustat)
-        if (ustat /= 0) then
-            call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
-                             'reported failure (stat = '//format_int(ustat)//')', stat)
-            return
-        end if
-        gnorm = 0.0_wp
-        if (problem%m > 0) gnorm = max(maxval(abs(gval)), maxval(abs(matmul(gx, xs0(:, 2)) + gt)))
-        if (.not. (gnorm <= opts%ic_tol)) then
-            call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
-                             '|G x0'' + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
-            return
-        end if
-        call new_core(self%core)
-        if (present(atol_vector)) self%core%atol_z = atol_vector
-        self%core%nx = problem%n
-        self%core%second_order = .true.
-        call self%core%model%init_higher_order(copy, opts, lsq_normal, stat)
-        if (stat /= 0) then
-            call self%record(regdae_err_memory, self%core%model%message, stat)
-            return
-        end if
-        call self%start(t0, reshape(xs0, [size(xs0)]), opts, stat)
-    end subroutine solver_init_higher
-
-    ! Common checks of init; false (with stat and message set) if the input is bad.
-    logical function check_input(self, t0, x0, v0, n, m, opts, stat) result(ok)
-        class(solver_engine), intent(inout) :: self
-        real(wp), intent(in) :: t0, x0(:), v0(:)
-        integer, intent(in) :: n, m
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        character(len=:), allocatable :: msg
-        integer :: code
-
-        call self%destroy()
-        self%t = t0
-        self%assigned = .false.
-        ok = .false.
-        call validate_options(opts, code, msg)
-        if (code /= regdae_success) then
-            call self%record(code, msg, stat)
-        else if (n < 1 .or. m < 0 .or. m > n) then
-            call self%record(regdae_err_bad_input, 'problem sizes must satisfy 1 <= n and 0 <= m <= n (n = '// &
-                             format_int(n)//', m = '//format_int(m)//')', stat)
-        else if (size(x0) /= n .or. size(v0) /= n) then
-            call self%record(regdae_err_bad_input, 'x0 (and v0) must have length n = '//format_int(n)// &
-                             '; got '//format_int(size(x0))//' (and '//format_int(size(v0))//')', stat)
-        else if (.not. ieee_is_finite(t0)) then
-            call self%record(regdae_err_bad_input, 't0 is NaN or Inf', stat)
-        else if (.not. (all(ieee_is_finite(x0)) .and. all(ieee_is_finite(v0)))) then
-            call self%record(regdae_err_bad_input, 'x0 (or v0) contains NaN or Inf', stat)
-        else
-            ok = .true.
-        end if
-    end function check_input
-
-    ! G v0 + g_t at t0: from the declared pattern of G for a mechanical problem that
-    ! declares its structure (O(nonzeros) memory), otherwise from the dense G.
-    subroutine initial_velocity_constraint(problem, t0, x0, v0, val, stat)
-        class(second_order_problem), intent(inout) :: problem
-        real(wp), intent(in) :: t0, x0(:), v0(:)
-        real(wp), intent(out) :: val(:)
-        integer, intent(inout) :: stat
-        type(mechanical_structure) :: st
-        select type (problem)
-        class is (mechanical_problem)
-            st = problem%structure()
-            if (st%declared) then
-                call structured_velocity_constraint(problem, st%constraint, t0, x0, v0, val, stat)
-                return
-            end if
-        end select
-        call velocity_constraint(problem, t0, x0, v0, val, stat)
-    end subroutine initial_velocity_constraint
-
-    ! formulation=auto takes the augmented formulation for a mechanical problem
-    ! that declares its structure and is large enough, with M positive definite
-    ! and integrator ida or auto (which is then IDA: the explicit integrator works on
-    ! the eliminated formulation); formulation=augmented always (its setup refuses
-    ! what does not fit).
-    logical function use_augmented(problem, opts)
-        class(mechanical_problem), intent(in) :: problem
-        type(solver_options), intent(in) :: opts
-        type(mechanical_structure) :: st
-        use_augmented = (opts%formulation == formulation_augmented)
-        if (opts%formulation /= formulation_auto) return
-        if (opts%integrator == integrator_dopri5 .or. opts%mass_damping > 0.0_wp .or. problem%n < augmented_min_n) return
-        st = problem%structure()
-        use_augmented = st%declared
-    end function use_augmented
-
-    ! The dense formulations: refuse formulation=augmented and the structured
-    ! linear solvers (the problem is not a mechanical one, or auto chose dense).
-    logical function formulation_fits(self, opts, stat) result(ok)
-        class(solver_engine), intent(inout) :: self
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        ok = .true.
-        if (opts%formulation == formulation_augmented) then
-            call self%record(regdae_err_bad_input, 'formulation=augmented needs a mechanical_problem', stat)
-            ok = .false.
-        else if (opts%linear_solver == linear_solver_band .or. opts%linear_solver == linear_solver_sparse) then
-            call self%record(regdae_err_bad_input, 'linear_solver='//linear_solver_name(opts%linear_solver)// &
-                             ' needs the augmented formulation (a mechanical problem that declares its structure, '// &
-                             'or formulation=augmented); the Newton matrix here is dense', stat)
-            ok = .false.
-        end if
-    end function formulation_fits
-
-    ! The augmented formulation (regdae_augmented_system): the sparse residual on
-    ! IDA with a dense, band or sparse linear solver, consistent initial values by
-    ! IDACalcIC, the diagnostics from IDA's state.
-    subroutine solver_start_augmented(self, problem, t0, q0, v0, opts, stat)
-        class(solver_engine), intent(inout) :: self
-        class(mechanical_problem), intent(in) :: problem
-        real(wp), intent(in) :: t0, q0(:), v0(:)
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        type(solver_core), pointer :: core
-        type(augmented_system) :: sys
-        real(wp), allocatable :: u0(:), up0(:), id(:)
-        character(len=:), allocatable :: msg
-
-        core => self%core
-        core%opts = opts
-        core%augmented = .true.
-        core%formulation = formulation_augmented
-        core%active = integrator_ida
-        core%events = ''
-        core%n = 2*problem%n
-        core%m = problem%m
-        core%t = t0
-        call set_state_tolerances(core, stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        call sys%setup(problem, opts, stat)
-        if (stat /= regdae_success) then
-            call fail(stat, sys%message)
-            return
-        end if
-        call resolve_augmented_parameters(core, sys, t0, q0, v0, stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        core%neq = sys%neq
-        core%linear_solver = opts%linear_solver
-        ! KLU on the grouped Newton matrix was the fastest per step at every chain size
-        ! measured (N = 2 ... 1024: 1.1-2.4x faster than band and dense, doc/performance.md)
-        if (core%linear_solver == linear_solver_auto) core%linear_solver = linear_solver_sparse
-        allocate (u0(sys%neq), up0(sys%neq), id(sys%neq), core%y_work(core%m))
-        call sys%initial_guess(q0, v0, u0, up0, id)
-        call augmented_eps(core, sys, t0, u0)
-        core%excluded = sys%excluded_unknowns(opts%excluded)
-        if (opts%exclusion == exclusion_off) core%excluded = .false.
-        call core%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
-                             sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        call core%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//msg)
-            return
-        end if
-        if (opts%check_jacobians) then
-            call core%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
-            if (stat == regdae_success) call check_structured_jacobian(problem, sys, t0, q0, stat, msg)
-            if (stat /= regdae_success) then
-                call fail(stat, msg)
-                return
-            end if
-        end if
-        call start_monitor_augmented(core, t0, core%opts%eps)
-        if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
-            call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
-                      '(override `invariant` of the second-order problem)')
-            return
-        end if
-        call self%record(regdae_success, '', stat)
-    contains
-        subroutine fail(code, text)
-            integer, intent(in) :: code
-            character(len=*), intent(in) :: text
-            call self%record(code, text, stat)
-            call self%destroy()
-        end subroutine fail
-    end subroutine solver_start_augmented
-
-    ! max_i (GB)_ii at the model's last evaluation (the scale of GB).
-    pure real(wp) function gb_scale(model) result(s)
-        type(regularized_dae), intent(in) :: model
-        integer :: i
-        s = 0.0_wp
-        do i = 1, model%m
-            s = max(s, abs(model%gb(i, i)))
-        end do
-    end function gb_scale
-
-    ! check_jacobians: the user's G (constraint_jacobian) against central
-    ! difference quotients of g at (t0, x0); regdae_err_jacobian names the worst entry.
-    subroutine check_second_order_jacobian(problem, t0, x0, stat, msg)
-        class(second_order_problem), intent(inout) :: problem
-        real(wp), intent(in) :: t0, x0(:)
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        real(wp), allocatable :: gx(:, :), dq(:, :)
-        if (.not. check_arrays(problem%m, problem%n, gx, dq, stat, msg)) return
-        call problem%constraint_jacobian(t0, x0, gx, stat)
-        if (stat == 0) call constraint_difference_quotient(problem, t0, x0, dq, stat)
-        if (stat /= 0) then
-            msg = 'check_jacobians: a user routine of the constraint failed (stat = '//format_int(stat)//')'
-            stat = regdae_err_user_callback
-            return
-        end if
-        call compare_jacobian('constraint_jacobian', gx, dq, stat, msg)
-    end subroutine check_second_order_jacobian
-
-    ! check_jacobians, structured problems: the sparse G of constraint_jacobian_values too.
-    subroutine check_structured_jacobian(problem, sys, t0, q0, stat, msg)
-        class(mechanical_problem), intent(in) :: problem
-        type(augmented_system), intent(in) :: sys
-        real(wp), intent(in) :: t0, q0(:)
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        class(mechanical_problem), allocatable :: copy
-        real(wp), allocatable :: gx(:, :), dq(:, :)
-        real(wp) :: vals(sys%st%constraint%nnz())
-        integer :: i, k
-        if (.not. check_arrays(problem%m, problem%n, gx, dq, stat, msg)) return
-        allocate (copy, source=problem)
-        stat = 0
-        msg = ''
-        call copy%constraint_jacobian_values(t0, q0, sys%st%constraint, vals, stat)
-        if (stat == 0) call constraint_difference_quotient(copy, t0, q0, dq, stat)
-        if (stat /= 0) then
-            if (stat /= regdae_err_structure) msg = 'check_jacobians: a user routine of the constraint failed '// &
-                                                    '(stat = '//format_int(stat)//')'
-            if (stat == regdae_err_structure) msg = 'constraint_jacobian has a nonzero outside the declared '// &
-                                                    'constraint pattern'
-            if (stat /= regdae_err_structure) stat = regdae_err_user_callback
-            return
-        end if
-        gx = 0.0_wp
-        do i = 1, problem%m
-            do k = sys%st%constraint%row_start(i), sys%st%constraint%row_start(i + 1) - 1
-                gx(i, sys%st%constraint%cols(k)) = vals(k)
-            end do
-        end do
-        call compare_jacobian('constraint_jacobian_values', gx, dq, stat, msg)
-    end subroutine check_structured_jacobian
-
-    ! The two dense m x n arrays of check_jacobians; false with regdae_err_memory and a
-    ! message when the system refuses them.
-    logical function check_arrays(m, n, gx, dq, stat, msg) result(ok)
-        integer, intent(in) :: m, n
-        real(wp), allocatable, intent(out) :: gx(:, :), dq(:, :)
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        allocate (gx(m, n), dq(m, n), stat=stat)
-        ok = (stat == 0)
-        msg = ''
-        if (ok) return
-        stat = regdae_err_memory
-        msg = 'check_jacobians: out of memory (two dense '//format_int(m)//' x '//format_int(n)// &
-              ' matrices: the check is for small instances)'
-    end function check_arrays
-
-    ! Central difference quotients of g(x, t0), column j with the step of
-    ! regdae_differences for x_j.
-    subroutine constraint_difference_quotient(problem, t0, x0, dq, stat)
-        class(second_order_problem), intent(inout) :: problem
-        real(wp), intent(in) :: t0, x0(:)
-        real(wp), intent(out) :: dq(:, :)
-        integer, intent(inout) :: stat
-        real(wp) :: x(size(x0)), gp(problem%m), gm(problem%m), d
-        integer :: j
-        x = x0
-        do j = 1, problem%n
-            d = central_difference_step(x0(j))
-            x(j) = x0(j) + d
-            call problem%constraint(t0, x, gp, stat)
-            if (stat /= 0) return
-            x(j) = x0(j) - d
-            call problem%constraint(t0, x, gm, stat)
-            if (stat /= 0) return
-            x(j) = x0(j)
-            dq(:, j) = (gp - gm)/(2.0_wp*d)
-        end do
-    end subroutine constraint_difference_quotient
-
-    ! |analytic - dq| <= 1e-6 max(1, max |dq|) entry by entry (central differences
-    ! are accurate to about u^(2/3) ~ 4e-11 relative); else regdae_err_jacobian.
-    subroutine compare_jacobian(name, analytic, dq, stat, msg)
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: analytic(:, :), dq(:, :)
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        integer :: worst(2)
-        real(wp) :: scale
-        stat = regdae_success
-        msg = ''
-        if (size(dq) == 0) return
-        scale = max(1.0_wp, maxval(abs(dq)))
-        worst = maxloc(abs(analytic - dq))
-        if (abs(analytic(worst(1), worst(2)) - dq(worst(1), worst(2))) <= 1.0e-6_wp*scale) return
-        stat = regdae_err_jacobian
-        msg = 'check_jacobians: '//name//' disagrees with the difference quotient of the constraint at entry ('// &
-              format_int(worst(1))//', '//format_int(worst(2))//'): '//format_real(analytic(worst(1), worst(2)))// &
-              ' against '//format_real(dq(worst(1), worst(2)))
-    end subroutine compare_jacobian
-
-    ! With the model set up: consistent initial values, then the IDA objects.
-    subroutine solver_start(self, t0, z0, opts, stat)
-        class(solver_engine), intent(inout) :: self
-        real(wp), intent(in) :: t0, z0(:)
-        type(solver_options), intent(in) :: opts
-        integer, intent(out) :: stat
-        type(solver_core), pointer :: core
-        character(len=:), allocatable :: msg
-        real(wp), allocatable :: y0(:), zp0(:)
-        integer :: lsq, n, m, nx
-        logical :: recoverable
-        real(wp) :: gnorm
-
-        core => self%core
-        core%opts = opts
-        core%n = size(z0)
-        core%m = core%model%m
-        core%t = t0
-        n = core%n
-        m = core%m
-        nx = core%model%n
-
-        call core%model%evaluate(t0, z0, stat, recoverable)
-        if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//core%model%message)
-            return
-        end if
-        gnorm = 0.0_wp
-        if (m > 0) gnorm = maxval(abs(core%model%g))
-        if (.not. (gnorm <= opts%ic_tol)) then
-            call fail(regdae_err_inconsistent_ic, 'inconsistent initial values: max |g(x0, t0)| = '// &
-                      format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol))
-            return
-        end if
-        lsq = opts%lsq
-        if (lsq == lsq_auto) lsq = lsq_checked   ! by conditioning, per solve (regdae_damped_lsq)
-        core%model%lsq = lsq
-        call set_state_tolerances(core, stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        call resolve_auto_parameters(core, t0, z0, stat, msg)
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        allocate (y0(m), zp0(n))
-        call core%model%solve_multiplier(t0, y0, stat)
-        if (stat /= regdae_success) then
-            call fail(stat, 'at the initial point: '//core%model%message)
-            return
-        end if
-        call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
-        call start_monitor(core, t0, z0, zp0)
-        core%t0 = t0
-        ! (allocated explicitly: the reallocating assignment to a component never allocated
-        ! reads its undefined bounds, which UBSan reports as an integer overflow)
-        if (allocated(core%z0)) deallocate (core%z0)
-        allocate (core%z0, source=z0)
-        if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
-            call fail(regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
-                      '(override `invariant` of the second-order problem; first-order problems have none)')
-            return
-        end if
-
-        core%neq = n
-        core%formulation = formulation_eliminated
-        if (opts%formulation == formulation_multiplier) core%formulation = formulation_multiplier
-        if (opts%formulation == formulation_multiplier) core%neq = n + m
-        allocate (core%excluded(core%neq), source=.false.)
-        if (opts%exclusion /= exclusion_off) then
-            core%excluded(n + 1:) = .true.
-            if (core%model%order >= 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:n) = .true.
-        end if
-        allocate (core%y_work(m), core%zp_work(n))
-        if (opts%h_init == 0.0_wp) then
-            call check_first_step(core, t0, z0, zp0, stat, msg)
-            if (stat /= regdae_success) then
-                call fail(stat, msg)
-                return
-            end if
-        end if
-        ! integrator=auto: dopri5 first (the eliminated formulation only), IDA created
-        ! when the stiffness test hands over
-        core%active = opts%integrator
-        core%events = ''
-        if (opts%integrator == integrator_auto) then
-            core%active = merge(integrator_dopri5, integrator_ida, core%formulation == formulation_eliminated)
-            ! Regularization layers far thinner than the automatic eps's (a user's eps below
-            ! 1/100 of it): the explicit method steps through them inaccurately, without an
-            ! alarm (doc/methods.md); IDA passes them
-            if (core%active == integrator_dopri5 .and. core%m > 0) then
-                if (core%model%eps < core%eps_auto0/100.0_wp) then
-                    core%active = integrator_ida
-                    call log_event(core, 't = '//format_real(t0)//': ida from the start (eps = '// &
-                                   format_real(core%model%eps)//' is below 1/100 of the automatic eps for this '// &
-                                   'rtol: layers too thin for the explicit method)')
-                end if
-            end if
-            core%switching = (core%active == integrator_dopri5)
-        end if
-        if (core%active == integrator_dopri5) then
-            core%z_rk = z0
-            call core%rk%start(core%model, t0, z0, opts%h_init, stat)
-            if (stat /= regdae_success) then
-                call fail(stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
-                return
-            end if
-            call self%record(regdae_success, '', stat)
-            return
-        end if
-        call core%ida%create(new_regularized_system(core%model, n, core%neq), opts, linear_solver_dense, core%excluded, t0, &
-                             [z0, y0], [zp0, spread(0.0_wp, 1, m)], stat, msg, &
-                             [core%atol_z, spread(opts%atol, 1, core%neq - n)])
-        if (stat /= regdae_success) then
-            call fail(stat, msg)
-            return
-        end if
-        call self%record(regdae_success, '', stat)
-    contains
-        subroutine fail(code, text)
-            integer, intent(in) :: code
-            character(len=*), intent(in) :: text
-            call self%record(code, text, stat)
-            call self%destroy()
-        end subroutine fail
-    end subroutine solver_start
-
-    ! The absolute tolerance of each component of the state z (length core%n):
-    ! init's atol_vector (in core%atol_z already), or atol, with atol_v on a
-    ! second-order problem's velocities.
-    subroutine set_state_tolerances(core, stat, msg)
-        type(solver_core), intent(inout) :: core
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        stat = regdae_err_bad_input
-        msg = ''
-        if (core%opts%atol_v /= option_auto .and. .not. (core%second_order .and. core%n == 2*core%nx)) then
-            msg = 'atol_v is the velocities'' tolerance of a second-order problem; this problem has none '// &
-                  '(use atol, or atol_vector per component)'
-        else if (allocated(core%atol_z)) then   ! init's atol_vector
-            if (size(core%atol_z) /= core%n) then
-                msg = 'atol_vector has '//format_int(size(core%atol_z))//' entries; it needs one per '// &
-                      'component of the state: '//format_int(core%n)// &
-                      trim(merge(' (the positions, then the velocities)', '                                     ', &
-                                 core%second_order .and. core%n == 2*core%nx))
-            else if (.not. all(core%atol_z > 0.0_wp .and. core%atol_z <= huge(1.0_wp))) then
-                msg = 'atol_vector: every entry must be finite and > 0'
-            end if
-        else
-            core%atol_z = spread(core%opts%atol, 1, core%n)
-            if (core%opts%atol_v /= option_auto) core%atol_z(core%nx + 1:2*core%nx) = core%opts%atol_v
-        end if
-        if (len(msg) == 0) stat = regdae_success
-    end subroutine set_state_tolerances
-
-    ! The `auto` parameters of core%opts, from the problem at (t0, z0) (the model
-    ! evaluated there with provisional weights); the model gets them, and
-    ! core%opts holds them as numbers afterwards (singular_threshold stays auto:
-    ! the monitor's running rule). The rules are regdae_auto_rules' (doc/methods.md):
-    !  - the rate of the motion omega from v, the accelerations and the constraint
-    !    length l; gamma = gamma1 = weight_factor omega, gamma0 = gamma1^2/2, and
-    !    along the run the monitor lets them follow the motion;
-    !  - eps = automatic_eps(rtol, sigma_reg, s), sigma_reg = sigma_min(GB) at t0 or,
-    !    if a row of G vanishes there, the prediction from the constraint curvature;
-    !  - drift_tol = 100 max_i |G_i| (rtol max|x0| + atol).
-    subroutine resolve_auto_parameters(core, t0, z0, stat, msg)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t0, z0(:)
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: scale, rate, ell, sigma0, sigma_pred, y(core%m), zp(size(z0)), zc(size(z0)), kinetic, power
-        integer :: wstat
-        logical :: recoverable, weights_auto, work_check, eps_auto, order2
-        stat = regdae_success
-        msg = ''
-        associate (opts => core%opts, model => core%model)
-            eps_auto = (opts%eps == option_auto)
-            if (eps_auto) then   ! provisional: for the slope at t0 (the rule needs the motion's directions)
-                scale = gb_scale(model)
-                if (.not. (scale > 0.0_wp)) scale = maxval(sum(model%gx**2, dim=2), 1, mask=.true.)
-                if (.not. (scale > 0.0_wp)) scale = 1.0_wp
-                core%eps_factor = automatic_eps_factor(opts%rtol)
-                model%eps = automatic_eps(opts%rtol, scale, scale, model%method == method_direct)
-            end if
-            if (opts%drift_tol == option_auto) then
-                core%drift_factor = drift_factor
-                opts%drift_tol = drift_factor*maxval(sqrt(sum(model%gx**2, dim=2)), 1, mask=.true.)* &
-                                 (max(opts%rtol, drift_rtol_min)*maxval(abs(z0(1:core%nx))) + &
-                                  max(maxval(core%atol_z(1:core%nx)), drift_rtol_min))
-                ! off without constraints, for first-order problems, and for order >= 3, whose
-                ! Taylor weights leave a constraint error O(taylor_h^2) by design (doc/methods.md)
-                if (core%m == 0 .or. .not. core%second_order .or. model%order >= 3) then
-                    opts%drift_tol = 0.0_wp
-                    core%drift_factor = 0.0_wp
-                end if
-            end if
-            weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
-            work_check = (resolved_work_tol(opts) > 0.0_wp .and. model%is_mechanical())
-            sigma0 = model%sigma_min_gb()
-            sigma_pred = -1.0_wp
-            rate = 0.0_wp
-            core%ell0 = 0.0_wp
-            if (weights_auto .or. work_check .or. eps_auto) then
-                call model%solve_multiplier(t0, y, stat)
-                if (stat /= regdae_success) then
-                    msg = 'choosing the automatic parameters: the multiplier at t0 failed: '//model%message
-                    return
-                end if
-                call model%dynamics_slope(z0, y, zp)
-                order2 = core%second_order .and. size(z0) >= 2*core%nx
-                call dense_motion_scales(model, t0, z0, zp, core%nx, order2, 0.0_wp, eps_auto, ell, rate, &
-                                         sigma_pred, stat, stiffness=.true.)
-                if (stat /= 0) then
-                    msg = 'choosing the automatic parameters: user routine constraint_jacobian reported failure '// &
-                          '(stat = '//format_int(stat)//') at t0'
-                    stat = regdae_err_user_callback
-                    return
-                end if
-                core%ell0 = ell
-            end if
-            core%rate0 = rate
-            core%sigma_pred0 = sigma_pred
-            if (eps_auto) then
-                scale = gb_scale(model)
-                opts%eps = automatic_eps(opts%rtol, max(sigma0, sigma_pred), scale, model%method == method_direct)
-                model%eps = opts%eps
-            end if
-            core%eps_auto0 = automatic_eps(opts%rtol, max(sigma0, sigma_pred), gb_scale(model), &
-                                           model%method == method_direct)
-            if (work_check) then
-                ! the work-energy check's floor of the energy scale: the kinetic energy of the
-                ! velocities that the accelerations at t0 reach in one time scale 1/rate (a start
-                ! from rest has no energy of its own to compare the defect with)
-                ! (the larger of the constrained and the applied forces' accelerations: a start at
-                ! rest in an equilibrium has none of the first, and the rounding moves it)
-                zc = z0
-                zc(core%nx + 1:2*core%nx) = zp(core%nx + 1:2*core%nx)
-                if (rms(model%f(size(model%f) - core%nx + 1:)) > rms(zp(core%nx + 1:2*core%nx))) &
-                    zc(core%nx + 1:2*core%nx) = model%f(size(model%f) - core%nx + 1:)
-                zc(core%nx + 1:2*core%nx) = zc(core%nx + 1:2*core%nx)/merge(rate, 1.0_wp, rate > 0.0_wp)
-                call model%work_sample(t0, zc, kinetic, power, wstat)
-                if (wstat == 0) core%work_floor = kinetic
-            end if
-            if (weights_auto) then
-                call set_auto_weights(opts, rate)
-                if (model%order == 1) model%w = [opts%gamma]
-                if (model%order == 2) model%w = [opts%gamma0, opts%gamma1]
-            end if
-            ! the weights follow the motion when all of those the model uses are automatic
-            core%follow_weights = (model%order == 1 .and. core%auto_gamma) .or. &
-                                  (model%order == 2 .and. core%auto_gamma0 .and. core%auto_gamma1)
-            if (weights_auto .or. eps_auto) call model%evaluate(t0, z0, stat, recoverable)   ! r with the final values
-        end associate
-    contains
-        ! the weights left auto from the rate; which ones were auto
-        subroutine set_auto_weights(opts, rate)
-            type(solver_options), intent(inout) :: opts
-            real(wp), intent(in) :: rate
-            real(wp) :: gamma, gamma0, gamma1
-            call baumgarte_weights(rate, gamma, gamma0, gamma1)
-            core%auto_gamma = (opts%gamma == option_auto)
-            core%auto_gamma0 = (opts%gamma0 == option_auto)
-            core%auto_gamma1 = (opts%gamma1 == option_auto)
-            if (opts%gamma == option_auto) opts%gamma = gamma
-            if (opts%gamma1 == option_auto) opts%gamma1 = gamma1
-            if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
-        end subroutine set_auto_weights
-    end subroutine resolve_auto_parameters
-
-    ! The `auto` parameters for the augmented formulation (the rules of
-    ! resolve_auto_parameters with the sparse M and G): s = max_i sum_k G_ik^2 / M_kk
-    ! (the diagonal of GB with M's diagonal), the accelerations M_kk^-1 f_k of the
-    ! free motion, the constraint length from the sparse G along v and them. eps
-    ! needs sigma_min(GB), by inverse iteration at IDA's first vector: the caller
-    ! sets it (augmented_eps) once that vector exists.
-    subroutine resolve_augmented_parameters(core, sys, t0, q0, v0, stat, msg)
-        type(solver_core), intent(inout) :: core
-        type(augmented_system), intent(inout) :: sys
-        real(wp), intent(in) :: t0, q0(:), v0(:)
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: mdiag(sys%n), f(sys%n), acc(sys%n), g0(sys%st%constraint%nnz()), scale, rate, gmax, &
-                    kinetic, power, y_zero(sys%m), ell, sigma_pred, gamma, gamma0, gamma1
-        integer :: i, ustat
-        logical :: recoverable, weights_auto, work_check
-        stat = 0
-        msg = ''
-        associate (opts => core%opts, mp => sys%st%mass, gp => sys%st%constraint)
-            ustat = 0
-            call sys%problem%mass_values(t0, q0, mp, sys%mvals, ustat)
-            if (failed('mass_values')) return
-            call sys%problem%constraint_jacobian_values(t0, q0, gp, g0, ustat)
-            if (failed('constraint_jacobian_values')) return
-            call sys%problem%forces(t0, q0, v0, f, ustat)
-            if (failed('forces')) return
-            call mass_diagonal(sys, mdiag)
-            scale = 0.0_wp
-            gmax = 0.0_wp
-            do i = 1, sys%m
-                scale = max(scale, gb_row_scale(sys, g0, mdiag, i))
-                gmax = max(gmax, norm2(g0(gp%row_start(i):gp%row_start(i + 1) - 1)))
-            end do
-            if (.not. (scale > 0.0_wp)) scale = 1.0_wp
-            if (opts%eps == option_auto) then
-                core%eps_factor = automatic_eps_factor(opts%rtol)
-                opts%eps = automatic_eps(opts%rtol, scale, scale, opts%method == method_direct)   ! provisional
-            end if
-            if (opts%drift_tol == option_auto) then
-                core%drift_factor = drift_factor
-                opts%drift_tol = drift_factor*gmax*(max(opts%rtol, drift_rtol_min)*maxval(abs(q0)) + &
-                                                    max(maxval(core%atol_z(1:size(q0))), drift_rtol_min))
-            end if
-            weights_auto = (opts%gamma == option_auto .or. opts%gamma0 == option_auto .or. opts%gamma1 == option_auto)
-            work_check = resolved_work_tol(opts) > 0.0_wp
-            acc = f/mdiag
-            call augmented_motion_scales(sys, t0, q0, v0, acc, acc, 0.0_wp, opts%eps == option_auto .or. &
-                                         core%eps_factor > 0.0_wp, ell, rate, sigma_pred, stat, .true.)
-            if (stat /= 0) then
-                ustat = stat
-                call user_routine_failure(ustat, 'constraint_jacobian_values', t0, stat, msg, recoverable)
-                return
-            end if
-            core%rate0 = rate
-            core%ell0 = ell
-            core%sigma_pred0 = sigma_pred
-            call baumgarte_weights(rate, gamma, gamma0, gamma1)
-            core%auto_gamma = (opts%gamma == option_auto)
-            core%auto_gamma0 = (opts%gamma0 == option_auto)
-            core%auto_gamma1 = (opts%gamma1 == option_auto)
-            if (opts%gamma == option_auto) opts%gamma = gamma
-            if (opts%gamma1 == option_auto) opts%gamma1 = gamma1
-            if (opts%gamma0 == option_auto) opts%gamma0 = 0.5_wp*opts%gamma1**2
-            core%follow_weights = merge(core%auto_gamma0 .and. core%auto_gamma1, core%auto_gamma, opts%index == 3)
-            if (work_check) then   ! the floor of the work check's energy scale (as for the dense formulations)
-                y_zero = 0.0_wp
-                call kinetic_energy_and_power(sys%problem, t0, q0, acc/merge(rate, 1.0_wp, rate > 0.0_wp), y_zero, &
-                                              kinetic, power, ustat, sys%st%mass)
-                if (ustat == 0) core%work_floor = kinetic
-            end if
-            if (.not. weights_auto) core%follow_weights = .false.
-            sys%eps = opts%eps
-            call set_augmented_weights(core, sys)
-        end associate
-    contains
-        ! A user routine returned ustat /= 0 at t0: stat and msg say which and what.
-        logical function failed(name)
-            character(len=*), intent(in) :: name
-            failed = (ustat /= 0)
-            if (failed) call user_routine_failure(ustat, name, t0, stat, msg, recoverable)
-        end function failed
-    end subroutine resolve_augmented_parameters
-
-    ! The weights of core%opts into the augmented system (index 2: gamma0 = 0, gamma1 = gamma).
-    subroutine set_augmented_weights(core, sys)
-        type(solver_core), intent(in) :: core
-        type(augmented_system), intent(inout) :: sys
-        if (core%opts%index == 3) then
-            sys%gamma0 = core%opts%gamma0
-            sys%gamma1 = core%opts%gamma1
-        else
-            sys%gamma0 = 0.0_wp
-            sys%gamma1 = core%opts%gamma
-        end if
-    end subroutine set_augmented_weights
-
-    ! The automatic eps of the augmented formulation at t0 from sigma_min(GB) at
-    ! IDA's first vector u0 (or the singular start's prediction).
-    subroutine augmented_eps(core, sys, t0, u0)
-        type(solver_core), intent(inout) :: core
-        type(augmented_system), intent(inout) :: sys
-        real(wp), intent(in) :: t0, u0(:)
-        real(wp) :: sigma0, gb, g
-        integer :: stat
-        sigma0 = sys%sigma_min_gb(t0, u0, stat)
-        if (stat /= 0 .or. .not. (sigma0 < huge(1.0_wp))) sigma0 = 0.0_wp
-        call sys%diagonal_scales(gb, g)
-        core%eps_auto0 = automatic_eps(core%opts%rtol, max(sigma0, core%sigma_pred0), gb, &
-                                       core%opts%method == method_direct)
-        if (core%eps_factor > 0.0_wp) then
-            core%opts%eps = core%eps_auto0
-            sys%eps = core%opts%eps
-        end if
-    end subroutine augmented_eps
-
-    ! Can an integrator take a first step from (t0, z0) with slope zp0? The
-    ! step that keeps the local error near the tolerance is about 1/|zp0|_w,
-    ! the weighted RMS norm with the weights w = 1/(rtol |z0| + atol) of the
-    ! components in the error test (IDA's own estimate of the first step is
-    ! 0.5/|zp0|_w). When that norm overflows (IDA squares w zp0) or its step
-    ! is below the time resolution at t0, no step can be taken: IDA would fail
-    ! with a message about tstop or tout, dopri5 with "step size too small".
-    ! Say what causes it instead: the tolerances, or a slope that a large
-    ! Baumgarte weight has made huge.
-    subroutine check_first_step(core, t0, z0, zp0, stat, msg)
-        type(solver_core), intent(in) :: core
-        real(wp), intent(in) :: t0, z0(:), zp0(:)
-        integer, intent(out) :: stat
-        character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: w, scaled, biggest, sumsq, norm
-        integer :: i, worst
-        stat = regdae_success
-        msg = ''
-        biggest = 0.0_wp
-        worst = 0
-        do i = 1, size(z0)
-            if (core%excluded(i) .and. core%opts%integrator /= integrator_dopri5) cycle
-            w = 1.0_wp/(core%opts%rtol*abs(z0(i)) + core%atol_z(i))
-            scaled = abs(zp0(i))*w
-            if (.not. (scaled <= biggest)) then
-                biggest = scaled
-                worst = i
-            end if
-        end do
-        if (worst == 0) return
-        norm = huge(1.0_wp)
-        if (biggest < 1.0e150_wp) then
-            sumsq = 0.0_wp
-            do i = 1, size(z0)
-                if (core%excluded(i) .and. core%opts%integrator /= integrator_dopri5) cycle
-                w = 1.0_wp/(core%opts%rtol*abs(z0(i)) + core%atol_z(i))
-                sumsq = sumsq + (zp0(i)*w/biggest)**2
-            end do
-            norm = biggest*sqrt(sumsq/size(z0))
-            if (0.5_wp/norm >= time_resolution(t0, t0)) return
-        end if
-        stat = regdae_err_bad_input
-        w = 1.0_wp/(core%opts%rtol*abs(z0(worst)) + core%atol_z(worst))
-        msg = 'no first step possible at t0 = '//format_real(t0)//': the step that keeps the local error at the '// &
-              'tolerance, about 1/|z''(t0)|_w with the error weights w = 1/(rtol |z| + atol), is below the time '// &
-              'resolution (component '//format_int(worst)//': |z''| = '//format_real(abs(zp0(worst)))// &
-              ', w = '//format_real(w)//'): '
-        if (w > abs(zp0(worst))) then
-            msg = msg//'atol = '//format_real(core%atol_z(worst))//' is too small (the weighted norms square the '// &
-                  'weights, up to 1/atol, which overflow for atol below about 1e-150)'
-        else
-            msg = msg//'the initial slope is huge; '//weights_text(core)//' magnifies the rounding error of '// &
-                  'the constraint at the initial point (max |g| = '//format_real(maxval(abs(core%model%g), 1))// &
-                  ') into the multiplier, or f(x0, t0) itself is that large'
-        end if
-    end subroutine check_first_step
-
-    ! The Baumgarte weights in use, for messages.
-    function weights_text(core) result(text)
-        type(solver_core), intent(in) :: core
-        character(len=:), allocatable :: text
-        if (core%model%order == 2) then
-            text = 'the weight gamma0 = '//format_real(core%opts%gamma0)//' (or gamma1 = '// &
-                   format_real(core%opts%gamma1)//')'
-        else if (core%model%order >= 3) then
-            text = 'a Taylor weight (taylor_h = '//format_real(core%opts%taylor_h)//')'
-        else
-            text = 'the weight gamma = '//format_real(core%opts%gamma)
-        end if
-    end function weights_text
 
     subroutine solver_advance(self, tout, x, y, stat, v, a)
         class(solver_engine), intent(inout) :: self
@@ -1093,11 +314,13 @@ contains
                                           !! n: f - B y from the regularized equation at the state
                                           !! (augmented formulation: IDA's interpolated v')
         type(solver_core), pointer :: core
+        class(integrator), pointer :: stepper
+        type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
         logical :: recoverable
-        integer :: nx
-        real(wp) :: t_reached
+        integer :: nx, outcome
+        real(wp) :: t_reached, t_stop
 
         core => self%core
         if (.not. associated(core)) then
@@ -1110,118 +333,70 @@ contains
             return
         end if
         nx = core%nx
-        if (size(x) /= nx) then
-            call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(nx))
-            return
-        end if
-        if (present(y)) then
-            if (size(y) /= core%m) then
-                call fail(regdae_err_bad_input, 'advance: y must have length '//format_int(core%m))
-                return
-            end if
-        end if
-        if (present(v)) then
-            if (.not. core%second_order .or. size(v) /= nx) then
-                call fail(regdae_err_bad_input, 'advance: v is for second-order problems, length '//format_int(nx))
-                return
-            end if
-        end if
-        if (present(a)) then
-            if (.not. core%second_order .or. size(a) /= nx) then
-                call fail(regdae_err_bad_input, 'advance: a is for second-order problems, length '//format_int(nx))
-                return
-            end if
-        end if
-        if (.not. ieee_is_finite(tout)) then
-            call fail(regdae_err_bad_input, 'advance: tout is NaN or Inf')
-            return
-        end if
-        if (tout < core%t) then
-            call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout)// &
-                      ' is before the current time '//format_real(core%t))
-            return
-        end if
-        if (.not. core%started .and. tout > core%t .and. tout - core%t < time_resolution(core%t, tout)) then
-            ! No first step fits (IDA: "tout too close to t0"); later, IDA and dopri5
-            ! step across such intervals.
-            call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout, 16)// &
-                      ' is too close to t0 = '//format_real(core%t, 16)//' to start the integration: tout - t0 = '// &
-                      format_real(tout - core%t)//' is below the time resolution '// &
-                      format_real(time_resolution(core%t, tout))// &
-                      ' (4 epsilon max(|t0|, |tout|), at least sqrt(tiny) = 1.5E-154)')
-            return
-        end if
+        if (.not. outputs_fit()) return
         t_reached = tout
         if (tout > core%t) then
-            ! The active integrator to tout; with integrator=auto the explicit one hands
-            ! over to IDA where the system is stiff, and IDA back where it is not. With
-            ! stop_at_pass_end, the integrator stops early at the end of a singular pass.
+            ! The integrator in charge to tout; with integrator=auto the explicit one hands
+            ! over to the implicit one where the system is stiff, and back where it is not
+            ! (regdae_integrator_switching). With stop_at_pass_end, the integrator stops
+            ! early at the end of a singular pass.
             do
-                if (core%active == integrator_dopri5) then
-                    u => core%z_rk
-                    call core%rk%advance(core%model, tout, core%opts%rtol, core%atol_z, core%opts%h_max, &
-                                         core%opts%max_steps, core%opts%stop_at_output, core%z_rk, stat, &
-                                         core%monitor, stop_when_stiff=core%switching, &
-                                         stop_at_pass_end=core%stop_at_pass_end)
-                    if (stat /= regdae_success) then
-                        core%t = core%rk%t
-                        call copy_state()
-                        if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
-                        call fail(stat, core%rk%message)
-                        return
-                    end if
-                    if (core%monitor%alarm) exit
-                    if (core%rk%pass_stop) then
-                        t_reached = core%rk%t
-                        exit
-                    end if
-                    if (.not. core%rk%stiff_detected) exit   ! at tout
-                    call switch_to_ida(core, stat, msg)
+                stepper => active_integrator(core)
+                u => stepper%state()
+                call stepper%advance(tout, t_stop, outcome, stat, msg)
+                select case (outcome)
+                case (outcome_reached)
+                    exit
+                case (outcome_pass_end)
+                    t_reached = t_stop
+                    exit
+                case (outcome_stiff, outcome_nonstiff)
+                    call hand_over(core, outcome, t_stop, stat, msg)
                     if (stat /= regdae_success) then
                         call fail(stat, msg)
                         return
                     end if
-                else
-                    u => core%ida%state()
-                    if (ida_to(tout)) return
-                    if (t_reached < tout) exit                ! stopped at the end of a pass
-                    if (core%active == integrator_ida) exit   ! at tout, else switched to dopri5
-                end if
+                case (outcome_alarm)
+                    core%t = t_stop
+                    call copy_state()
+                    if (branch_alarm()) return
+                case (outcome_failed, outcome_exhausted)
+                    core%t = t_stop
+                    call copy_state()
+                    if (present(y) .and. outcome == outcome_failed) y = ieee_value(1.0_wp, ieee_quiet_nan)
+                    call fail(stat, msg)
+                    return
+                case default
+                    call fail(stat, msg)
+                    return
+                end select
             end do
             core%t = t_reached
             core%started = .true.
         end if
-        if (core%active == integrator_dopri5) then
-            u => core%z_rk
-        else
-            u => core%ida%state()
-        end if
+        stepper => active_integrator(core)
+        u => stepper%state()
         self%t = core%t
         call copy_state()
         if (core%augmented) then
-            ! y is one of IDA's unknowns (interpolated like the others)
+            ! y is one of the implicit integrator's unknowns (interpolated like the others)
             if (present(y)) then
-                call augmented_unpack(y=core%y_work)
+                call sys%unpack(u, u, y=core%y_work)
                 y = core%multiplier_sign*core%y_work
             end if
-            if (present(a)) then
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    call sys%unpack(u, core%ida%slope(), a=a)
-                end select
-            end if
+            if (present(a)) call sys%unpack(u, stepper%slope(), a=a)
             call record_done()
             return
         end if
-        ! The diagnostics come from the accepted steps (IDA's and dopri5's); the
-        ! multiplier is computed only when asked for.
+        ! The diagnostics come from the accepted steps; the multiplier is computed only
+        ! when asked for.
         if (branch_alarm()) return
         if (.not. (present(y) .or. present(a))) then
             call record_done()
             return
         end if
         ! The multiplier (and the acceleration) at an output time come from the
-        ! regularized equation, not from IDA's interpolant.
+        ! regularized equation, not from the integrator's interpolant.
         call core%model%evaluate(core%t, u(1:core%n), stat, recoverable)
         if (stat == regdae_success) call core%model%solve_multiplier(core%t, core%y_work, stat)
         if (stat /= regdae_success) then
@@ -1240,6 +415,53 @@ contains
         end if
         call record_done()
     contains
+        ! The sizes of the outputs and tout; false (recorded) if one does not fit.
+        logical function outputs_fit() result(ok)
+            ok = .false.
+            if (size(x) /= nx) then
+                call fail(regdae_err_bad_input, 'advance: x must have length '//format_int(nx))
+                return
+            end if
+            if (present(y)) then
+                if (size(y) /= core%m) then
+                    call fail(regdae_err_bad_input, 'advance: y must have length '//format_int(core%m))
+                    return
+                end if
+            end if
+            if (present(v)) then
+                if (.not. core%second_order .or. size(v) /= nx) then
+                    call fail(regdae_err_bad_input, 'advance: v is for second-order problems, length '//format_int(nx))
+                    return
+                end if
+            end if
+            if (present(a)) then
+                if (.not. core%second_order .or. size(a) /= nx) then
+                    call fail(regdae_err_bad_input, 'advance: a is for second-order problems, length '//format_int(nx))
+                    return
+                end if
+            end if
+            if (.not. ieee_is_finite(tout)) then
+                call fail(regdae_err_bad_input, 'advance: tout is NaN or Inf')
+                return
+            end if
+            if (tout < core%t) then
+                call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout)// &
+                          ' is before the current time '//format_real(core%t))
+                return
+            end if
+            if (.not. core%started .and. tout > core%t .and. tout - core%t < time_resolution(core%t, tout)) then
+                ! No first step fits (IDA: "tout too close to t0"); later, the integrators
+                ! step across such intervals.
+                call fail(regdae_err_bad_input, 'advance: tout = '//format_real(tout, 16)// &
+                          ' is too close to t0 = '//format_real(core%t, 16)//' to start the integration: tout - t0 = '// &
+                          format_real(tout - core%t)//' is below the time resolution '// &
+                          format_real(time_resolution(core%t, tout))// &
+                          ' (4 epsilon max(|t0|, |tout|), at least sqrt(tiny) = 1.5E-154)')
+                return
+            end if
+            ok = .true.
+        end function outputs_fit
+
         ! Success at tout, or the resolution warning when the monitor flagged a new
         ! unresolved singular pass during this advance (logged as an event too).
         subroutine record_done()
@@ -1256,85 +478,17 @@ contains
             end if
         end subroutine record_done
 
-        ! IDA one step at a time (the same steps as IDA_NORMAL) to tout, the monitor
-        ! sampling every accepted step's end and the output times, in time order;
-        ! IDA's interpolant gives the state at tout. With switching, every 20 steps
-        ! whether the explicit method would do (explicit_would_do); true: stopped
-        ! (failure or alarm, recorded).
-        logical function ida_to(t_out) result(stopped)
-            real(wp), intent(in) :: t_out
-            real(wp) :: t_now
-            integer :: ierr, taken
-            stopped = .true.
-            t_now = core%ida%current_time()
-            if (t_now > core%sampled_t .and. t_now <= t_out) then   ! a step end passed over at the last output
-                call core%ida%interpolate(t_now, ierr)
-                if (sample_or_stop(t_now)) return
-            end if
-            taken = 0
-            do while (t_now < t_out)
-                if (taken >= core%opts%max_steps) then
-                    core%t = t_now
-                    call copy_state()
-                    call fail(regdae_err_integration, 'IDA took max_steps = '//format_int(core%opts%max_steps)// &
-                              ' steps without reaching tout = '//format_real(t_out)//' (t = '//format_real(t_now)//')')
-                    return
-                end if
-                call core%ida%step(t_out, core%opts%stop_at_output, t_now, ierr)
-                if (ierr < 0) then
-                    core%t = t_now
-                    call copy_state()
-                    if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
-                    call fail(core%ida%failure_status(), 'IDA failed at t = '//format_real(t_now)//' (flag '// &
-                              format_int(ierr)//'): '//core%ida%ida_message// &
-                              merge_text(' | last residual failure: ', core%ida%pending_message))
-                    return
-                end if
-                taken = taken + 1
-                if (t_now <= t_out) then
-                    if (sample_or_stop(t_now)) return
-                    if (core%stop_at_pass_end .and. core%monitor%pass_ended .and. t_now < t_out) then
-                        t_reached = t_now   ! IDA's state is the step's end
-                        stopped = .false.
-                        return
-                    end if
-                end if
-                if (core%switching .and. t_now < t_out .and. mod(taken, 20) == 0) then
-                    if (explicit_would_do(core, t_now)) then
-                        call switch_to_dopri5(core, t_now)
-                        stopped = .false.
-                        return
-                    end if
-                end if
-            end do
-            if (t_now > t_out) then
-                call core%ida%interpolate(t_out, ierr)
-                if (ierr /= 0) then
-                    call fail(regdae_err_integration, 'IDA could not interpolate at t = '//format_real(t_out))
-                    return
-                end if
-                if (sample_or_stop(t_out)) return
-            end if
-            stopped = .false.
-        end function ida_to
-
+        ! x (and v) from the integrator's state u (the augmented formulation's unpacked).
         subroutine copy_state()
-            if (core%augmented) then
-                call augmented_unpack(q=x)
-                if (present(v)) call augmented_unpack(v=v)
+            sys => stepper%augmented()
+            if (associated(sys)) then
+                call sys%unpack(u, u, q=x)
+                if (present(v)) call sys%unpack(u, u, v=v)
                 return
             end if
             x = u(1:nx)
             if (present(v)) v = u(nx + 1:2*nx)
         end subroutine copy_state
-
-        subroutine augmented_unpack(q, v, y)
-            real(wp), intent(out), optional :: q(:), v(:), y(:)
-            select type (sys => core%ida%system)
-            type is (augmented_system)
-                call sys%unpack(u, u, q=q, v=v, y=y)
-            end select
-        end subroutine augmented_unpack
 
         subroutine fail(code, text)
             integer, intent(in) :: code
@@ -1342,18 +496,6 @@ contains
             call self%record(code, text, stat)
             if (associated(core)) self%t = core%t
         end subroutine fail
-
-        ! Sample IDA's current state at t; if a check fires, stop there (true).
-        logical function sample_or_stop(t)
-            real(wp), intent(in) :: t
-            sample_or_stop = .false.
-            call sample_step(core, t)
-            core%sampled_t = t
-            if (.not. core%monitor%alarm) return
-            core%t = t
-            call copy_state()
-            sample_or_stop = branch_alarm()
-        end function sample_or_stop
 
         ! The monitor saw the velocity jump across a singular interval, or the
         ! position constraint drift: stop.
@@ -1401,17 +543,17 @@ contains
     function solver_statistics(self) result(st)
         class(solver_engine), intent(in) :: self
         type(solver_stats) :: st
+        class(integrator), pointer :: active
 
         st%t = self%t
         if (.not. associated(self%core)) return
         associate (core => self%core)
             st%switches = core%switches
-            ! IDA's counts (none if it never ran) plus the explicit integrator's (zero if it never ran)
-            call core%ida%get_statistics(st)
-            st%steps = st%steps + core%rk%steps
-            st%res_evals = st%res_evals + core%rk%evals
-            st%err_test_fails = st%err_test_fails + core%rk%rejects
-            if (core%active == integrator_dopri5) st%h_last = core%rk%h_last
+            ! the implicit integrator's counts (none if it never ran) plus the explicit one's;
+            ! the last step of the one in charge
+            active => active_integrator(core)
+            if (allocated(core%stiff)) call core%stiff%statistics(st, associated(active, core%stiff))
+            if (allocated(core%nonstiff)) call core%nonstiff%statistics(st, associated(active, core%nonstiff))
             st%singular_passes = core%monitor%n_singular
             st%sigma_min = core%monitor%sigma_min
             st%velocity_jump = core%monitor%jump_max
@@ -1507,7 +649,8 @@ contains
 
         core => self%core
         if (.not. associated(core)) return
-        call core%ida%free()
+        if (allocated(core%stiff)) call core%stiff%free()
+        if (allocated(core%nonstiff)) call core%nonstiff%free()
         if (associated(core%model)) deallocate (core%model)
         deallocate (self%core)
         self%core => null()
@@ -1532,318 +675,5 @@ contains
         call self%destroy()
     end subroutine solver_finalize
 
-    subroutine engine_stop_at_pass_ends(self, on)
-        class(solver_engine), intent(inout) :: self
-        logical, intent(in) :: on
-        if (.not. associated(self%core)) return
-        self%core%stop_at_pass_end = on
-        self%core%monitor%defer_in_pass = on
-    end subroutine engine_stop_at_pass_ends
-
-    logical function engine_take_pass_end(self) result(ended)
-        class(solver_engine), intent(inout) :: self
-        ended = .false.
-        if (.not. associated(self%core)) return
-        ended = self%core%monitor%pass_ended
-        self%core%monitor%pass_ended = .false.
-    end function engine_take_pass_end
-
-    subroutine engine_checkpoint(self, t, z, frozen, valid)
-        class(solver_engine), intent(in) :: self
-        real(wp), intent(out) :: t
-        real(wp), allocatable, intent(out) :: z(:)
-        logical, intent(out) :: frozen, valid
-        t = 0.0_wp
-        frozen = .false.
-        valid = .false.
-        if (.not. associated(self%core)) return
-        associate (mon => self%core%monitor)
-            valid = mon%checkpoint_valid
-            frozen = mon%checkpoint_frozen
-            if (.not. valid) return
-            t = mon%checkpoint_t
-            z = mon%checkpoint_z
-        end associate
-    end subroutine engine_checkpoint
-
-    subroutine engine_release_checkpoint(self, t, z)
-        class(solver_engine), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        if (associated(self%core)) call self%core%monitor%release_checkpoint(t, z)
-    end subroutine engine_release_checkpoint
-
-    real(wp) function engine_integrator_time(self) result(t)
-        class(solver_engine), intent(in) :: self
-        t = self%t
-        if (.not. associated(self%core)) return
-        t = self%core%t
-        if (self%core%active == integrator_dopri5) then
-            t = self%core%rk%t
-        else if (allocated(self%core%ida%system)) then
-            t = self%core%ida%current_time()
-        end if
-    end function engine_integrator_time
-
-    logical function engine_same(self, other) result(same)
-        class(solver_engine), intent(in) :: self, other
-        same = .false.
-        if (associated(self%core) .and. associated(other%core)) same = associated(self%core, other%core)
-    end function engine_same
-
-    integer function engine_x_size(self) result(n)
-        class(solver_engine), intent(in) :: self
-        n = 0
-        if (associated(self%core)) n = self%core%nx
-    end function engine_x_size
-
-    real(wp) function engine_time(self) result(t)
-        class(solver_engine), intent(in) :: self
-        t = self%t
-    end function engine_time
-
-    integer function engine_state_size(self) result(n)
-        class(solver_engine), intent(in) :: self
-        n = 0
-        if (associated(self%core)) n = self%core%n
-    end function engine_state_size
-
-    subroutine engine_state(self, z)
-        class(solver_engine), intent(in) :: self
-        real(wp), intent(out) :: z(:)   !! length state_size()
-        real(c_double), pointer :: u(:)
-        integer :: nx
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            nx = core%nx
-            if (core%active == integrator_dopri5) then
-                z = core%z_rk(1:size(z))
-            else if (core%augmented) then
-                u => core%ida%state()
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    call sys%unpack(u, u, q=z(1:nx), v=z(nx + 1:2*nx))
-                end select
-            else
-                u => core%ida%state()
-                z = u(1:size(z))
-            end if
-        end associate
-    end subroutine engine_state
-
-    subroutine engine_restart_at(self, t, z, stat)
-        class(solver_engine), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        integer, intent(out) :: stat
-        real(wp), allocatable :: zp(:), y(:), u0(:), up0(:), id(:)
-        character(len=:), allocatable :: msg
-        logical :: recoverable
-        integer :: nx
-        stat = regdae_err_not_initialized
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            nx = core%nx
-            core%t = t
-            self%t = t
-            core%sampled_t = t
-            if (core%active == integrator_dopri5) then
-                core%z_rk = z
-                call core%rk%start(core%model, t, z, core%rk%h_last, stat)
-            else if (core%augmented) then
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    allocate (u0(sys%neq), up0(sys%neq), id(sys%neq))
-                    call sys%initial_guess(z(1:nx), z(nx + 1:2*nx), u0, up0, id)
-                    call core%ida%restart(t, u0, up0, stat)
-                    if (stat == regdae_success) call core%ida%calc_ic(id, t + 1.0e-3_wp*max(1.0_wp, abs(t)), stat, msg)
-                end select
-            else
-                allocate (zp(core%n), y(core%m))
-                call core%model%slope_eliminated(t, z, zp, y, stat, recoverable)
-                if (stat /= regdae_success) return
-                if (core%formulation == formulation_multiplier) then
-                    call core%ida%restart(t, [z, y], [zp, spread(0.0_wp, 1, core%m)], stat)
-                else
-                    call core%ida%restart(t, z, zp, stat)
-                end if
-            end if
-            if (stat == regdae_success .and. core%monitor%work_tol > 0.0_wp) call rebase_work(core, t, z)
-        end associate
-    end subroutine engine_restart_at
-
-    ! The work-energy balance goes on from the state z at t (engine_restart_at).
-    subroutine rebase_work(core, t, z)
-        type(solver_core), intent(inout) :: core
-        real(wp), intent(in) :: t, z(:)
-        real(c_double), pointer :: u(:), up(:)
-        real(wp) :: kinetic, power, y(core%m), q(core%nx), v(core%nx)
-        integer :: wstat
-        logical :: recoverable
-        wstat = -1
-        if (core%augmented) then
-            u => core%ida%state()
-            up => core%ida%slope()
-            select type (sys => core%ida%system)
-            type is (augmented_system)
-                call sys%unpack(u, up, q=q, v=v, y=y)
-                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass)
-            end select
-        else
-            call core%model%evaluate(t, z, wstat, recoverable)
-            if (wstat == regdae_success) call core%model%work_sample(t, z, kinetic, power, wstat)
-        end if
-        if (wstat == 0) call core%monitor%rebase_work(t, kinetic, power)
-    end subroutine rebase_work
-
-    subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale)
-        class(solver_engine), intent(in) :: self
-        class(solver_engine), intent(inout) :: other
-        real(wp), intent(in) :: kappa       !! the tolerances' divisor (> 1)
-        real(wp), intent(in) :: t, z(:)     !! the start: a state of self (x, v)
-        integer, intent(out) :: stat
-        real(wp), intent(in), optional :: eps_scale   !! the companion's eps times this (a probe of the
-                                                      !! regularization error)
-        type(solver_options) :: opts
-        real(wp) :: eps, zs(size(z)), ratio
-        integer :: nx, pstat
-        stat = regdae_err_not_initialized
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            nx = core%nx
-            opts = core%opts
-            opts%rtol = core%opts%rtol/kappa
-            opts%atol = core%opts%atol/kappa
-            if (opts%atol_v /= option_auto) opts%atol_v = core%opts%atol_v/kappa
-            opts%jump_tol = 0.0_wp
-            opts%drift_tol = 0.0_wp
-            opts%work_tol = 0.0_wp
-            opts%invariant_tol = 0.0_wp
-            opts%resolution_tol = 0.0_wp
-            opts%ic_tol = huge(1.0_wp)
-            opts%check_jacobians = .false.
-            opts%h_init = 0.0_wp
-            opts%integrator = merge(integrator_dopri5, integrator_ida, core%active == integrator_dopri5)
-            opts%formulation = core%formulation
-            opts%linear_solver = merge(core%linear_solver, linear_solver_auto, core%augmented)
-            if (core%augmented) then
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    eps = sys%eps
-                    opts%gamma = sys%gamma1
-                    opts%gamma1 = sys%gamma1
-                    opts%gamma0 = sys%gamma0
-                    if (opts%index == 2) opts%gamma0 = 0.5_wp*sys%gamma1**2
-                end select
-            else
-                eps = core%model%eps
-                if (core%model%order == 1) opts%gamma = core%model%w(1)
-                if (core%model%order == 2) then
-                    opts%gamma0 = core%model%w(1)
-                    opts%gamma1 = core%model%w(2)
-                end if
-            end if
-            ! an automatic eps shrinks with the tolerance as its rule says (rtol^2 within its
-            ! bounds; direct: the square root of that): below the rule's floor thinner layers
-            ! are not resolved in double precision, and the companion has the same eps
-            opts%eps = eps
-            if (core%eps_factor > 0.0_wp) then
-                ratio = automatic_eps_factor(opts%rtol)/automatic_eps_factor(core%opts%rtol)
-                if (opts%method == method_direct) ratio = sqrt(ratio)
-                opts%eps = eps*ratio
-            end if
-            if (present(eps_scale)) opts%eps = opts%eps*eps_scale
-            ! the start projected onto the constraints: the solution's drift is within its
-            ! tolerance, not within the companion's (with a thinner layer it can bounce off the branch)
-            zs = z
-            if (core%augmented) then
-                select type (sys => core%ida%system)
-                type is (augmented_system)
-                    if (sys%st%declared) then
-                        call project_structured(sys%problem, sys%st%constraint, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                    else
-                        call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                    end if
-                    call other%init(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
-                                    atol_vector=core%atol_z/kappa)
-                end select
-            else if (allocated(core%model%second)) then
-                call project_second_order(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                call other%init(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
-                                atol_vector=core%atol_z/kappa)
-            else if (allocated(core%model%higher)) then
-                stat = regdae_err_bad_input   ! order >= 3: not verified
-            else
-                select type (p => core%model%first)
-                type is (velocity_index2_problem)
-                    call project_second_order(p%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                    call other%init(p%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, atol_vector=core%atol_z/kappa)
-                class default
-                    call project_first_order(p, t, zs(1:nx), pstat)
-                    call other%init(p, t, zs(1:nx), opts, stat, atol_vector=core%atol_z/kappa)
-                end select
-            end if
-        end associate
-    end subroutine engine_start_companion
-
-    subroutine engine_limit_steps(self, steps)
-        class(solver_engine), intent(inout) :: self
-        integer, intent(in) :: steps   !! >= 1
-        if (associated(self%core)) self%core%opts%max_steps = max(1, steps)
-    end subroutine engine_limit_steps
-
-    logical function engine_regularized(self) result(yes)
-        class(solver_engine), intent(in) :: self
-        yes = .false.
-        if (associated(self%core)) yes = self%core%opts%method /= method_baumgarte .and. self%core%monitor%regularized()
-    end function engine_regularized
-
-    logical function engine_eps_floored(self, kappa_a, kappa_b) result(floored)
-        class(solver_engine), intent(in) :: self
-        real(wp), intent(in) :: kappa_a, kappa_b
-        floored = .false.
-        if (.not. associated(self%core)) return
-        if (.not. (self%core%eps_factor > 0.0_wp)) return
-        floored = abs(automatic_eps_factor(self%core%opts%rtol/kappa_a) - automatic_eps_factor(self%core%opts%rtol/ &
-                      kappa_b)) <= 1.0e-6_wp*automatic_eps_factor(self%core%opts%rtol/kappa_a)
-    end function engine_eps_floored
-
-    real(wp) function engine_state_distance(self, za, zb) result(d)
-        class(solver_engine), intent(in) :: self
-        real(wp), intent(in) :: za(:), zb(:)
-        integer :: i
-        logical :: skip_v
-        d = 0.0_wp
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            ! the positions (x) only: the error the user reads; right after a pass the
-            ! velocities carry its layer's sensitivity, which the positions integrate away
-            skip_v = core%second_order
-            do i = 1, min(size(za), size(zb), core%n)
-                if (skip_v .and. i > core%nx) cycle
-                d = max(d, abs(za(i) - zb(i))/(core%opts%rtol*abs(zb(i)) + core%atol_z(i)))
-            end do
-        end associate
-        if (.not. (d == d)) d = huge(1.0_wp)
-    end function engine_state_distance
-
-    subroutine engine_note_event(self, text)
-        class(solver_engine), intent(inout) :: self
-        character(len=*), intent(in) :: text
-        if (associated(self%core)) call log_event(self%core, text)
-    end subroutine engine_note_event
-
-    ! The smallest interval an integrator can step across at t and tout:
-    ! 4 epsilon max(|t|, |tout|) (IDA's own test for tout too close to t0), and
-    ! at least sqrt(tiny) so that a first step of a fraction of it is a normal number.
-    pure real(wp) function time_resolution(t, tout)
-        real(wp), intent(in) :: t, tout
-        time_resolution = max(4*epsilon(1.0_wp)*max(abs(t), abs(tout)), sqrt(tiny(1.0_wp)))
-    end function time_resolution
-
-    pure function merge_text(prefix, text) result(s)
-        character(len=*), intent(in) :: prefix, text
-        character(len=:), allocatable :: s
-        s = ''
-        if (len(text) > 0) s = prefix//text
-    end function merge_text
 
 end module regdae_solver_front

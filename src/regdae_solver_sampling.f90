@@ -1,8 +1,9 @@
 !> The solution monitor's start and samples (`regdae_monitor`) on the state of
 !! one problem (`regdae_solver_core`): the monitor set up from core%opts at the
 !! start of the dense formulations and of the augmented one, the sample at the
-!! end of an accepted IDA step, and along the run the augmented formulation's
-!! automatic weights (from `regdae_augmented_rules`). One concept, the monitor
+!! end of an accepted step of the implicit integrator (the core's stiff slot,
+!! `regdae_integrator`), and along the run the augmented formulation's automatic
+!! weights (from `regdae_augmented_rules`). One concept, the monitor
 !! fed from the integrators' state, used by the front and by the switching policy
 !! (`regdae_integrator_switching`), which starts the monitor when IDA starts from t0.
 module regdae_solver_sampling
@@ -46,7 +47,7 @@ contains
     !> The monitor of the augmented formulation from t with the eps in force: the
     !! checks and automatic scales of core%opts, the first sample (IDA's state at t).
     subroutine start_monitor_augmented(core, t, eps)
-        type(solver_core), intent(inout) :: core
+        type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t, eps
         call core%monitor%reset(core%opts%singular_threshold, eps, core%nx, core%opts%jump_tol, &
                                 core%opts%drift_tol, core%opts%invariant_tol, resolved_work_tol(core%opts))
@@ -60,9 +61,10 @@ contains
         core%sampled_t = t
     end subroutine start_monitor_augmented
 
-    !> The monitor's sample at the end of an accepted IDA step (IDA's state and slope there).
+    !> The monitor's sample at the end of an accepted step of the implicit integrator
+    !! (its state and slope there).
     subroutine sample_step(core, t)
-        type(solver_core), intent(inout) :: core
+        type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t
         real(c_double), pointer :: u(:), up(:)
         integer :: stat
@@ -71,29 +73,30 @@ contains
             call sample_augmented(core, t)
             return
         end if
-        u => core%ida%state()
-        up => core%ida%slope()
+        u => core%stiff%state()
+        up => core%stiff%slope()
         call core%model%evaluate(t, u(1:core%n), stat, recoverable)
         if (stat == regdae_success) call core%monitor%sample(t, core%model, u(1:core%n), up(1:core%n))
     end subroutine sample_step
 
-    ! The monitor's sample of the augmented formulation at IDA's state.
+    ! The monitor's sample of the augmented formulation at the implicit integrator's state.
     subroutine sample_augmented(core, t)
-        type(solver_core), intent(inout) :: core
+        type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t
         real(c_double), pointer :: u(:), up(:)
+        type(augmented_system), pointer :: sys
         real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g, &
                     sums(2)
         integer :: dstat, istat, wstat
-        u => core%ida%state()
-        up => core%ida%slope()
+        u => core%stiff%state()
+        up => core%stiff%slope()
+        sys => core%stiff%augmented()
         drift = 0.0_wp
         invariant = 0.0_wp
         sigma = huge(1.0_wp)
         dstat = 0
         istat = 0
-        select type (sys => core%ida%system)
-        type is (augmented_system)
+        if (associated(sys)) then
             call sys%unpack(u, up, q=q, v=v, a=a)
             drift = sys%drift(t, u, dstat)
             if (dstat /= 0) drift = huge(1.0_wp)
@@ -103,16 +106,13 @@ contains
                 if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
             end if
             if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
-        end select
+        end if
         call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
         if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
-        if (core%monitor%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
-            select type (sys => core%ida%system)
-            type is (augmented_system)
-                call sys%unpack(u, up, y=y)
-                call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums)
-                call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v))
-            end select
+        if (core%monitor%work_tol > 0.0_wp .and. associated(sys)) then   ! after sample_values: it knows
+            call sys%unpack(u, up, y=y)                                    ! whether t is in a layer
+            call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums)
+            call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v))
         end if
     end subroutine sample_augmented
 
@@ -120,12 +120,13 @@ contains
     ! look at the rate at (t, q, v) with the accelerations a (IDA's v'); new
     ! weights into the system when it moved by the rule's hysteresis.
     subroutine follow_weights_augmented(core, t, q, v, a)
-        type(solver_core), intent(inout) :: core
+        type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t, q(:), v(:), a(:)
         real(wp) :: f(core%nx), mdiag(core%nx), ell, rate, sigma_pred, gamma, gamma0, gamma1
         integer :: stat
-        select type (sys => core%ida%system)
-        type is (augmented_system)
+        type(augmented_system), pointer :: sys
+        sys => core%stiff%augmented()
+        if (associated(sys)) then
             stat = 0
             call sys%problem%forces(t, q, v, f, stat)   ! M and G at q are in sys from the sample
             if (stat /= 0) return
@@ -143,7 +144,7 @@ contains
                 sys%gamma0 = 0.0_wp
                 sys%gamma1 = gamma
             end if
-        end select
+        end if
     end subroutine follow_weights_augmented
 
 end module regdae_solver_sampling

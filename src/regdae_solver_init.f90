@@ -1,0 +1,450 @@
+!> The init paths of the solver front (`regdae_solver_front`): the input
+!! checked, the consistent initial values, the automatic parameters resolved
+!! (`regdae_auto_parameters`), the monitor started and the first integrator
+!! created in the core's slot: dopri5 or IDA on the eliminated or multiplier
+!! formulation (solver_start), IDA on the augmented formulation of a mechanical
+!! problem that declares its structure (solver_start_augmented).
+submodule (regdae_solver_front) regdae_solver_init
+    use regdae_second_order_problem, only: velocity_constraint
+    use regdae_mechanical_problem, only: mechanical_structure, structured_velocity_constraint
+    use regdae_linear_problem, only: linear_dae_problem
+    use regdae_velocity_index2, only: new_velocity_index2
+    use regdae_solver_core, only: new_core
+    use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
+    use regdae_dopri5_integrator, only: dopri5_integrator, dopri5_in_slot
+    use regdae_ida_integrator, only: ida_integrator, ida_in_slot
+    use regdae_auto_parameters, only: set_state_tolerances, resolve_auto_parameters, resolve_augmented_parameters, &
+                                      augmented_eps, check_first_step
+    use regdae_jacobian_check, only: check_second_order_jacobian, check_structured_jacobian
+    implicit none
+
+contains
+
+    module procedure solver_init_first
+
+        if (.not. self%check_input(t0, x0, x0, problem%n, problem%m, opts, stat)) return
+        if (.not. formulation_fits(self, opts, stat)) return
+        call new_core(self%core)
+        if (present(atol_vector)) self%core%atol_z = atol_vector
+        self%core%nx = problem%n
+        select type (problem)
+        class is (linear_dae_problem)
+            self%core%multiplier_sign = -1.0_wp   ! section 3 writes x' = A x + B y + q
+        end select
+        call self%core%model%init_first_order(problem, opts, lsq_normal, stat)
+        if (stat /= 0) then
+            call self%record(regdae_err_memory, self%core%model%message, stat)
+            return
+        end if
+        call self%start(t0, x0, opts, stat)
+    end procedure solver_init_first
+
+    module procedure solver_init_second
+        class(second_order_problem), allocatable :: copy
+        real(wp) :: gval(problem%m), gnorm
+        integer :: ustat
+        logical :: augmented
+        character(len=:), allocatable :: msg
+
+        if (.not. self%check_input(t0, x0, v0, problem%n, problem%m, opts, stat)) return
+        ! Position and velocity constraints at t0 (the regularized system checks only one of them).
+        allocate (copy, source=problem)
+        ustat = 0
+        call copy%constraint(t0, x0, gval, ustat)
+        gnorm = 0.0_wp
+        if (ustat == 0 .and. problem%m > 0) gnorm = maxval(abs(gval))
+        if (ustat == 0) call initial_velocity_constraint(copy, t0, x0, v0, gval, ustat)
+        if (ustat == regdae_err_memory) then
+            call self%record(regdae_err_memory, 'at the initial point: the system refused the values of G ('// &
+                             'the declared pattern)', stat)
+            return
+        else if (ustat == regdae_err_structure) then
+            call self%record(regdae_err_structure, status_message(regdae_err_structure)//' at the initial point '// &
+                             '(in constraint_jacobian_values)', stat)
+            return
+        else if (ustat /= 0) then
+            call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
+                             'reported failure (stat = '//format_int(ustat)//')', stat)
+            return
+        end if
+        if (problem%m > 0) gnorm = max(gnorm, maxval(abs(gval)))
+        if (.not. (gnorm <= opts%ic_tol)) then
+            call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
+                             '|G v0 + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
+            return
+        end if
+        if (opts%check_jacobians) then
+            call check_second_order_jacobian(copy, t0, x0, ustat, msg)
+            if (ustat /= regdae_success) then
+                call self%record(ustat, msg, stat)
+                return
+            end if
+        end if
+        augmented = .false.
+        select type (copy)
+        class is (mechanical_problem)
+            augmented = use_augmented(copy, opts)
+        end select
+        if (.not. augmented) then
+            if (.not. formulation_fits(self, opts, stat)) return
+        end if
+        call new_core(self%core)
+        if (present(atol_vector)) self%core%atol_z = atol_vector
+        self%core%nx = problem%n
+        self%core%second_order = .true.
+        select type (copy)
+        class is (mechanical_problem)
+            self%core%multiplier_sign = -1.0_wp
+            copy%mass_damping = opts%mass_damping
+            if (augmented) then
+                call self%start_augmented(copy, t0, x0, v0, opts, stat)
+                return
+            end if
+        end select
+        if (opts%index == 3) then
+            call self%core%model%init_second_order(copy, opts, lsq_normal, stat)
+        else
+            call self%core%model%init_first_order(new_velocity_index2(copy), opts, lsq_normal, stat)
+        end if
+        if (stat /= 0) then
+            call self%record(regdae_err_memory, self%core%model%message, stat)
+            return
+        end if
+        call self%start(t0, [x0, v0], opts, stat)
+    end procedure solver_init_second
+
+    module procedure solver_init_higher
+        class(higher_order_problem), allocatable :: copy
+        real(wp) :: gval(problem%m), gt(problem%m), gnorm
+        real(wp), allocatable :: gx(:, :)
+        integer :: ustat, astat
+
+        if (problem%order < 3 .or. size(xs0, 2) /= problem%order) then
+            call self%record(regdae_err_bad_input, 'a higher_order_problem needs order >= 3 and xs0(n, order); '// &
+                             'got order '//format_int(problem%order)//' and '//format_int(size(xs0, 2))// &
+                             ' columns', stat)
+            return
+        end if
+        if (.not. self%check_input(t0, xs0(:, 1), xs0(:, 2), problem%n, problem%m, opts, stat)) return
+        if (.not. formulation_fits(self, opts, stat)) return
+        if (.not. all(ieee_is_finite(xs0))) then
+            call self%record(regdae_err_bad_input, 'xs0 contains NaN or Inf', stat)
+            return
+        end if
+        allocate (gx(problem%m, problem%n), stat=astat)
+        if (astat /= 0) then
+            call self%record(regdae_err_memory, 'out of memory: G at the initial point ('//format_int(problem%m)// &
+                             ' x '//format_int(problem%n)//' reals) was refused', stat)
+            return
+        end if
+        allocate (copy, source=problem)
+        ustat = 0
+        call copy%constraint(t0, xs0(:, 1), gval, ustat)
+        if (ustat == 0) call copy%constraint_jacobian(t0, xs0(:, 1), gx, ustat)
+        if (ustat == 0) call copy%constraint_dt(t0, xs0(:, 1), gt, ustat)
+        if (ustat /= 0) then
+            call self%record(regdae_err_user_callback, 'at the initial point: a user routine of the constraint '// &
+                             'reported failure (stat = '//format_int(ustat)//')', stat)
+            return
+        end if
+        gnorm = 0.0_wp
+        if (problem%m > 0) gnorm = max(maxval(abs(gval)), maxval(abs(matmul(gx, xs0(:, 2)) + gt)))
+        if (.not. (gnorm <= opts%ic_tol)) then
+            call self%record(regdae_err_inconsistent_ic, 'inconsistent initial values: max(|g(x0, t0)|, '// &
+                             '|G x0'' + g_t|) = '//format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol), stat)
+            return
+        end if
+        call new_core(self%core)
+        if (present(atol_vector)) self%core%atol_z = atol_vector
+        self%core%nx = problem%n
+        self%core%second_order = .true.
+        call self%core%model%init_higher_order(copy, opts, lsq_normal, stat)
+        if (stat /= 0) then
+            call self%record(regdae_err_memory, self%core%model%message, stat)
+            return
+        end if
+        call self%start(t0, reshape(xs0, [size(xs0)]), opts, stat)
+    end procedure solver_init_higher
+
+    ! Common checks of init; false (with stat and message set) if the input is bad.
+    module procedure check_input
+        character(len=:), allocatable :: msg
+        integer :: code
+
+        call self%destroy()
+        self%t = t0
+        self%assigned = .false.
+        ok = .false.
+        call validate_options(opts, code, msg)
+        if (code /= regdae_success) then
+            call self%record(code, msg, stat)
+        else if (n < 1 .or. m < 0 .or. m > n) then
+            call self%record(regdae_err_bad_input, 'problem sizes must satisfy 1 <= n and 0 <= m <= n (n = '// &
+                             format_int(n)//', m = '//format_int(m)//')', stat)
+        else if (size(x0) /= n .or. size(v0) /= n) then
+            call self%record(regdae_err_bad_input, 'x0 (and v0) must have length n = '//format_int(n)// &
+                             '; got '//format_int(size(x0))//' (and '//format_int(size(v0))//')', stat)
+        else if (.not. ieee_is_finite(t0)) then
+            call self%record(regdae_err_bad_input, 't0 is NaN or Inf', stat)
+        else if (.not. (all(ieee_is_finite(x0)) .and. all(ieee_is_finite(v0)))) then
+            call self%record(regdae_err_bad_input, 'x0 (or v0) contains NaN or Inf', stat)
+        else
+            ok = .true.
+        end if
+    end procedure check_input
+
+    ! G v0 + g_t at t0: from the declared pattern of G for a mechanical problem that
+    ! declares its structure (O(nonzeros) memory), otherwise from the dense G.
+    subroutine initial_velocity_constraint(problem, t0, x0, v0, val, stat)
+        class(second_order_problem), intent(inout) :: problem
+        real(wp), intent(in) :: t0, x0(:), v0(:)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        type(mechanical_structure) :: st
+        select type (problem)
+        class is (mechanical_problem)
+            st = problem%structure()
+            if (st%declared) then
+                call structured_velocity_constraint(problem, st%constraint, t0, x0, v0, val, stat)
+                return
+            end if
+        end select
+        call velocity_constraint(problem, t0, x0, v0, val, stat)
+    end subroutine initial_velocity_constraint
+
+    ! formulation=auto takes the augmented formulation for a mechanical problem
+    ! that declares its structure and is large enough, with M positive definite
+    ! and integrator ida or auto (which is then IDA: the explicit integrator works on
+    ! the eliminated formulation); formulation=augmented always (its setup refuses
+    ! what does not fit).
+    logical function use_augmented(problem, opts)
+        class(mechanical_problem), intent(in) :: problem
+        type(solver_options), intent(in) :: opts
+        type(mechanical_structure) :: st
+        use_augmented = (opts%formulation == formulation_augmented)
+        if (opts%formulation /= formulation_auto) return
+        if (opts%integrator == integrator_dopri5 .or. opts%mass_damping > 0.0_wp .or. problem%n < augmented_min_n) return
+        st = problem%structure()
+        use_augmented = st%declared
+    end function use_augmented
+
+    ! The dense formulations: refuse formulation=augmented and the structured
+    ! linear solvers (the problem is not a mechanical one, or auto chose dense).
+    logical function formulation_fits(self, opts, stat) result(ok)
+        class(solver_engine), intent(inout) :: self
+        type(solver_options), intent(in) :: opts
+        integer, intent(out) :: stat
+        ok = .true.
+        if (opts%formulation == formulation_augmented) then
+            call self%record(regdae_err_bad_input, 'formulation=augmented needs a mechanical_problem', stat)
+            ok = .false.
+        else if (opts%linear_solver == linear_solver_band .or. opts%linear_solver == linear_solver_sparse) then
+            call self%record(regdae_err_bad_input, 'linear_solver='//linear_solver_name(opts%linear_solver)// &
+                             ' needs the augmented formulation (a mechanical problem that declares its structure, '// &
+                             'or formulation=augmented); the Newton matrix here is dense', stat)
+            ok = .false.
+        end if
+    end function formulation_fits
+
+    ! The augmented formulation (regdae_augmented_system): the sparse residual on
+    ! IDA with a dense, band or sparse linear solver, consistent initial values by
+    ! IDACalcIC, the diagnostics from IDA's state.
+    module procedure solver_start_augmented
+        type(solver_core), pointer :: core
+        type(augmented_system) :: sys
+        type(ida_integrator), pointer :: ida
+        real(wp), allocatable :: u0(:), up0(:), id(:)
+        character(len=:), allocatable :: msg
+
+        core => self%core
+        core%opts = opts
+        core%augmented = .true.
+        core%formulation = formulation_augmented
+        core%active = integrator_ida
+        core%events = ''
+        core%n = 2*problem%n
+        core%m = problem%m
+        core%t = t0
+        call set_state_tolerances(core, stat, msg)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, msg)
+            return
+        end if
+        call sys%setup(problem, opts, stat)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, sys%message)
+            return
+        end if
+        call resolve_augmented_parameters(core, sys, t0, q0, v0, stat, msg)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, msg)
+            return
+        end if
+        core%neq = sys%neq
+        core%linear_solver = opts%linear_solver
+        ! KLU on the grouped Newton matrix was the fastest per step at every chain size
+        ! measured (N = 2 ... 1024: 1.1-2.4x faster than band and dense, doc/performance.md)
+        if (core%linear_solver == linear_solver_auto) core%linear_solver = linear_solver_sparse
+        allocate (u0(sys%neq), up0(sys%neq), id(sys%neq), core%y_work(core%m))
+        call sys%initial_guess(q0, v0, u0, up0, id)
+        call augmented_eps(core, sys, t0, u0)
+        core%excluded = sys%excluded_unknowns(opts%excluded)
+        if (opts%exclusion == exclusion_off) core%excluded = .false.
+        ida => ida_in_slot(core)
+        call ida%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
+                            sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, msg)
+            return
+        end if
+        call ida%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, 'at the initial point: '//msg)
+            return
+        end if
+        if (opts%check_jacobians) then
+            call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
+            if (stat == regdae_success) call check_structured_jacobian(problem, sys, t0, q0, stat, msg)
+            if (stat /= regdae_success) then
+                stat = start_failed(self, stat, msg)
+                return
+            end if
+        end if
+        call start_monitor_augmented(core, t0, core%opts%eps)
+        if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
+            stat = start_failed(self, regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
+                      '(override `invariant` of the second-order problem)')
+            return
+        end if
+        call self%record(regdae_success, '', stat)
+    end procedure solver_start_augmented
+
+    ! With the model set up: consistent initial values, then the IDA objects.
+    module procedure solver_start
+        type(solver_core), pointer :: core
+        type(dopri5_integrator), pointer :: dopri5
+        type(ida_integrator), pointer :: ida
+        character(len=:), allocatable :: msg
+        real(wp), allocatable :: y0(:), zp0(:)
+        integer :: lsq, n, m, nx
+        logical :: recoverable
+        real(wp) :: gnorm
+
+        core => self%core
+        core%opts = opts
+        core%n = size(z0)
+        core%m = core%model%m
+        core%t = t0
+        n = core%n
+        m = core%m
+        nx = core%model%n
+
+        call core%model%evaluate(t0, z0, stat, recoverable)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, 'at the initial point: '//core%model%message)
+            return
+        end if
+        gnorm = 0.0_wp
+        if (m > 0) gnorm = maxval(abs(core%model%g))
+        if (.not. (gnorm <= opts%ic_tol)) then
+            stat = start_failed(self, regdae_err_inconsistent_ic, 'inconsistent initial values: max |g(x0, t0)| = '// &
+                      format_real(gnorm)//' exceeds ic_tol = '//format_real(opts%ic_tol))
+            return
+        end if
+        lsq = opts%lsq
+        if (lsq == lsq_auto) lsq = lsq_checked   ! by conditioning, per solve (regdae_damped_lsq)
+        core%model%lsq = lsq
+        call set_state_tolerances(core, stat, msg)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, msg)
+            return
+        end if
+        call resolve_auto_parameters(core, t0, z0, stat, msg)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, msg)
+            return
+        end if
+        allocate (y0(m), zp0(n))
+        call core%model%solve_multiplier(t0, y0, stat)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, 'at the initial point: '//core%model%message)
+            return
+        end if
+        call core%model%dynamics_slope(z0, y0, zp0)   ! (x', ..., x^(m-1), x^(m))
+        call start_monitor(core, t0, z0, zp0)
+        core%t0 = t0
+        ! (allocated explicitly: the reallocating assignment to a component never allocated
+        ! reads its undefined bounds, which UBSan reports as an integer overflow)
+        if (allocated(core%z0)) deallocate (core%z0)
+        allocate (core%z0, source=z0)
+        if (opts%invariant_tol > 0.0_wp .and. .not. (core%monitor%invariant0 == core%monitor%invariant0)) then
+            stat = start_failed(self, regdae_err_bad_input, 'invariant_tol > 0, but the problem has no invariant at t0 '// &
+                      '(override `invariant` of the second-order problem; first-order problems have none)')
+            return
+        end if
+
+        core%neq = n
+        core%formulation = formulation_eliminated
+        if (opts%formulation == formulation_multiplier) core%formulation = formulation_multiplier
+        if (opts%formulation == formulation_multiplier) core%neq = n + m
+        allocate (core%excluded(core%neq), source=.false.)
+        if (opts%exclusion /= exclusion_off) then
+            core%excluded(n + 1:) = .true.
+            if (core%model%order >= 2 .and. opts%excluded == excluded_vy) core%excluded(nx + 1:n) = .true.
+        end if
+        allocate (core%y_work(m), core%zp_work(n))
+        if (opts%h_init == 0.0_wp) then
+            call check_first_step(core, t0, z0, zp0, stat, msg)
+            if (stat /= regdae_success) then
+                stat = start_failed(self, stat, msg)
+                return
+            end if
+        end if
+        ! integrator=auto: dopri5 first (the eliminated formulation only), IDA created
+        ! when the stiffness test hands over
+        core%active = opts%integrator
+        core%events = ''
+        if (opts%integrator == integrator_auto) then
+            core%active = merge(integrator_dopri5, integrator_ida, core%formulation == formulation_eliminated)
+            ! Regularization layers far thinner than the automatic eps's (a user's eps below
+            ! 1/100 of it): the explicit method steps through them inaccurately, without an
+            ! alarm (doc/methods.md); IDA passes them
+            if (core%active == integrator_dopri5 .and. core%m > 0) then
+                if (core%model%eps < core%eps_auto0/100.0_wp) then
+                    core%active = integrator_ida
+                    call log_event(core, 't = '//format_real(t0)//': ida from the start (eps = '// &
+                                   format_real(core%model%eps)//' is below 1/100 of the automatic eps for this '// &
+                                   'rtol: layers too thin for the explicit method)')
+                end if
+            end if
+            core%switching = (core%active == integrator_dopri5)
+        end if
+        if (core%active == integrator_dopri5) then
+            dopri5 => dopri5_in_slot(core)
+            call dopri5%start(t0, z0, stat, msg, h0=opts%h_init)
+            if (stat /= regdae_success) then
+                stat = start_failed(self, stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
+                return
+            end if
+            call self%record(regdae_success, '', stat)
+            return
+        end if
+        ida => ida_in_slot(core)
+        call ida%start(t0, z0, stat, msg, zp=zp0, y=y0)
+        if (stat /= regdae_success) then
+            stat = start_failed(self, stat, msg)
+            return
+        end if
+        call self%record(regdae_success, '', stat)
+    end procedure solver_start
+
+    ! A start failed: the status (returned) and message recorded, the solver's objects freed.
+    integer function start_failed(self, code, text) result(stat)
+        class(solver_engine), intent(inout) :: self
+        integer, intent(in) :: code
+        character(len=*), intent(in) :: text
+        call self%record(code, text, stat)
+        call self%destroy()
+    end function start_failed
+
+end submodule regdae_solver_init

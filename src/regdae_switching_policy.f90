@@ -1,0 +1,84 @@
+!> The switching policy of integrator=auto, the decisions only: when the
+!! implicit integrator hands back to the explicit one. (The explicit method's own
+!! stiffness test, Hairer's, decides the hand-over to the implicit one inside
+!! `regdae_explicit_rk`; the switches themselves, which create and start the
+!! integrators, are `regdae_integrator_switching`'s.) The spectral radius of the
+!! eliminated formulation's Jacobian by power iteration is the stiffness estimate
+!! of the implicit integrators (`regdae_ida_integrator`).
+module regdae_switching_policy
+    use regdae_kinds, only: wp
+    use regdae_status, only: regdae_success
+    use regdae_solver_core, only: solver_core
+    implicit none
+    private
+
+    public :: spectral_radius, explicit_would_do
+
+contains
+
+    !> The spectral radius of dF/dz at (t, z), F the eliminated formulation's slope:
+    !! five power iterations with difference quotients of F, from the last estimate's
+    !! vector, rho = sqrt(|J w_4| |J w_5|) (0: F failed). The model is left evaluated
+    !! at (t, z).
+    real(wp) function spectral_radius(core, t, z) result(rho)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t, z(:)
+        real(wp) :: f0(core%n), f1(core%n), y(core%m), d, wn, norm_now, norm_last
+        integer :: it, stat
+        logical :: recoverable
+        rho = 0.0_wp
+        norm_now = 0.0_wp
+        call core%model%slope_eliminated(t, z, f0, y, stat, recoverable)
+        if (stat /= regdae_success) return
+        if (.not. allocated(core%rho_w)) then
+            allocate (core%rho_w(core%n))
+            core%rho_w = 1.0_wp
+        end if
+        d = sqrt(epsilon(1.0_wp))*max(1.0_wp, maxval(abs(z)))
+        do it = 1, 5
+            wn = norm2(core%rho_w)
+            if (.not. (wn > 0.0_wp)) core%rho_w = 1.0_wp
+            core%rho_w = core%rho_w/norm2(core%rho_w)
+            call core%model%slope_eliminated(t, z + d*core%rho_w, f1, y, stat, recoverable)
+            if (stat /= regdae_success) then
+                rho = 0.0_wp
+                exit
+            end if
+            core%rho_w = (f1 - f0)/d
+            norm_last = norm_now
+            norm_now = norm2(core%rho_w)
+            if (.not. (norm_now > 0.0_wp)) exit
+            ! |J^2 w| / |w| over two iterations: a dominant complex pair (the oscillation
+            ! of a second-order system) makes the single ratios alternate
+            if (it >= 2) rho = sqrt(norm_now*norm_last)
+        end do
+        call core%model%evaluate(t, z, stat, recoverable)   ! the model back at the state
+    end function spectral_radius
+
+    !> integrator=auto, the implicit integrator active: would the explicit method do
+    !! here? Its stable step 3.3/rho (rho: the implicit integrator's stiffness
+    !! estimate, spectral_radius) against the implicit integrator's last step: larger
+    !! than twice that at two checks in a row (20 steps apart) means that its steps
+    !! are set by accuracy, not stiffness. No vote inside a singular interval.
+    logical function explicit_would_do(core, t) result(yes)
+        type(solver_core), intent(inout), target :: core
+        real(wp), intent(in) :: t
+        real(wp) :: rho
+        yes = .false.
+        if (core%augmented) return   ! no switch back from the augmented formulation
+        rho = core%stiff%stiffness(t)
+        ! not inside a singular interval: the damped multiplier softens the constraint
+        ! modes there for a moment (gamma sigma^2/(sigma^2 + eps) -> 0), and the explicit
+        ! method would take the pass with the steps of the regular motion (measured:
+        ! ex52 index=2 gamma=1e6 rtol=1e-6 switched back at t = 9.507 and lost 3e-2 rad)
+        if (rho > 0.0_wp .and. 3.3_wp/rho > 2.0_wp*core%stiff%last_step() .and. .not. core%monitor%in_singular) then
+            core%explicit_votes = core%explicit_votes + 1
+        else
+            core%explicit_votes = 0
+        end if
+        ! two checks in a row; after each return to IDA twice as many (at most 64), so that
+        ! a problem at the border between the two does not switch at every check
+        yes = (core%explicit_votes >= 2*2**min(core%back_switches, 5))
+    end function explicit_would_do
+
+end module regdae_switching_policy
