@@ -151,6 +151,7 @@ extern "C" {
 #define REGDAE_INTEGRATOR_AUTO 0
 #define REGDAE_INTEGRATOR_IDA 1
 #define REGDAE_INTEGRATOR_DOPRI5 2
+#define REGDAE_INTEGRATOR_RADAU 3
 
 /** excluded: index 3, what leaves the error test (default y). */
 #define REGDAE_EXCLUDED_Y 1

@@ -82,6 +82,10 @@ module regdae_radau_iia
         procedure :: advance => radau_advance
         !> u(t) for t in the last step, from its collocation polynomial.
         procedure :: solution_at => radau_solution_at
+        !> u'(t) for t in the last step: the collocation polynomial's derivative.
+        procedure :: slope_at => radau_slope_at
+        !> The size of the last accepted step (0 before the first).
+        procedure :: last_step => radau_last_step
         !> The current time.
         procedure :: time => radau_time
         !> The step size the next step will try.
@@ -675,6 +679,37 @@ contains
         u_out = self%u_prev + s*(self%q(:, 1) + s*(self%q(:, 2) + s*self%q(:, 3)))
         stat = regdae_success
     end subroutine radau_solution_at
+
+    !> u'(t) for t in [t_prev, t] of the last step (F/m at the start before the first step).
+    subroutine radau_slope_at(self, t, up, stat)
+        class(radau_integrator), intent(in) :: self
+        real(wp), intent(in) :: t          !! a time in the last step
+        real(wp), intent(out) :: up(:)     !! u'(t)
+        integer, intent(out) :: stat       !! regdae_success or regdae_err_bad_input
+        real(wp) :: s, slack
+        if (self%n == 0) then
+            stat = regdae_err_not_initialized
+            return
+        end if
+        stat = regdae_err_bad_input
+        if (size(up) /= self%n) return
+        if (.not. self%have_step) then
+            if (t /= self%t) return
+            call self%slope(up)
+            stat = regdae_success
+            return
+        end if
+        slack = 100*epsilon(1.0_wp)*max(abs(self%t), abs(self%h_last))
+        if (.not. (t >= self%t_prev - slack .and. t <= self%t + slack)) return
+        s = (t - self%t_prev)/self%h_last
+        up = (self%q(:, 1) + s*(2*self%q(:, 2) + 3*s*self%q(:, 3)))/self%h_last
+        stat = regdae_success
+    end subroutine radau_slope_at
+
+    real(wp) function radau_last_step(self)
+        class(radau_integrator), intent(in) :: self
+        radau_last_step = self%h_last
+    end function radau_last_step
 
     real(wp) function radau_time(self)
         class(radau_integrator), intent(in) :: self
