@@ -250,7 +250,7 @@ contains
         if (present(extra)) then   ! 'key=value' items separated by blanks
             rest = trim(adjustl(extra))
             do while (len(rest) > 0)
-                j = index(rest//' ', ' ')
+                j = scan(rest//' ', ' ')
                 item = rest(:j - 1)
                 rest = trim(adjustl(rest(j:)))
                 j = scan(item, '=')
