@@ -23,7 +23,8 @@ contains
         tests = [new_test('radau_option', radau_option), &
                  new_test('radau_slider_crank', radau_slider_crank), &
                  new_test('radau_pendulum', radau_pendulum), &
-                 new_test('radau_chain', radau_chain)]
+                 new_test('radau_chain', radau_chain), &
+                 new_test('auto_picks_radau_when_small', auto_picks_radau_when_small)]
     end function radau_solver_tests
 
     ! integrator=radau is parsed and named; it needs the eliminated formulation.
@@ -153,5 +154,46 @@ contains
         call chk%true(diff(2) <= 1.0e-6_wp, 'chain: radau = dopri5 within 1e-6')
         write (*, '(a,2es10.2)') '    chain of 4, radau against ida and dopri5: ', diff
     end subroutine radau_chain
+
+    ! integrator=auto on the stiff chain (mass 1e-2, stiffness 1e4, damping 10) on the
+    ! eliminated formulation: the stiffness test fires near t = 0.027; 4 links (16
+    ! states) go to Radau, 33 links (132 states > radau_max_n) to IDA. Radau's run
+    ! agrees with integrator=ida's at t = 0.05 (rtol 1e-8; measured 6e-15: the dashpots have settled the
+    ! chain on its springs by then; bound 1e-6).
+    subroutine auto_picks_radau_when_small(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts
+        type(chain) :: p
+        real(wp), allocatable :: q0(:), v0(:), q(:, :)
+        character(len=:), allocatable :: events
+        integer :: stat, run, links
+        do run = 1, 3
+            links = merge(33, 4, run == 3)
+            p = new_chain(links, .false., 9.81_wp)
+            p%joint_mass = 1.0e-2_wp
+            p%stiffness = 1.0e4_wp
+            p%damping = 10.0_wp
+            if (allocated(q0)) deallocate (q0, v0)
+            allocate (q0(2*links), v0(2*links))
+            if (run == 1) allocate (q(2*links, 2))
+            call chain_start(p, q0, v0)
+            opts = solver_options()
+            opts%rtol = 1.0e-8_wp
+            opts%atol = 1.0e-8_wp
+            opts%formulation = formulation_eliminated
+            if (run == 2) opts%integrator = integrator_ida
+            call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+            if (run <= 2 .and. stat >= 0) call solver%advance(0.05_wp, q(:, run), stat=stat)
+            if (run == 3 .and. stat >= 0) call solver%advance(0.04_wp, q0, stat=stat)
+            call chk%equal(stat, regdae_success, 'stiff chain of '//integrator_name(opts%integrator))
+            events = solver%events()
+            if (run == 1) call chk%true(index(events, 'dopri5 -> radau') > 0, '4 links: auto hands over to Radau')
+            if (run == 3) call chk%true(index(events, 'dopri5 -> ida') > 0, '33 links: auto hands over to IDA')
+            call solver%destroy()
+        end do
+        call chk%true(maxval(abs(q(:, 1) - q(:, 2))) <= 1.0e-6_wp, 'auto (Radau) = ida within 1e-6')
+        write (*, '(a,es10.2)') '    stiff chain of 4, auto (radau) against ida: ', maxval(abs(q(:, 1) - q(:, 2)))
+    end subroutine auto_picks_radau_when_small
 
 end module test_radau_solver
