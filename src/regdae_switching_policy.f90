@@ -19,10 +19,10 @@ module regdae_switching_policy
     !! the system is stiff (above it: IDA). Measured on the stiff chain (mass 1e-2,
     !! stiffness 1e4, damping 10, rtol 1e-7, eliminated formulation; doc/methods.md,
     !! "Which implicit integrator"): Radau takes 41-43 steps against IDA's 130 at
-    !! 0.8-2.5x IDA's cost per step, 1.3-3.8x less time per run at 4 ... 128 states
-    !! (1 ... 32 links); both cost O(n^3) per step there (the dense eliminated
-    !! formulation). The bound keeps Radau's n x n dense LU and n-column
-    !! difference-quotient Jacobian where it was measured.
+    !! 1-3x IDA's cost per step, 1.0-3.4x less time per run at 4 ... 128 states
+    !! (1 ... 32 links; even at 16 links); both cost O(n^3) per step there (the dense
+    !! eliminated formulation). No crossover was found up to 128: the bound keeps
+    !! Radau's n x n dense LU and n-column Jacobian where it was measured.
     integer, parameter, public :: radau_max_n = 128
 
 contains
