@@ -16,16 +16,15 @@ module regdae_radau_integrator
     use, intrinsic :: iso_c_binding, only: c_double
     use regdae_kinds, only: wp
     use regdae_status
-    use regdae_format, only: format_real, format_int
+    use regdae_format, only: format_real
     use regdae_solver_stats, only: solver_stats
     use regdae_regularization, only: regularized_dae
     use regdae_radau_system, only: radau_system, radau_options, radau_stats
     use regdae_radau_iia, only: radau_integrator
-    use regdae_integrator, only: integrator, outcome_reached, outcome_pass_end, outcome_nonstiff, outcome_alarm, &
-                                 outcome_failed, outcome_exhausted, outcome_broken
+    use regdae_integrator, only: integrator, outcome_reached, outcome_failed, outcome_broken
     use regdae_solver_core, only: solver_core
-    use regdae_solver_sampling, only: sample_step
-    use regdae_switching_policy, only: spectral_radius, explicit_would_do
+    use regdae_switching_policy, only: spectral_radius
+    use regdae_implicit_steps, only: budget_spent, sampled_alarm, after_step
     implicit none
     private
 
@@ -139,18 +138,12 @@ contains
         outcome = outcome_reached
         t_now = self%radau%time()
         if (t_now > core%sampled_t .and. t_now <= tout) then   ! a step end passed over at the last output
-            call self%radau%state(self%z)
-            call self%radau%slope(self%zp)
-            if (sampled_alarm(t_now)) return
+            call at_step_end()
+            if (sampled_alarm(core, t_now, t_stop, outcome)) return
         end if
         taken = 0
         do while (t_now < tout)
-            if (taken >= core%opts%max_steps) then
-                t_stop = t_now
-                outcome = outcome_exhausted
-                stat = regdae_err_integration
-                msg = 'Radau took max_steps = '//format_int(core%opts%max_steps)//' steps without reaching tout = '// &
-                      format_real(tout)//' (t = '//format_real(t_now)//')'
+            if (budget_spent(core, 'Radau', taken, t_now, tout, t_stop, outcome, stat, msg)) then
                 call at_step_end()
                 return
             end if
@@ -165,25 +158,10 @@ contains
                 t_stop = t_now
                 outcome = outcome_failed
                 msg = 'Radau failed at t = '//format_real(t_now)//': '//self%radau%message()
-                if (len(core%model%message) > 0) msg = msg//' | last failure: '//core%model%message
                 return
             end if
             taken = taken + 1
-            if (t_now <= tout) then
-                if (sampled_alarm(t_now)) return
-                if (core%stop_at_pass_end .and. core%monitor%pass_ended .and. t_now < tout) then
-                    t_stop = t_now
-                    outcome = outcome_pass_end
-                    return
-                end if
-            end if
-            if (core%switching .and. t_now < tout .and. mod(taken, 20) == 0) then
-                if (explicit_would_do(core, t_now)) then
-                    t_stop = t_now
-                    outcome = outcome_nonstiff
-                    return
-                end if
-            end if
+            if (after_step(core, taken, t_now, tout, t_stop, outcome)) return
         end do
         if (t_now > tout) then
             call self%interpolate(tout, istat)
@@ -193,7 +171,7 @@ contains
                 msg = 'Radau could not interpolate at t = '//format_real(tout)
                 return
             end if
-            if (sampled_alarm(tout)) return
+            if (sampled_alarm(core, tout, t_stop, outcome)) return
         end if
     contains
         ! The state and slope at the end of the last step.
@@ -201,17 +179,6 @@ contains
             call self%radau%state(self%z)
             call self%radau%slope(self%zp)
         end subroutine at_step_end
-
-        ! The monitor samples the state at t; an alarm stops there (true).
-        logical function sampled_alarm(t)
-            real(wp), intent(in) :: t
-            call sample_step(core, t)
-            core%sampled_t = t
-            sampled_alarm = core%monitor%alarm
-            if (.not. sampled_alarm) return
-            t_stop = t
-            outcome = outcome_alarm
-        end function sampled_alarm
     end subroutine radau_advance
 
     function radau_state(self) result(u)
