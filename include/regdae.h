@@ -487,11 +487,11 @@ static inline int regdae_set_max_steps(regdae_solver *solver, int max_steps)
  * The options: after a successful regdae_init those in force, every REGDAE_AUTO
  * resolved to the value at t0 (formulation, linear_solver and lsq to the choice
  * made; singular_threshold stays REGDAE_AUTO, a rule); before, those set so far.
- * integrator after init: REGDAE_INTEGRATOR_IDA or _DOPRI5 when that integrator
- * was chosen, and for REGDAE_INTEGRATOR_AUTO on a formulation other than
+ * integrator after init: REGDAE_INTEGRATOR_IDA, _DOPRI5 or _RADAU when that
+ * integrator was chosen, and for REGDAE_INTEGRATOR_AUTO on a formulation other than
  * eliminated (IDA does the whole run there); REGDAE_INTEGRATOR_AUTO on the
  * eliminated formulation, where the switching policy is in force (dopri5 while
- * the system is not stiff, IDA where it is; regdae_stats.switches counts them).
+ * the system is not stiff, IDA or Radau where it is; regdae_stats.switches counts them).
  */
 int regdae_get_options(const regdae_solver *solver, regdae_options *options);
 
