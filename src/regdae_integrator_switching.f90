@@ -26,12 +26,12 @@ module regdae_integrator_switching
     implicit none
     private
 
-    public :: hand_over, switch_to_ida, switch_to_dopri5
+    public :: hand_over, switch_to_implicit, switch_to_dopri5
 
 contains
 
     !> integrator=auto: the switch an integrator's outcome asks for at t_stop:
-    !! outcome_stiff to IDA (switch_to_ida), outcome_nonstiff back to the explicit
+    !! outcome_stiff to the implicit integrator (switch_to_implicit), outcome_nonstiff back to the explicit
     !! method (switch_to_dopri5).
     subroutine hand_over(core, outcome, t_stop, stat, msg)
         type(solver_core), pointer, intent(in) :: core
@@ -42,7 +42,7 @@ contains
         stat = regdae_success
         msg = ''
         if (outcome == outcome_stiff) then
-            call switch_to_ida(core, stat, msg)
+            call switch_to_implicit(core, stat, msg)
         else if (outcome == outcome_nonstiff) then
             call switch_to_dopri5(core, t_stop)
         end if
@@ -53,7 +53,7 @@ contains
     !! at the others): IDA on the augmented formulation for a mechanical problem that
     !! declares its structure, else Radau IIA for a small system and IDA for a large
     !! one (the policy's radau_preferred).
-    subroutine switch_to_ida(core, stat, msg)
+    subroutine switch_to_implicit(core, stat, msg)
         type(solver_core), pointer, intent(in) :: core
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
@@ -103,7 +103,7 @@ contains
         if (stat /= regdae_success) return
         if (from_start) call start_monitor(core, t, z, zp)
         call now_stiff(core, integrator_ida, '', from_start)
-    end subroutine switch_to_ida
+    end subroutine switch_to_implicit
 
     ! After a switch to the implicit integrator `which` (ida or radau): the counters
     ! and the event (what: the formulation, if not the eliminated one).
