@@ -34,6 +34,7 @@ module regdae_radau_integrator
     type, extends(radau_system) :: eliminated_ode
         type(regularized_dae), pointer :: model => null()
         real(wp), allocatable :: y(:)   !! the multiplier of the last evaluation
+        character(len=:), allocatable :: failure   !! the model's message at F's last failure ('' none)
     contains
         procedure :: rhs => eliminated_rhs
     end type eliminated_ode
@@ -83,6 +84,7 @@ contains
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable
         call self%model%slope_eliminated(t, u, f, self%y, stat, recoverable)
+        if (stat /= regdae_success) self%failure = self%model%message
     end subroutine eliminated_rhs
 
     !> Start (again) at (t, z): the core's tolerances (rtol, the state's atol), the
@@ -97,6 +99,7 @@ contains
         associate (core => self%core)
             if (self%started) self%before = add_stats(self%before, self%radau%statistics())
             self%ode%model => core%model
+            self%ode%failure = ''
             if (.not. allocated(self%ode%y)) allocate (self%ode%y(core%m))
             ro%rtol = core%opts%rtol
             ro%atol_vector = core%atol_z(1:core%n)
@@ -158,6 +161,7 @@ contains
                 t_stop = t_now
                 outcome = outcome_failed
                 msg = 'Radau failed at t = '//format_real(t_now)//': '//self%radau%message()
+                if (len(self%ode%failure) > 0) msg = msg//' | last failure of F: '//self%ode%failure
                 return
             end if
             taken = taken + 1

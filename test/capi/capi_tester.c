@@ -560,6 +560,11 @@ static void callbacks(void)
     CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
     CHECK(regdae_advance(s, 2.0, x, 2, NULL, 0, NULL, 0) == REGDAE_ERR_INTEGRATION);
     CHECK(says(s, "cannot get past t = 1.49"));
+    CHECK(regdae_set_integrator(s, REGDAE_INTEGRATOR_RADAU) == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
+    CHECK(regdae_advance(s, 2.0, x, 2, NULL, 0, NULL, 0) == REGDAE_ERR_INTEGRATION);
+    CHECK(says(s, "Radau failed at t = 1.49") && says(s, "reported failure (stat = 3)"));
+    regdae_set_integrator(s, REGDAE_INTEGRATOR_IDA);
     /* > 0 at the initial point: REGDAE_ERR_USER_CALLBACK */
     d.fail_from = 0.0;
     CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_ERR_USER_CALLBACK);
