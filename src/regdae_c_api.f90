@@ -345,7 +345,7 @@ contains
     end function regdae_set_real_option
 
     !> `int regdae_set_int_option(solver, key, value)`: an integer option (index,
-    !! max_steps), a code (method, formulation, lsq, exclusion, excluded, integrator,
+    !! max_steps, max_order), a code (method, formulation, lsq, exclusion, excluded, integrator,
     !! linear_solver: REGDAE_*) or a switch (stop_at_output, curvature,
     !! check_jacobians, pass_check, error_estimate: 0 or 1) by its key.
     integer(c_int) function regdae_set_int_option(handle, key, value) bind(C, name='regdae_set_int_option')
