@@ -487,11 +487,12 @@ static inline int regdae_set_max_steps(regdae_solver *solver, int max_steps)
  * The options: after a successful regdae_init those in force, every REGDAE_AUTO
  * resolved to the value at t0 (formulation, linear_solver and lsq to the choice
  * made; singular_threshold stays REGDAE_AUTO, a rule); before, those set so far.
- * integrator after init: REGDAE_INTEGRATOR_IDA or _DOPRI5 when that integrator
- * was chosen, and for REGDAE_INTEGRATOR_AUTO on a formulation other than
- * eliminated (IDA does the whole run there); REGDAE_INTEGRATOR_AUTO on the
- * eliminated formulation, where the switching policy is in force (dopri5 while
- * the system is not stiff, IDA where it is; regdae_stats.switches counts them).
+ * integrator after init: the integrator in charge at the call, never
+ * REGDAE_INTEGRATOR_AUTO: the one chosen, or with REGDAE_INTEGRATOR_AUTO IDA on a
+ * formulation other than eliminated (IDA does the whole run there) and on the
+ * eliminated formulation the one the switching policy has put in charge (dopri5
+ * while the system is not stiff, IDA where it is; regdae_stats.switches counts
+ * the switches): dopri5 right after init, which may change along the run.
  */
 int regdae_get_options(const regdae_solver *solver, regdae_options *options);
 
