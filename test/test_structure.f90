@@ -292,39 +292,46 @@ contains
     ! A dashpot f_1 = -3 v_3 with force_v declared empty: the entry (1, 3) is named.
     subroutine missing_velocity_dependence_reported(chk)
         type(checker), intent(inout) :: chk
-        type(solver_options) :: opts
-        type(regdae_solver) :: solver
         type(damped_chain) :: p
-        real(wp) :: q0(16), v0(16)
+        character(len=:), allocatable :: msg
         integer :: stat
         p%chain = new_chain(8, .false., 9.81_wp)
-        call chain_start(p%chain, q0, v0)
+        call checked_init(p, stat, msg)
+        call chk%equal(stat, regdae_err_jacobian, 'reported')
+        call chk%true(index(msg, 'force_v pattern misses entry (1, 3) of df/dv') > 0, &
+                      'the message names force_v and the entry (1, 3)')
+        call chk%true(index(msg, '-3.0') > 0, 'and its value, -3')
+        write (*, '(a)') '    '//msg
+    end subroutine missing_velocity_dependence_reported
+
+    ! init of a chain (p%chain set; straight, at rest) with formulation=augmented and
+    ! check_jacobians=yes: the status and the message.
+    subroutine checked_init(p, stat, msg)
+        class(chain), intent(in) :: p
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        real(wp) :: q0(p%n), v0(p%n)
+        call chain_start(p, q0, v0)
         opts%formulation = formulation_augmented
         opts%check_jacobians = .true.
         call solver%init(p, 0.0_wp, q0, v0, opts, stat)
-        call chk%equal(stat, regdae_err_jacobian, 'reported')
-        call chk%true(index(solver%message(), 'force_v pattern misses entry (1, 3) of df/dv') > 0, &
-                      'the message names force_v and the entry (1, 3)')
-        call chk%true(index(solver%message(), '-3.0') > 0, 'and its value, -3')
-        write (*, '(a)') '    '//solver%message()
-    end subroutine missing_velocity_dependence_reported
+        msg = solver%message()
+        call solver%destroy()
+    end subroutine checked_init
 
     ! mass_matrix with M(1, 2) = M(2, 1) = 0.25 against a diagonal mass pattern (the
     ! chain's mass_values give the diagonal): the entry is named in M's terms.
     subroutine mass_outside_its_pattern_reported(chk)
         type(checker), intent(inout) :: chk
-        type(solver_options) :: opts
-        type(regdae_solver) :: solver
         type(coupled_mass_chain) :: p
-        real(wp) :: q0(16), v0(16)
+        character(len=:), allocatable :: msg
         integer :: stat
         p%chain = new_chain(8, .false., 9.81_wp)
-        call chain_start(p%chain, q0, v0)
-        opts%formulation = formulation_augmented
-        opts%check_jacobians = .true.
-        call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+        call checked_init(p, stat, msg)
         call chk%equal(stat, regdae_err_jacobian, 'reported')
-        call chk%true(index(solver%message(), 'M (mass_matrix) has the nonzero entry (1, 2)') > 0, &
+        call chk%true(index(msg, 'M (mass_matrix) has the nonzero entry (1, 2)') > 0, &
                       'the message names the entry (1, 2) of M')
     end subroutine mass_outside_its_pattern_reported
 
