@@ -42,6 +42,14 @@ module test_structure
         procedure :: structure => unset_forces_structure
     end type unset_forces_chain
 
+    !> The chain whose values routines fall back on the public defaults (dense M and G
+    !! gathered in pattern order).
+    type, extends(chain) :: fallback_chain
+    contains
+        procedure :: mass_values => fallback_mass_values
+        procedure :: constraint_jacobian_values => fallback_gx_values
+    end type fallback_chain
+
     !> The chain with one wrong entry in its sparse G.
     type, extends(chain) :: wrong_g_chain
     contains
@@ -73,6 +81,7 @@ contains
                  new_test('mass_outside_its_pattern_reported', mass_outside_its_pattern_reported), &
                  new_test('unset_force_patterns_are_empty', unset_force_patterns_are_empty), &
                  new_test('options_report_the_integrator', options_report_the_integrator), &
+                 new_test('default_values_callable_from_an_override', default_values_callable_from_an_override), &
                  new_test('wrong_g_reported', wrong_g_reported), &
                  new_test('pattern_missing_an_entry', pattern_missing_an_entry), &
                  new_test('structure_that_does_not_fit', structure_that_does_not_fit), &
@@ -118,6 +127,24 @@ contains
         st%mass = full%mass
         st%constraint = full%constraint
     end function unset_forces_structure
+
+    subroutine fallback_mass_values(self, t, q, pattern, vals, stat)
+        class(fallback_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        call default_mass_values(self, t, q, pattern, vals, stat)
+    end subroutine fallback_mass_values
+
+    subroutine fallback_gx_values(self, t, q, pattern, vals, stat)
+        class(fallback_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        call default_constraint_jacobian_values(self, t, q, pattern, vals, stat)
+    end subroutine fallback_gx_values
 
     subroutine wrong_g_values(self, t, q, pattern, vals, stat)
         class(wrong_g_chain), intent(inout) :: self
@@ -360,6 +387,32 @@ contains
         call a%destroy()
         call b%destroy()
     end subroutine unset_force_patterns_are_empty
+
+    ! Overrides that call default_mass_values and default_constraint_jacobian_values
+    ! (public from regdae): the chain's M and G are the same numbers (differences of
+    ! positions, the masses), so the run is the chain's own, bit for bit.
+    subroutine default_values_callable_from_an_override(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: a, b
+        type(fallback_chain) :: p
+        type(chain) :: c
+        real(wp) :: q0(16), v0(16), qa(16), qb(16)
+        integer :: stat
+        c = new_chain(8, .true., 9.81_wp)
+        p%chain = c
+        call chain_start(c, q0, v0)
+        call a%init(p, 0.0_wp, q0, v0, opts, stat)
+        call a%advance(1.0_wp, qa, stat=stat)
+        call chk%equal(stat, regdae_success, 'the run with the default values routines')
+        call chk%equal(a%formulation(), formulation_augmented, 'the augmented formulation')
+        call b%init(c, 0.0_wp, q0, v0, opts, stat)
+        call b%advance(1.0_wp, qb, stat=stat)
+        call chk%true(all(qa == qb), 'the chain''s own run, bit for bit')
+        if (.not. all(qa == qb)) write (*, '(a, es10.2)') '    max difference ', maxval(abs(qa - qb))
+        call a%destroy()
+        call b%destroy()
+    end subroutine default_values_callable_from_an_override
 
     ! options() reports the integrator in charge, not `auto`: IDA on the augmented
     ! formulation (a declared structure, n = 16), dopri5 at the start of the slider
