@@ -64,7 +64,7 @@ module regdae_options
     !> formulation=auto takes `augmented` from this many coordinates on (with a declared structure).
     integer, parameter, public :: augmented_min_n = 16
 
-    integer, parameter, public :: linear_solver_auto = 0    !! by formulation, size and bandwidth
+    integer, parameter, public :: linear_solver_auto = 0    !! by formulation: dense, or KLU (augmented)
     integer, parameter, public :: linear_solver_dense = 1   !! SUNDIALS dense LU
     integer, parameter, public :: linear_solver_band = 2    !! SUNDIALS band LU (augmented formulation)
     integer, parameter, public :: linear_solver_sparse = 3  !! KLU (augmented formulation)
