@@ -13,6 +13,7 @@
 !! | atol_v         | > 0, or auto (= atol): second order, the velocities' atol | auto |
 !! | stop_at_output | yes, no                               | no             |
 !! | max_steps      | >= 1 (per output interval)            | 100000         |
+!! | max_order      | 1 ... 5 (IDA's largest BDF order)     | 5              |
 !! | h_init, h_max  | >= 0 (0: IDA's choice / no limit)     | 0, 0           |
 !! | ic_tol         | > 0                                   | 1e-8           |
 !! | index          | 2, 3 (second-order problems)          | 3              |
@@ -63,7 +64,7 @@ module regdae_options
     !> formulation=auto takes `augmented` from this many coordinates on (with a declared structure).
     integer, parameter, public :: augmented_min_n = 16
 
-    integer, parameter, public :: linear_solver_auto = 0    !! by formulation, size and bandwidth
+    integer, parameter, public :: linear_solver_auto = 0    !! by formulation: dense, or KLU (augmented)
     integer, parameter, public :: linear_solver_dense = 1   !! SUNDIALS dense LU
     integer, parameter, public :: linear_solver_band = 2    !! SUNDIALS band LU (augmented formulation)
     integer, parameter, public :: linear_solver_sparse = 3  !! KLU (augmented formulation)
@@ -97,6 +98,7 @@ module regdae_options
                                                        !! per component: the argument atol_vector of init
         logical :: stop_at_output = .false.            !! make a step end at every output time
         integer :: max_steps = 100000                  !! IDA steps allowed per call of `advance`
+        integer :: max_order = 5                       !! IDA's largest BDF order, 1 ... 5 (IDASetMaxOrd)
         real(wp) :: h_init = 0.0_wp                    !! first step size (0: IDA estimates it)
         real(wp) :: h_max = 0.0_wp                     !! largest step size (0: unlimited)
         real(wp) :: ic_tol = 1.0e-8_wp                 !! allowed max |g(x0, t0)| (and |G v0 + g_t|)
@@ -184,6 +186,8 @@ contains
             call read_real(value, opts%ic_tol, code)
         case ('max_steps')
             call read_integer(value, opts%max_steps, code)
+        case ('max_order')
+            call read_integer(value, opts%max_order, code)
         case ('index')
             call lookup(value, [character(len=12) :: '1', '2', '3'], code)
             if (code > 1) opts%index = code
@@ -293,6 +297,8 @@ contains
             msg = 'excluded must be y or vy'
         else if (opts%max_steps < 1) then
             msg = 'max_steps must be >= 1 (got '//format_int(opts%max_steps)//')'
+        else if (opts%max_order < 1 .or. opts%max_order > 5) then
+            msg = 'max_order must be 1 ... 5 (got '//format_int(opts%max_order)//')'
         else if (opts%method < method_baumgarte .or. opts%method > method_direct) then
             msg = 'unknown method'
         else if (opts%formulation < formulation_auto .or. opts%formulation > formulation_augmented) then
@@ -446,6 +452,7 @@ contains
         case ('excluded'); text = ' (y or vy)'
         case ('integrator'); text = ' (auto, ida, dopri5 or radau)'
         case ('max_steps'); text = ' (an integer, e.g. 100000)'
+        case ('max_order'); text = ' (an integer, 1 ... 5)'
         case ('work_tol', 'gamma', 'gamma0', 'gamma1', 'eps', 'singular_threshold', 'drift_tol')
             text = ' (a finite number, or auto)'
         case default; text = ' (a finite number, e.g. 1e-6, 2.5 or .5)'

@@ -305,8 +305,9 @@ contains
             return
         end if
         if (opts%check_jacobians) then
-            call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
-            if (stat == regdae_success) call check_structured_jacobian(problem, sys, t0, q0, stat, msg)
+            ! the user's patterns first, by (row, column) of M, G and the force Jacobians
+            call check_structured_jacobian(problem, sys, t0, q0, v0, stat, msg)
+            if (stat == regdae_success) call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, msg)
                 return
