@@ -151,6 +151,7 @@ extern "C" {
 #define REGDAE_INTEGRATOR_AUTO 0
 #define REGDAE_INTEGRATOR_IDA 1
 #define REGDAE_INTEGRATOR_DOPRI5 2
+#define REGDAE_INTEGRATOR_RADAU 3
 
 /** excluded: index 3, what leaves the error test (default y). */
 #define REGDAE_EXCLUDED_Y 1
@@ -491,7 +492,7 @@ static inline int regdae_set_max_steps(regdae_solver *solver, int max_steps)
  * REGDAE_INTEGRATOR_AUTO: the one chosen, or with REGDAE_INTEGRATOR_AUTO IDA on a
  * formulation other than eliminated (IDA does the whole run there) and on the
  * eliminated formulation the one the switching policy has put in charge (dopri5
- * while the system is not stiff, IDA where it is; regdae_stats.switches counts
+ * while the system is not stiff, IDA or Radau where it is; regdae_stats.switches counts
  * the switches): dopri5 right after init, which may change along the run.
  */
 int regdae_get_options(const regdae_solver *solver, regdae_options *options);

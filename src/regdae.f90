@@ -57,7 +57,7 @@ module regdae
               exclusion_name, method_baumgarte, method_trust_region, method_direct, formulation_multiplier, &
               formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, lsq_checked, exclusion_suppress, exclusion_weights, &
               exclusion_off, excluded_y, excluded_vy, excluded_name, integrator_ida, integrator_dopri5, integrator_auto, &
-              integrator_name, &
+              integrator_radau, integrator_name, &
               formulation_auto, formulation_augmented, augmented_min_n, linear_solver_auto, linear_solver_dense, &
               linear_solver_band, linear_solver_sparse, linear_solver_name, option_auto, resolved_work_tol, option_text
 end module regdae

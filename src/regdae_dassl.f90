@@ -27,7 +27,7 @@ module regdae_dassl
                              regdae_err_bad_input, &
                              regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_initialized
     use regdae_format, only: format_int, format_real
-    use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_dopri5
+    use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_radau
     use regdae_solver_trust, only: regdae_solver, solver_stats
     use regdae_foreign_problems, only: foreign_first_order, foreign_mechanical
     use regdae_f77_routines, only: f77_routines, f77_point_routine, f77_motion_routine
@@ -45,7 +45,7 @@ module regdae_dassl
     integer, parameter :: info_method = 16       ! 0 (trust_region), 1 baumgarte, 2 trust_region, 3 direct
     integer, parameter :: info_gt = 17           ! 1: GT is supplied
     integer, parameter :: info_index = 18        ! DREGDAEM: 0 (3), 2 or 3
-    integer, parameter :: info_integrator = 19   ! 0 auto, 1 ida, 2 dopri5
+    integer, parameter :: info_integrator = 19   ! 0 auto, 1 ida, 2 dopri5, 3 radau
     integer, parameter :: info_messages = 20     ! 0: error unit; > 0: that unit; -1: none
     !> The length of INFO.
     integer, parameter, public :: info_length = 20
@@ -461,8 +461,8 @@ contains
             msg = 'INFO(18) = '//format_int(info(info_index))//': the index is for DREGDAEM; set it to 0'
         else if (.not. any(info(info_index) == [0, 2, 3])) then
             msg = 'INFO(18) = '//format_int(info(info_index))//' must be 0 (index 3), 2 or 3'
-        else if (info(info_integrator) < 0 .or. info(info_integrator) > integrator_dopri5) then
-            msg = 'INFO(19) = '//format_int(info(info_integrator))//' must be 0 (auto), 1 (ida) or 2 (dopri5)'
+        else if (info(info_integrator) < 0 .or. info(info_integrator) > integrator_radau) then
+            msg = 'INFO(19) = '//format_int(info(info_integrator))//' must be 0 (auto), 1 (ida), 2 (dopri5) or 3 (radau)'
         else if (info(info_hmax) == 1 .and. .not. rwork(rwork_hmax) > 0.0_wp) then
             msg = 'INFO(7) = 1 and HMAX = RWORK(2) = '//format_real(rwork(rwork_hmax))//' is not > 0'
         else if (info(info_h0) == 1 .and. .not. rwork(rwork_h0) > 0.0_wp) then

@@ -28,7 +28,7 @@
 !! | work_tol       | >= 0 or auto (mechanical: alarm when the work-energy defect exceeds this fraction of the energy scale, 0: off; auto: 0.05 (rtol/1e-3)^(1/5) within [0.02, 0.05]) | auto |
 !! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
-!! | integrator     | auto, ida, dopri5 (explicit, eliminated formulation only; auto: dopri5 while not stiff) | auto |
+!! | integrator     | auto, ida, dopri5 (explicit, eliminated formulation only; auto: dopri5 while not stiff), radau (Radau IIA order 5, eliminated formulation only) | auto |
 !! | linear_solver  | auto, dense, band, sparse (IDA's Newton matrix; band and sparse: augmented) | auto |
 !! | check_jacobians | yes, no (at init: G against difference quotients of g; augmented: the grouped Newton matrix against the full one) | no |
 !! | pass_check     | yes, no (order 1 and 2: each singular pass re-integrated at rtol/10 (and /100, /1000 while they disagree) and held against pass_tol; warning regdae_warn_unresolved if no level agrees) | yes |
@@ -79,6 +79,7 @@ module regdae_options
     integer, parameter, public :: integrator_auto = 0    !! dopri5 while the system is not stiff, IDA where it is
     integer, parameter, public :: integrator_ida = 1     !! SUNDIALS IDA (BDF), any stiffness
     integer, parameter, public :: integrator_dopri5 = 2  !! explicit Dormand-Prince 5(4): non-stiff regularized systems
+    integer, parameter, public :: integrator_radau = 3   !! Radau IIA of order 5 (implicit): small stiff systems
 
     integer, parameter, public :: excluded_y = 1    !! index 3: only y leaves the error test
     integer, parameter, public :: excluded_vy = 2   !! index 3: v and y leave it (the paper's choice)
@@ -120,7 +121,7 @@ module regdae_options
                                                        !! warns (regdae_warn_unresolved); 0: off
         real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
-        integer :: integrator = integrator_auto        !! auto, ida, or dopri5 (explicit; eliminated formulation)
+        integer :: integrator = integrator_auto        !! auto, ida, dopri5 (explicit) or radau (eliminated formulation)
         integer :: linear_solver = linear_solver_auto  !! IDA's linear solver
         logical :: check_jacobians = .false.           !! compare the user's G (and the grouped Newton matrix) with
                                                        !! difference quotients at init (regdae_err_jacobian)
@@ -218,8 +219,9 @@ contains
         case ('mass_damping')
             call read_real(value, opts%mass_damping, code)
         case ('integrator')
-            call lookup(value, [character(len=12) :: 'ida', 'dopri5', 'auto'], code)
+            call lookup(value, [character(len=12) :: 'ida', 'dopri5', 'auto', 'radau'], code)
             if (code > 0) opts%integrator = merge(integrator_auto, code, code == 3)
+            if (code == 4) opts%integrator = integrator_radau
         case ('check_jacobians')
             call lookup(value, [character(len=12) :: 'yes', 'no'], code)
             if (code > 0) opts%check_jacobians = (code == 1)
@@ -278,11 +280,11 @@ contains
         call need_nonnegative('mass_damping', opts%mass_damping)
         if (len(msg) > 0) then
             return
-        else if (opts%integrator < integrator_auto .or. opts%integrator > integrator_dopri5) then
-            msg = 'integrator must be auto, ida or dopri5'
-        else if (opts%integrator == integrator_dopri5 .and. opts%formulation /= formulation_eliminated &
-                 .and. opts%formulation /= formulation_auto) then
-            msg = 'integrator=dopri5 needs formulation=eliminated'
+        else if (opts%integrator < integrator_auto .or. opts%integrator > integrator_radau) then
+            msg = 'integrator must be auto, ida, dopri5 or radau'
+        else if ((opts%integrator == integrator_dopri5 .or. opts%integrator == integrator_radau) .and. &
+                 opts%formulation /= formulation_eliminated .and. opts%formulation /= formulation_auto) then
+            msg = 'integrator='//integrator_name(opts%integrator)//' needs formulation=eliminated'
         else if (opts%linear_solver < linear_solver_auto .or. opts%linear_solver > linear_solver_sparse) then
             msg = 'linear_solver must be auto, dense, band or sparse'
         else if ((opts%linear_solver == linear_solver_band .or. opts%linear_solver == linear_solver_sparse) .and. &
@@ -419,6 +421,7 @@ contains
         case (integrator_auto); name = 'auto'
         case (integrator_ida); name = 'ida'
         case (integrator_dopri5); name = 'dopri5'
+        case (integrator_radau); name = 'radau'
         case default; name = 'unknown'
         end select
     end function integrator_name
@@ -447,7 +450,7 @@ contains
         case ('stop_at_output', 'curvature', 'check_jacobians', 'pass_check', 'error_estimate'); text = ' (yes or no)'
         case ('index'); text = ' (2 or 3)'
         case ('excluded'); text = ' (y or vy)'
-        case ('integrator'); text = ' (auto, ida or dopri5)'
+        case ('integrator'); text = ' (auto, ida, dopri5 or radau)'
         case ('max_steps'); text = ' (an integer, e.g. 100000)'
         case ('max_order'); text = ' (an integer, 1 ... 5)'
         case ('work_tol', 'gamma', 'gamma0', 'gamma1', 'eps', 'singular_threshold', 'drift_tol')

@@ -456,6 +456,13 @@ static void problems(void)
     /* mechanical: lambda = -1/2 */
     regdae_set_mechanical(s, 2, 1, m_identity, m_no_forces, c_g, c_gradient, NULL, NULL);
     CHECK(circle_run(s, 1, -0.5) < CIRCLE_BOUND);
+    /* the same through Radau IIA (integrator radau, the option's setter), with its statistics */
+    CHECK(regdae_set_integrator(s, REGDAE_INTEGRATOR_RADAU) == REGDAE_SUCCESS);
+    CHECK(circle_run(s, 1, -0.5) < CIRCLE_BOUND);
+    regdae_get_options(s, &opts);
+    regdae_get_statistics(s, &st);
+    CHECK(opts.integrator == REGDAE_INTEGRATOR_RADAU && st.steps > 0 && st.jac_evals > 0 && st.switches == 0);
+    regdae_set_integrator(s, REGDAE_INTEGRATOR_AUTO);
 
     /* K particles: dense (eliminated), then structured (augmented, from the dense
        callbacks, then from the values callbacks) */
@@ -553,6 +560,11 @@ static void callbacks(void)
     CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
     CHECK(regdae_advance(s, 2.0, x, 2, NULL, 0, NULL, 0) == REGDAE_ERR_INTEGRATION);
     CHECK(says(s, "cannot get past t = 1.49"));
+    CHECK(regdae_set_integrator(s, REGDAE_INTEGRATOR_RADAU) == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
+    CHECK(regdae_advance(s, 2.0, x, 2, NULL, 0, NULL, 0) == REGDAE_ERR_INTEGRATION);
+    CHECK(says(s, "Radau failed at t = 1.49") && says(s, "reported failure (stat = 3)"));
+    regdae_set_integrator(s, REGDAE_INTEGRATOR_IDA);
     /* > 0 at the initial point: REGDAE_ERR_USER_CALLBACK */
     d.fail_from = 0.0;
     CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_ERR_USER_CALLBACK);

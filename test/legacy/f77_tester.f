@@ -560,15 +560,16 @@ C
 C
 C     The circle from (1, 0) to TOUT = 1 with the tolerances RT, AT
 C     (INFO(2) = 1: vectors of length 2); X, IDID and the message.
-      SUBROUTINE TRYVEC(IVEC, RT, AT, X, IDID, MSG)
+      SUBROUTINE TRYVEC(IVEC, INTEG, RT, AT, X, IDID, MSG)
       EXTERNAL CF, CB, CG, CGX
-      INTEGER IVEC, IDID, INFO(20), IWORK(22), IPAR(2)
+      INTEGER IVEC, INTEG, IDID, INFO(20), IWORK(22), IPAR(2)
       DOUBLE PRECISION RT(2), AT(2), X(2), Y(2), RWORK(20), RPAR(2), T
       CHARACTER*(*) MSG
 C     IWORK zeroed too: a start reads IWORK(19:22) to free what an
 C     earlier problem left there (doc/api.md section 8)
       CALL CLEAR(INFO, RWORK, IWORK)
       INFO(2) = IVEC
+      INFO(19) = INTEG
       T = 0.0D0
       X(1) = 1.0D0
       X(2) = 0.0D0
@@ -588,21 +589,33 @@ C
       RT(2) = 1.0D-6
       AT(1) = 1.0D-6
       AT(2) = 1.0D-6
-      CALL TRYVEC(0, RT, AT, XS, IDID, MSG)
+      CALL TRYVEC(0, 0, RT, AT, XS, IDID, MSG)
       CALL CHECK(IDID .GT. 0, 'scalar tolerances: success', NCHK)
-      CALL TRYVEC(1, RT, AT, XV, IDID, MSG)
+      CALL TRYVEC(1, 0, RT, AT, XV, IDID, MSG)
       CALL CHECK(IDID .GT. 0 .AND. XV(1) .EQ. XS(1) .AND.
      *     XV(2) .EQ. XS(2), 'equal ATOL(i): the scalar run', NCHK)
       AT(2) = 1.0D-2
-      CALL TRYVEC(1, RT, AT, XL, IDID, MSG)
+      CALL TRYVEC(1, 0, RT, AT, XL, IDID, MSG)
       CALL CHECK(IDID .GT. 0 .AND. (XL(1) .NE. XS(1) .OR.
      *     XL(2) .NE. XS(2)), 'ATOL(2) = 1e-2: another run', NCHK)
       RT(2) = 1.0D-5
-      CALL TRYVEC(1, RT, AT, XL, IDID, MSG)
+      CALL TRYVEC(1, 0, RT, AT, XL, IDID, MSG)
       CALL CHECK(IDID .EQ. -33 .AND.
      *     INDEX(MSG, 'one relative tolerance') .GT. 0 .AND.
      *     INDEX(MSG, 'through ATOL') .GT. 0,
      *     'unequal RTOL(i) refused, saying what to do', NCHK)
+C     INFO(19) = 3: Radau IIA (integrator radau) on the circle, x(1) =
+C     (cos 1, sin 1) within 1e-4 at tolerances 1e-6 (measured 4e-7);
+C     INFO(19) = 4 refused
+      RT(2) = 1.0D-6
+      AT(2) = 1.0D-6
+      CALL TRYVEC(0, 3, RT, AT, XL, IDID, MSG)
+      CALL CHECK(IDID .GT. 0 .AND. ABS(XL(1) - COS(1.0D0)) .LT. 1D-4
+     *     .AND. ABS(XL(2) - SIN(1.0D0)) .LT. 1D-4,
+     *     'INFO(19) = 3: radau reaches x(1)', NCHK)
+      CALL TRYVEC(0, 4, RT, AT, XL, IDID, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'INFO(19)') .GT. 0,
+     *     'INFO(19) = 4 refused', NCHK)
       END
 C
 C     ---- WARN --------------------------------------------------------
