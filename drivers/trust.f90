@@ -40,7 +40,9 @@
 !!   trust_region, direct, baumgarte, R = 1e-3 ... 1e-10; the exact solution; no reference method.
 !!
 !! Usage: trust [family=crank|chain|chain_long|fourbar|linear|all] [part=k/K] [rtol=R] [cell=I]
-!!              [budget=S] [th1=A [w1=W]] [seed=S]
+!!              [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]
+!! (option.KEY=VALUE: that solver option in every cell's run instead of its default, for diagnosing a
+!! cell; the header says which; the grids' figures are from the defaults)
 !! (th1=A, w1=W: the crank family at that start only, one cell per R, case th00)
 !! (part=k/K: only the cells whose number I has mod(I, K) = k - 1; rtol=R: only the cells of that
 !! R; cell=I: only cell I of the family, for reproducing one; budget: the wall budget in seconds
@@ -74,7 +76,7 @@ program trust_driver
 
     character(len=*), parameter :: prog = 'trust'
     character(len=*), parameter :: usage = 'usage: trust [family=crank|chain|chain_long|fourbar|linear|all] '// &
-                                           '[part=k/K] [rtol=R] [cell=I] [budget=S] [th1=A [w1=W]] [seed=S]'
+                                           '[part=k/K] [rtol=R] [cell=I] [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]'
     real(wp), parameter :: pi = acos(-1.0_wp)
     real(wp), parameter :: mech_rtols(6) = [1.0e-3_wp, 1.0e-4_wp, 1.0e-5_wp, 1.0e-6_wp, 1.0e-7_wp, 1.0e-8_wp]
     real(wp), parameter :: linear_rtols(8) = [1.0e-3_wp, 1.0e-4_wp, 1.0e-5_wp, 1.0e-6_wp, 1.0e-7_wp, 1.0e-8_wp, &
@@ -124,19 +126,29 @@ program trust_driver
     real(wp) :: budget = -1.0_wp
     real(wp) :: start_th1 = -1.0_wp, start_w1 = 0.0_wp   ! th1= (w1=): the crank family at this start only
     integer(int64) :: crank_seed = 0_int64   ! seed=S: the crank family's starts from seed S (0: the fixed grid)
+    type(solver_options) :: overrides        ! the defaults with the option.KEY=VALUE arguments applied
+    character(len=:), allocatable :: override_text   ! those arguments, for the header
 
     call main()
 
 contains
 
     subroutine main()
-        character(len=:), allocatable :: key, value
-        integer :: i, slash
+        character(len=:), allocatable :: key, value, msg
+        integer :: i, slash, stat
         logical :: ok
         family = 'all'
+        overrides = solver_options()
+        override_text = ''
         do i = 1, command_argument_count()
             call split_key_value(argument(i), key, value, ok)
             if (.not. ok) call die_usage(prog, usage)
+            if (index(key, 'option.') == 1) then
+                call set_option(overrides, key(8:), value, stat, msg)
+                if (stat /= 0) call die_usage(prog, msg)
+                override_text = override_text//' '//key(8:)//'='//value
+                cycle
+            end if
             select case (key)
             case ('family')
                 family = value
@@ -172,6 +184,7 @@ contains
             'part='//itext(filter%part)//'/'//itext(filter%parts)
         write (*, '(a)') '# columns: cell family case p1 p2 R status class err err_ref bound t_end steps seconds '// &
             '[the family''s columns]'
+        if (len(override_text) > 0) write (*, '(a)') '# NOT the defaults: every run with'//override_text
         if (family == 'all' .or. family == 'crank') call crank_family()
         if (family == 'all' .or. family == 'chain') call chain_family(.false.)
         if (family == 'all' .or. family == 'chain_long') call chain_family(.true.)
@@ -193,11 +206,11 @@ contains
         run_budget = merge(budget, default, budget > 0.0_wp)
     end function run_budget
 
-    ! The options of a cell: the defaults but rtol = atol = R.
+    ! The options of a cell: the defaults (with the option.KEY=VALUE arguments) but rtol = atol = R.
     function cell_options(rtol) result(opts)
         real(wp), intent(in) :: rtol
         type(solver_options) :: opts
-        opts = solver_options()
+        opts = overrides
         opts%rtol = rtol
         opts%atol = rtol
     end function cell_options
