@@ -30,11 +30,6 @@ module regdae_auto_rules
     !> A row of G whose norm is below degenerate_row |H_i| l_x vanishes here: a
     !! singular configuration of that row, whose distance to it is no length of the mechanism.
     real(wp), parameter, public :: degenerate_row = 1.0e-4_wp
-    !> At t0 a row of G that shrinks along the motion counts as a length of at least
-    !! shrink_floor times the scale of x (constraint_length): near a singular
-    !! configuration its |G_i| / |H_i| is the distance to it, a time scale of the
-    !! start's position, not of the motion (a row that turns keeps its own length).
-    real(wp), parameter, public :: shrink_floor = 0.1_wp
     !> At a singular start a vanishing row of G is moved by this fraction of the scale
     !! of x along its curvature, for the prediction of the regular sigma_min(GB).
     real(wp), parameter, public :: predict_shift = 0.5_wp
@@ -74,29 +69,14 @@ contains
     !! scale, or that vanishes here (gnorm < degenerate_row hnorm ell_x: a singular
     !! configuration of that row, whose distance to it is no length of the
     !! mechanism), counts as ell_x; ell_x if no row has a gradient.
-    !!
-    !! With `turn` and `shrink` (the largest changes of G_i per unit length normal to
-    !! G_i and along it, row_curvatures) and `least`, a row counts as
-    !! min(|G_i| / turn_i, max(|G_i| / shrink_i, least)): where a row shrinks (near a
-    !! singular configuration, where |G_i| / shrink_i is the distance to it) it counts
-    !! as at least `least`; where it turns (a link rotating) as its own length.
-    pure real(wp) function constraint_length(gnorm, hnorm, ell_x, turn, shrink, least) result(ell)
+    pure real(wp) function constraint_length(gnorm, hnorm, ell_x) result(ell)
         real(wp), intent(in) :: gnorm(:), hnorm(:), ell_x
-        real(wp), intent(in), optional :: turn(:), shrink(:), least
-        real(wp) :: row
         integer :: i
         ell = ell_x
         do i = 1, size(gnorm)
             if (.not. (gnorm(i) == gnorm(i) .and. hnorm(i) == hnorm(i))) cycle
-            if (gnorm(i) >= degenerate_row*hnorm(i)*ell_x .and. gnorm(i) < hnorm(i)*ell_x) then
-                row = gnorm(i)/hnorm(i)
-                if (present(turn) .and. present(shrink) .and. present(least)) then
-                    row = ell_x
-                    if (gnorm(i) < shrink(i)*ell_x) row = max(gnorm(i)/shrink(i), least)
-                    if (gnorm(i) < turn(i)*row) row = gnorm(i)/turn(i)
-                end if
-                ell = min(ell, row)
-            end if
+            if (gnorm(i) >= degenerate_row*hnorm(i)*ell_x .and. gnorm(i) < hnorm(i)*ell_x) &
+                ell = min(ell, gnorm(i)/hnorm(i))
         end do
         if (.not. (ell > 0.0_wp)) ell = ell_x
     end function constraint_length
@@ -188,21 +168,18 @@ contains
     !! max-norm 1; central differences, so that an even change does not count;
     !! changes at the rounding level of G_i count as 0). `dg` holds that change
     !! of each row along its worst direction (for the prediction of GB at a
-    !! singular start); `turn` and `shrink` the largest parts of that change normal to
-    !! G_i and along it. stat /= 0: the user's constraint_jacobian failed.
-    subroutine row_curvatures(model, t, x, dirs, gnorm, hnorm, dg, turn, shrink, stat)
+    !! singular start). stat /= 0: the user's constraint_jacobian failed.
+    subroutine row_curvatures(model, t, x, dirs, gnorm, hnorm, dg, stat)
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: t, x(:), dirs(:, :)
-        real(wp), intent(out) :: gnorm(:), hnorm(:), dg(:, :), turn(:), shrink(:)
+        real(wp), intent(out) :: gnorm(:), hnorm(:), dg(:, :)
         integer, intent(out) :: stat
         real(wp), allocatable :: gx0(:, :), gx1(:, :)
-        real(wp) :: d, change, size_g, along
+        real(wp) :: d, change, size_g
         integer :: i, k
         stat = 0
         gnorm = 0.0_wp
         hnorm = 0.0_wp
-        turn = 0.0_wp
-        shrink = 0.0_wp
         dg = 0.0_wp
         allocate (gx0(model%m, size(x)), gx1(model%m, size(x)))
         d = central_difference_step(maxval(abs(x)))
@@ -215,12 +192,6 @@ contains
                 size_g = 0.5_wp*norm2(gx1(i, :) + gx0(i, :))
                 if (k == 1) gnorm(i) = size_g
                 if (.not. (change*d > 1.0e3_wp*epsilon(1.0_wp)*size_g)) change = 0.0_wp
-                along = 0.0_wp
-                if (size_g > 0.0_wp) along = abs(dot_product(gx1(i, :) - gx0(i, :), gx1(i, :) + gx0(i, :)))/ &
-                                             (4.0_wp*d*size_g)
-                along = min(along, change)
-                shrink(i) = max(shrink(i), along)
-                turn(i) = max(turn(i), sqrt(max(change**2 - along**2, 0.0_wp)))
                 if (change > hnorm(i)) then
                     hnorm(i) = change
                     dg(i, :) = (gx1(i, :) - gx0(i, :))/(2.0_wp*d)
@@ -247,12 +218,10 @@ contains
         logical, intent(in), optional :: stiffness   !! the forces' frequency counts (at t0; along the run
                                                      !! the weights follow the motion alone)
         real(wp) :: x(nx), vel(nx), acc(nx), free(nx), ell_x, stiff
-        real(wp), allocatable :: dirs(:, :), gnorm(:), hnorm(:), dg(:, :), gx(:, :), turn(:), shrink(:)
+        real(wp), allocatable :: dirs(:, :), gnorm(:), hnorm(:), dg(:, :), gx(:, :)
         integer :: ndir, i
-        logical :: degenerate, at_start
+        logical :: degenerate
         stat = 0
-        at_start = .false.
-        if (present(stiffness)) at_start = stiffness
         sigma_pred = -1.0_wp
         x = z(1:nx)
         free = model%f(size(model%f) - nx + 1:)
@@ -275,14 +244,10 @@ contains
         end if
         ell = huge(1.0_wp)
         if (model%m > 0 .and. ndir > 0) then
-            allocate (gnorm(model%m), hnorm(model%m), dg(model%m, nx), turn(model%m), shrink(model%m))
-            call row_curvatures(model, t, x, dirs(:, 1:ndir), gnorm, hnorm, dg, turn, shrink, stat)
+            allocate (gnorm(model%m), hnorm(model%m), dg(model%m, nx))
+            call row_curvatures(model, t, x, dirs(:, 1:ndir), gnorm, hnorm, dg, stat)
             if (stat /= 0) return
-            if (at_start) then
-                ell = constraint_length(gnorm, hnorm, ell_x, turn, shrink, shrink_floor*ell_x)
-            else
-                ell = constraint_length(gnorm, hnorm, ell_x)
-            end if
+            ell = constraint_length(gnorm, hnorm, ell_x)
             if (predict) then
                 degenerate = .false.
                 allocate (gx(model%m, nx))
@@ -302,7 +267,9 @@ contains
         end if
         ell = max(ell, ell_before)
         stiff = 0.0_wp
-        if (at_start) stiff = force_stiffness()
+        if (present(stiffness)) then
+            if (stiffness) stiff = force_stiffness()
+        end if
         rate = motion_rate(order2, vel, acc, free, ell, stiff)
     contains
         ! |d free/dx| along the generic direction (central differences of the model's f)
