@@ -18,8 +18,10 @@
 !! - crank: the slider crank of Example 5.2 (index 3, g = 9.8), th2 = pi - th1, w2 = -w1, tf = 10,
 !!   200 outputs; th1 (25, ascending): 1e-8, 1e-6, 1e-4, 1e-2, pi minus each, pi/2 and 16 uniform
 !!   in (0, pi) from xorshift64 with seed 20250101; R = 1e-3 ... 1e-8; w1 in {0, 1e-6, ..., 20}
-!!   (13). Reference: the reduced ODE by CVODE at 1e-13 (check: at 1e-12, column ref_chk);
-!!   reference method: Dormand-Prince (drivers/common/dopri5.f90) on it at R.
+!!   (13). With seed=S (another grid of starts, for checking a rule on starts it was not chosen
+!!   on): the 4 near-singular th1 log-uniform in [1e-8, 1e-1] and the 16 uniform ones from seed S.
+!!   Reference: the reduced ODE by CVODE at 1e-13 (check: at 1e-12, column ref_chk); reference
+!!   method: Dormand-Prince (drivers/common/dopri5.f90) on it at R.
 !! - chain: the chain of N = 2 ... 4096 links without (plain) and with sliders, t in [0, 1],
 !!   10 outputs, from the straight horizontal chain at rest (chain_start); plain: reference the
 !!   plain IDA peer (drivers/common/chain_peer.f90, stabilized index 2, not regdae) at 1e-11
@@ -38,7 +40,9 @@
 !!   trust_region, direct, baumgarte, R = 1e-3 ... 1e-10; the exact solution; no reference method.
 !!
 !! Usage: trust [family=crank|chain|chain_long|fourbar|linear|all] [part=k/K] [rtol=R] [cell=I]
-!!              [budget=S] [th1=A [w1=W]]
+!!              [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]
+!! (option.KEY=VALUE: that solver option in every cell's run instead of its default, for diagnosing a
+!! cell; the header says which; the grids' figures are from the defaults)
 !! (th1=A, w1=W: the crank family at that start only, one cell per R, case th00)
 !! (part=k/K: only the cells whose number I has mod(I, K) = k - 1; rtol=R: only the cells of that
 !! R; cell=I: only cell I of the family, for reproducing one; budget: the wall budget in seconds
@@ -72,7 +76,7 @@ program trust_driver
 
     character(len=*), parameter :: prog = 'trust'
     character(len=*), parameter :: usage = 'usage: trust [family=crank|chain|chain_long|fourbar|linear|all] '// &
-                                           '[part=k/K] [rtol=R] [cell=I] [budget=S] [th1=A [w1=W]]'
+                                           '[part=k/K] [rtol=R] [cell=I] [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]'
     real(wp), parameter :: pi = acos(-1.0_wp)
     real(wp), parameter :: mech_rtols(6) = [1.0e-3_wp, 1.0e-4_wp, 1.0e-5_wp, 1.0e-6_wp, 1.0e-7_wp, 1.0e-8_wp]
     real(wp), parameter :: linear_rtols(8) = [1.0e-3_wp, 1.0e-4_wp, 1.0e-5_wp, 1.0e-6_wp, 1.0e-7_wp, 1.0e-8_wp, &
@@ -121,19 +125,30 @@ program trust_driver
     character(len=:), allocatable :: family, family_name
     real(wp) :: budget = -1.0_wp
     real(wp) :: start_th1 = -1.0_wp, start_w1 = 0.0_wp   ! th1= (w1=): the crank family at this start only
+    integer(int64) :: crank_seed = 0_int64   ! seed=S: the crank family's starts from seed S (0: the fixed grid)
+    type(solver_options) :: overrides        ! the defaults with the option.KEY=VALUE arguments applied
+    character(len=:), allocatable :: override_text   ! those arguments, for the header
 
     call main()
 
 contains
 
     subroutine main()
-        character(len=:), allocatable :: key, value
-        integer :: i, slash
+        character(len=:), allocatable :: key, value, msg
+        integer :: i, slash, stat
         logical :: ok
         family = 'all'
+        overrides = solver_options()
+        override_text = ''
         do i = 1, command_argument_count()
             call split_key_value(argument(i), key, value, ok)
             if (.not. ok) call die_usage(prog, usage)
+            if (index(key, 'option.') == 1) then
+                call set_option(overrides, key(8:), value, stat, msg)
+                if (stat /= 0) call die_usage(prog, msg)
+                override_text = override_text//' '//key(8:)//'='//value
+                cycle
+            end if
             select case (key)
             case ('family')
                 family = value
@@ -151,6 +166,7 @@ contains
             case ('th1'); call read_number(prog, key, value, start_th1)
                 if (.not. (start_th1 >= 0.0_wp .and. start_th1 <= pi)) call die_usage(prog, 'th1 must be in [0, pi]')
             case ('w1'); call read_number(prog, key, value, start_w1)
+            case ('seed'); call read_seed(value)
             case ('budget'); call read_number(prog, key, value, budget)
                 if (.not. (budget > 0.0_wp)) call die_usage(prog, 'budget must be > 0')
             case ('peer_job')
@@ -168,6 +184,7 @@ contains
             'part='//itext(filter%part)//'/'//itext(filter%parts)
         write (*, '(a)') '# columns: cell family case p1 p2 R status class err err_ref bound t_end steps seconds '// &
             '[the family''s columns]'
+        if (len(override_text) > 0) write (*, '(a)') '# NOT the defaults: every run with'//override_text
         if (family == 'all' .or. family == 'crank') call crank_family()
         if (family == 'all' .or. family == 'chain') call chain_family(.false.)
         if (family == 'all' .or. family == 'chain_long') call chain_family(.true.)
@@ -175,17 +192,25 @@ contains
         if (family == 'all' .or. family == 'linear') call linear_family()
     end subroutine main
 
+    ! seed=S: a positive integer.
+    subroutine read_seed(value)
+        character(len=*), intent(in) :: value
+        integer :: ios
+        read (value, *, iostat=ios) crank_seed
+        if (ios /= 0 .or. crank_seed <= 0_int64) call die_usage(prog, 'seed must be a positive integer')
+    end subroutine read_seed
+
     ! The wall budget of one regdae run: budget=S, else `default`.
     real(wp) function run_budget(default)
         real(wp), intent(in) :: default
         run_budget = merge(budget, default, budget > 0.0_wp)
     end function run_budget
 
-    ! The options of a cell: the defaults but rtol = atol = R.
+    ! The options of a cell: the defaults (with the option.KEY=VALUE arguments) but rtol = atol = R.
     function cell_options(rtol) result(opts)
         real(wp), intent(in) :: rtol
         type(solver_options) :: opts
-        opts = solver_options()
+        opts = overrides
         opts%rtol = rtol
         opts%atol = rtol
     end function cell_options
@@ -394,6 +419,7 @@ contains
             'th2 = pi - th1, w2 = -w1; tf = 10, 200 outputs; case thNN = the index of th1 (ascending)'
         write (*, '(a)') '#   reference: the reduced ODE by CVODE (Adams) at rtol = atol = 1e-13; reference method: '// &
             'Dormand-Prince on it at R; budget '//num(run_budget(30.0_wp))//' s per run'
+        if (crank_seed > 0_int64) write (*, '(a,i0)') '#   starts from seed=', crank_seed
         write (*, '(a)') '#   th1 values: '//list_text(angles)
         write (*, '(a)') '#   extra columns: ref_chk = the norm of (CVODE at 1e-12 - CVODE at 1e-13) at R; '// &
             'refm = the reference method: ok, diverged (err_ref over the outputs before a NaN/Inf), timeout '// &
@@ -420,13 +446,24 @@ contains
         write (*, '(a)') counts%summary('crank')
     end subroutine crank_family
 
-    ! th1 of the crank's starts, ascending: near both singular ends, pi/2, 16 random.
+    ! th1 of the crank's starts, ascending: near both singular ends, pi/2, 16 random (seed=S:
+    ! the near ones log-uniform in [1e-8, 1e-1] and the random ones from seed S).
     function crank_angles() result(angles)
         real(wp) :: angles(25)
-        real(wp), parameter :: near(4) = [1.0e-8_wp, 1.0e-6_wp, 1.0e-4_wp, 1.0e-2_wp]
+        real(wp) :: near(4)
         type(xorshift64) :: gen
         integer :: i
+        near = [1.0e-8_wp, 1.0e-6_wp, 1.0e-4_wp, 1.0e-2_wp]
         gen = new_xorshift64(20250101_int64)
+        if (crank_seed > 0_int64) then
+            gen = new_xorshift64(crank_seed)
+            do i = 1, 16   ! a small seed's first draws are small: let the bits mix
+                near(1) = gen%next_between(0.0_wp, 1.0_wp)
+            end do
+            do i = 1, size(near)
+                near(i) = 10.0_wp**gen%next_between(-8.0_wp, -1.0_wp)
+            end do
+        end if
         angles(1:4) = near
         angles(5:8) = pi - near
         angles(9) = pi/2

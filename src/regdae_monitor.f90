@@ -145,6 +145,10 @@ module regdae_monitor
         real(wp), private :: memory = -1.0_wp, t_memory = 0.0_wp   ! max_k sigma_G(t_k) exp(-rate (t - t_k))
         logical, private :: layer_reached = .false., pass_flagged = .false.
     contains
+        !> The time scale of the motion, 1 / its rate (the automatic weights' rate, else the
+        !! rate at t0; huge if neither is known): a step longer than this may hold a whole
+        !! singular pass between its samples.
+        procedure :: motion_time => monitor_motion_time
         !> Turn the resolution check on (tol > 0) or off.
         procedure :: set_resolution => monitor_set_resolution
         !> Forget all samples; set the threshold.
@@ -347,6 +351,14 @@ contains
         self%checkpoint_z = z
         self%checkpoint_valid = .true.
     end subroutine checkpoint_sample
+
+    pure real(wp) function monitor_motion_time(self) result(time)
+        class(solution_monitor), intent(in) :: self
+        real(wp) :: rate
+        rate = max(self%weights%rate, self%work_rate)
+        time = huge(1.0_wp)
+        if (rate > 0.0_wp .and. rate < huge(1.0_wp)) time = 1.0_wp/rate
+    end function monitor_motion_time
 
     logical function monitor_weights_due(self, t) result(due)
         class(solution_monitor), intent(in) :: self
