@@ -46,10 +46,11 @@ module regdae_solver_front
                                  outcome_alarm, outcome_failed, outcome_exhausted
     use regdae_integrator_switching, only: hand_over
     use regdae_auto_parameters, only: time_resolution
+    use regdae_events, only: event_locator, event_functions
     implicit none
     private
 
-    public :: solver_stats
+    public :: solver_stats, event_functions
 
     !> A regularized DAE solver on IDA (see the module documentation).
     type, public :: solver_engine
@@ -59,6 +60,8 @@ module regdae_solver_front
         integer :: last_stat = regdae_err_not_initialized
         character(len=:), allocatable :: last_message
         logical :: assigned = .false.   ! the target of an assignment (which does not copy)
+        type(event_locator) :: ev       ! the event functions and their search (regdae_events)
+        type(solver_core), pointer :: ev_core => null()   ! the problem the search started on
     contains
         !> Set up a problem: check the input, compute consistent initial values
         !! and create the IDA objects. `init(problem, t0, x0, opts, stat)` for a
@@ -76,6 +79,12 @@ module regdae_solver_front
         !> Integrate to `tout`; return x(tout), the multiplier y(tout) (lambda for a
         !! mechanical problem) and, for second-order problems, optionally v(tout).
         procedure :: advance => solver_advance
+        !> Event functions: `set_events(fn, n, stat [, direction] [, stop])` (regdae_events;
+        !! n = 0 clears them). They persist across init.
+        procedure :: set_events => solver_set_events
+        !> After a return with regdae_root_found: per event function +1 (a root,
+        !! increasing), -1 (decreasing) or 0 (none at that time); length n.
+        procedure :: roots => solver_roots
         !> Statistics of the integration so far.
         procedure :: statistics => solver_statistics
         !> Message of the last call (empty after success).
@@ -318,9 +327,9 @@ contains
         type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
-        logical :: recoverable
-        integer :: nx, outcome
-        real(wp) :: t_reached, t_stop
+        logical :: recoverable, events, at_root, stop_user
+        integer :: nx, outcome, taken
+        real(wp) :: t_reached, t_stop, t_ask
 
         core => self%core
         if (.not. associated(core)) then
@@ -335,17 +344,53 @@ contains
         nx = core%nx
         if (.not. outputs_fit()) return
         t_reached = tout
+        at_root = .false.
+        events = self%ev%n > 0
         if (tout > core%t) then
             ! The integrator in charge to tout; with integrator=auto the explicit one hands
             ! over to the implicit one where the system is stiff, and back where it is not
             ! (regdae_integrator_switching). With stop_at_pass_end, the integrator stops
-            ! early at the end of a singular pass.
+            ! early at the end of a singular pass. With events, one step at a time, each
+            ! searched for roots (regdae_events); a stopping root ends the advance there.
+            stop_user = core%opts%stop_at_output
+            taken = 0
+            if (events) then
+                self%ev%found = 0
+                if (.not. (self%ev%primed .and. core%started .and. associated(self%ev_core, core))) then
+                    stepper => active_integrator(core)
+                    call self%ev%prime(stepper, core%t, nx, core%second_order, stat, msg)
+                    if (stat /= regdae_success) then
+                        call fail(stat, msg)
+                        return
+                    end if
+                    self%ev_core => core
+                end if
+            end if
             do
                 stepper => active_integrator(core)
                 u => stepper%state()
-                call stepper%advance(tout, t_stop, outcome, stat, msg)
+                t_ask = tout
+                if (events) then
+                    t_ask = self%ev%step_target(stepper%time(), stepper%last_step(), tout, time_resolution(core%t, tout))
+                    core%opts%stop_at_output = stop_user .and. t_ask == tout
+                    taken = taken + 1
+                    if (taken > core%opts%max_steps) then
+                        call fail(regdae_err_integration, 'max_steps = '//format_int(core%opts%max_steps)// &
+                                  ' steps taken without reaching tout = '//format_real(tout)//' (t = '// &
+                                  format_real(stepper%time())//')')
+                        return
+                    end if
+                end if
+                call stepper%advance(t_ask, t_stop, outcome, stat, msg)
+                core%opts%stop_at_output = stop_user
+                if (events) then
+                    if (.not. search_roots()) return
+                    if (at_root) exit
+                end if
                 select case (outcome)
                 case (outcome_reached)
+                    if (t_ask < tout .and. .not. core%monitor%alarm) cycle
+                    t_reached = t_ask
                     exit
                 case (outcome_pass_end)
                     t_reached = t_stop
@@ -373,6 +418,11 @@ contains
             end do
             core%t = t_reached
             core%started = .true.
+            if (events) then
+                stepper => active_integrator(core)
+                if (self%ev%t_state /= core%t) call stepper%interpolate(core%t, stat)
+                self%ev%t_state = core%t
+            end if
         end if
         stepper => active_integrator(core)
         u => stepper%state()
@@ -462,14 +512,46 @@ contains
             ok = .true.
         end function outputs_fit
 
+        ! The step just taken searched for roots up to its end (or tout); false
+        ! (recorded) on a failure. A stopping root: at_root, the time there.
+        logical function search_roots() result(ok)
+            logical :: stop_here
+            real(wp) :: t_hi
+            ok = .true.
+            select case (outcome)
+            case (outcome_reached, outcome_pass_end, outcome_stiff, outcome_nonstiff)
+                t_hi = t_stop
+                if (outcome == outcome_reached) t_hi = min(stepper%time(), tout)
+                call self%ev%scan(stepper, t_hi, stop_here, stat, msg)
+                if (len(self%ev%log) > 0) then
+                    call log_event(core, self%ev%log(:len(self%ev%log) - 1))
+                    self%ev%log = ''
+                end if
+                if (stat /= regdae_success) then
+                    call fail(stat, msg)
+                    ok = .false.
+                else if (stop_here) then
+                    at_root = .true.
+                    t_reached = self%ev%t_root
+                else if (outcome /= outcome_reached .and. self%ev%t_state /= t_stop) then
+                    call stepper%interpolate(t_stop, stat)   ! the state there for the hand-over
+                    self%ev%t_state = t_stop
+                end if
+            end select
+        end function search_roots
+
         ! Success at tout, or the resolution warning when the monitor flagged a new
-        ! unresolved singular pass during this advance (logged as an event too).
+        ! unresolved singular pass during this advance (logged as an event too); at a
+        ! stopping root, regdae_root_found.
         subroutine record_done()
             if (core%monitor%weights_new) then
                 core%monitor%weights_new = .false.
                 call log_event(core, core%monitor%weights_message)
             end if
-            if (core%monitor%unresolved_new) then
+            if (at_root) then
+                call self%record(regdae_root_found, 'an event function that stops has a root at t = '// &
+                                 format_real(core%t, 16), stat)
+            else if (core%monitor%unresolved_new) then
                 core%monitor%unresolved_new = .false.
                 call log_event(core, 't = '//format_real(core%t)//': unresolved: '//core%monitor%unresolved_message)
                 call self%record(regdae_warn_unresolved, core%monitor%unresolved_message, stat)
@@ -540,6 +622,31 @@ contains
         end function index2
     end subroutine solver_advance
 
+    subroutine solver_set_events(self, fn, n, stat, direction, stop)
+        class(solver_engine), intent(inout) :: self
+        class(event_functions), intent(in) :: fn   !! the event functions (copied)
+        integer, intent(in) :: n                   !! their number (0: no events)
+        integer, intent(out) :: stat               !! regdae_success or regdae_err_bad_input
+        integer, intent(in), optional :: direction(:)   !! per function: +1 increasing only, -1 decreasing
+                                                        !! only, 0 both (the default)
+        logical, intent(in), optional :: stop(:)   !! per function: return at its roots (the default) or
+                                                   !! log them and continue
+        character(len=:), allocatable :: msg
+        integer :: code
+        call self%ev%set(fn, n, code, msg, direction, stop)
+        call self%record(code, msg, stat)
+    end subroutine solver_set_events
+
+    function solver_roots(self) result(found)
+        class(solver_engine), intent(in) :: self
+        integer, allocatable :: found(:)
+        if (self%ev%n > 0) then
+            found = self%ev%found
+        else
+            allocate (found(0))
+        end if
+    end function solver_roots
+
     function solver_statistics(self) result(st)
         class(solver_engine), intent(in) :: self
         type(solver_stats) :: st
@@ -564,6 +671,7 @@ contains
             st%resolution_ratio = core%monitor%resolution_ratio
             st%weight_changes = core%monitor%weights%changes
             st%eps_changes = core%monitor%scales%eps_changes
+            st%roots_found = self%ev%total
         end associate
     end function solver_statistics
 

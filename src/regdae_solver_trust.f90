@@ -35,6 +35,7 @@ module regdae_solver_trust
     use regdae_second_order_problem, only: second_order_problem
     use regdae_higher_order_problem, only: higher_order_problem
     use regdae_solver_front, only: solver_engine, solver_stats
+    use regdae_events, only: event_functions
     use regdae_format, only: format_real, format_int
     implicit none
     private
@@ -111,6 +112,10 @@ module regdae_solver_trust
         !> Integrate to `tout`; return x(tout), the multiplier y(tout) (lambda for a
         !! mechanical problem) and, for second-order problems, optionally v(tout) and a(tout).
         procedure :: advance => trust_advance
+        !> Event functions: `set_events(fn, n, stat [, direction] [, stop])` (doc/api.md, Events).
+        procedure :: set_events => trust_set_events
+        !> After regdae_root_found: +1 / -1 / 0 per event function (a root there, its direction).
+        procedure :: roots => trust_roots
         !> Statistics of the integration so far.
         procedure :: statistics => trust_statistics
         !> Message of the last call (empty after success).
@@ -321,11 +326,11 @@ contains
                 call self%main%checkpoint(tc, zc, frozen, valid)
                 if (frozen .and. valid) call check_pass(self, t_now, ended, x, y, v, a, warn, warn_text)
             end if
-            if (.not. (t_now < tout)) exit
+            if (.not. (t_now < tout) .or. stat == regdae_root_found) exit
         end do
         if (associated(self%estimator)) then
             allocate (xe(size(x)))
-            call self%estimator%advance(tout, xe, stat=estat)
+            call self%estimator%advance(t_now, xe, stat=estat)
             if (estat >= 0) then
                 self%x_error = xe - x
                 self%error_norm = self%main%state_distance(xe, x)
@@ -342,8 +347,34 @@ contains
                 deallocate (self%estimator)
             end if
         end if
-        call record(self, warn, warn_text, stat)
+        if (stat == regdae_root_found) then
+            call record(self, stat, self%main%message())
+        else
+            call record(self, warn, warn_text, stat)
+        end if
     end subroutine trust_advance
+
+    subroutine trust_set_events(self, fn, n, stat, direction, stop)
+        class(regdae_solver), intent(inout) :: self
+        class(event_functions), intent(in) :: fn   !! the event functions (copied)
+        integer, intent(in) :: n                   !! their number (0: no events)
+        integer, intent(out) :: stat               !! regdae_success or regdae_err_bad_input
+        integer, intent(in), optional :: direction(:)   !! per function: +1, -1 or 0 (the default)
+        logical, intent(in), optional :: stop(:)   !! per function: stop at its roots (the default) or not
+        call ensure_engine(self)
+        call self%main%set_events(fn, n, stat, direction, stop)
+        call record(self, stat, self%main%message())
+    end subroutine trust_set_events
+
+    function trust_roots(self) result(found)
+        class(regdae_solver), intent(in) :: self
+        integer, allocatable :: found(:)
+        if (associated(self%main)) then
+            found = self%main%roots()
+        else
+            allocate (found(0))
+        end if
+    end function trust_roots
 
     ! The pass check at time t (the engine's current time; a pass is going on, or
     ! ended there if `ended`): the ladder started or continued from the
