@@ -180,11 +180,15 @@ contains
     !> The output time to ask of the integrator at time t (its last step h) so that
     !! it takes about one step: t + |h|/1000, or, before its first step, a
     !! millionth of the way to tout (at least 1000 time resolutions); never
-    !! beyond tout.
-    real(wp) function locator_step_target(self, t, h, tout, resolution) result(t_ask)
+    !! beyond tout. With `land` (stop_at_output), tout itself once t + 2|h|
+    !! reaches it (the integrator's step ends there).
+    real(wp) function locator_step_target(self, t, h, tout, resolution, land) result(t_ask)
         class(event_locator), intent(in) :: self
         real(wp), intent(in) :: t, h, tout, resolution
+        logical, intent(in) :: land
         real(wp) :: delta
+        t_ask = tout
+        if (land .and. t + 2*abs(h) >= tout .and. abs(h) > 0.0_wp) return
         if (abs(h) > 0.0_wp) then
             delta = 1.0e-3_wp*abs(h)
         else
@@ -230,11 +234,14 @@ contains
             real(wp), intent(in) :: t_end_
             logical, intent(in) :: dense
             logical :: any_root
+            real(wp) :: t_before
             t_end = t_end_
             do
+                t_before = self%t_lo
                 call locate(self, stepper, t_end, h, dense, any_root, stat, msg)
                 if (stat /= regdae_success) return
                 if (.not. any_root) exit
+                if (.not. (self%t_lo > t_before)) exit   ! no progress (a secant's root at t_lo)
                 call note_root(self)
                 if (any(self%found /= 0 .and. self%stops)) then
                     stop = .true.
@@ -369,10 +376,13 @@ contains
         real(c_double), pointer :: u(:)
         integer :: i
         do i = 1, self%n
-            if (e(i) /= 0.0_wp) then
-                self%sgn(i) = int(sign(1.0_wp, e(i)))
-            else if (self%found(i) /= 0) then
+            if (self%found(i) /= 0) then
+                ! a reported function: its new side, or none until its next nonzero value
+                ! (zero here, or the secant's root still on the old side)
                 self%sgn(i) = 0
+                if (e(i) /= 0.0_wp .and. int(sign(1.0_wp, e(i))) == self%found(i)) self%sgn(i) = self%found(i)
+            else if (e(i) /= 0.0_wp) then
+                self%sgn(i) = int(sign(1.0_wp, e(i)))
             end if
         end do
         self%e_lo = e

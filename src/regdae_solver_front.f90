@@ -371,7 +371,8 @@ contains
                 u => stepper%state()
                 t_ask = tout
                 if (events) then
-                    t_ask = self%ev%step_target(stepper%time(), stepper%last_step(), tout, time_resolution(core%t, tout))
+                    t_ask = self%ev%step_target(stepper%time(), stepper%last_step(), tout, time_resolution(core%t, tout), &
+                                                stop_user)
                     core%opts%stop_at_output = stop_user .and. t_ask == tout
                     taken = taken + 1
                     if (taken > core%opts%max_steps) then

@@ -10,7 +10,7 @@ module test_events
     use pendulum_problem, only: new_pendulum
     use slider_crank_problem, only: new_slider_crank, slider_crank_reduced
     use ex51_problem, only: new_ex51, orientation_psd
-    use reference_ode, only: integrate_reference
+    use crank_roots, only: crank_events, crank_reference_roots
     use regdae_testing, only: checker, test_case, new_test
     implicit none
     private
@@ -21,7 +21,7 @@ module test_events
     real(wp), parameter :: phi0 = 1.0_wp   ! the pendulum's start, at rest
 
     !> Event functions chosen by code: 1: x1, 2: v1, 3: x1 - shift, 4: 2 x1,
-    !! 5: x1 - pi/4 (the crank's angle), 6: x - 1.5, 7: x - 1 (Example 5.1).
+    !! 6: x - 1.5, 7: x - 1 (Example 5.1).
     type, extends(event_functions) :: chosen_events
         integer, allocatable :: which(:)
         real(wp) :: shift = 0.0_wp
@@ -61,8 +61,6 @@ contains
                 e(i) = x(1) - self%shift
             case (4)
                 e(i) = 2.0_wp*x(1)
-            case (5)
-                e(i) = x(1) - pi/4
             case (6)
                 e(i) = x(1) - 1.5_wp
             case default
@@ -294,12 +292,13 @@ contains
         type(checker), intent(inout) :: chk
         type(regdae_solver) :: solver
         type(solver_options) :: opts
-        type(chosen_events) :: ev
+        type(crank_events) :: ev
         real(wp) :: x(2), rtol, err
         real(wp), allocatable :: ref(:, :)
         integer :: stat, level, k, kind, got
         character(len=:), allocatable :: log, what
-        call crank_reference(6.0_wp, ref)
+        call crank_reference_roots(9.8_wp, pi/2, 6.0_wp, ref, stat)
+        call chk%equal(stat, 0, 'crank: the reference (CVODE)')
         do level = 6, 8, 2
             rtol = 10.0_wp**(-level)
             opts = solver_options()
@@ -307,7 +306,6 @@ contains
             opts%atol = rtol
             what = 'crank rtol '//format_real(rtol)
             call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [0.0_wp, 0.0_wp], opts, stat)
-            ev%which = [1, 5, 2]
             call solver%set_events(ev, 3, stat, stop=[.false., .false., .false.])
             call solver%advance(6.0_wp, x, stat=stat)
             call chk%true(stat >= 0 .and. stat /= regdae_root_found, what//': tout reached')
@@ -348,66 +346,6 @@ contains
             i = i + j
         end do
     end function log_distance
-
-    ! The reduced ODE's roots over [0, t_end]: ref(1, k) the time, ref(2, k) the
-    ! function (1: th1, 2: th1 - pi/4, 3: th1'), from a grid of 0.01 and Newton
-    ! steps along CVODE's solution from the grid point before each sign change.
-    subroutine crank_reference(t_end, ref)
-        real(wp), intent(in) :: t_end
-        real(wp), allocatable, intent(out) :: ref(:, :)
-        type(slider_crank_reduced) :: sys
-        integer, parameter :: ng = 600
-        real(wp) :: times(ng), states(2, ng), y(2), ya(2), ta, tau, dt, val, slope, f(2), prev(3), now(3), one(2, 1)
-        integer :: k, kind, it, stat
-        sys%gravity = 9.8_wp
-        times = [(t_end*k/ng, k = 1, ng)]
-        call integrate_reference(sys, 0.0_wp, [pi/2, 0.0_wp], times, states, 1.0e-12_wp, 1.0e-12_wp, stat)
-        allocate (ref(2, 0))
-        prev = values3([pi/2, 0.0_wp])
-        prev(1) = 1.0_wp   ! the start (th1 = pi/2, th1' = 0): only th1 - pi/4 has a sign
-        prev(3) = -1.0_wp
-        do k = 1, ng
-            now = values3(states(:, k))
-            do kind = 1, 3
-                if (sign(1.0_wp, now(kind)) == sign(1.0_wp, prev(kind))) cycle
-                if (k == 1) then
-                    ta = 0.0_wp
-                    ya = [pi/2, 0.0_wp]
-                else
-                    ta = times(k - 1)
-                    ya = states(:, k - 1)
-                end if
-                ! Newton on tau, each iterate integrated afresh from the grid point (forward)
-                tau = 0.0_wp
-                y = ya
-                do it = 1, 30
-                    call sys%rhs(ta + tau, y, f)
-                    val = values_one(y, kind)
-                    slope = merge(f(2), y(2), kind == 3)
-                    dt = -val/slope
-                    tau = max(0.0_wp, min(times(1), tau + dt))
-                    if (abs(dt) < 1.0e-14_wp) exit
-                    call integrate_reference(sys, ta, ya, [ta + tau], one, 1.0e-12_wp, 1.0e-12_wp, stat)
-                    y = one(:, 1)
-                end do
-                ref = reshape([ref, [ta + tau, real(kind, wp)]], [2, size(ref, 2) + 1])
-            end do
-            prev = now
-        end do
-    contains
-        function values3(s) result(v)
-            real(wp), intent(in) :: s(2)
-            real(wp) :: v(3)
-            v = [s(1), s(1) - pi/4, s(2)]
-        end function values3
-        real(wp) function values_one(s, kind)
-            real(wp), intent(in) :: s(2)
-            integer, intent(in) :: kind
-            real(wp) :: v(3)
-            v = values3(s)
-            values_one = v(kind)
-        end function values_one
-    end subroutine crank_reference
 
     ! Example 5.1 (first order, index 2, x = t + 1 exactly, singular at t = 0)
     ! from t = -1: e = x - 1.5 stops at t = 0.5 (within 10 rtol), and e = x - 1
