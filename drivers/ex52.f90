@@ -14,6 +14,7 @@
 !!   passes; th1 through pi/4; th1' = 0, the turning points th1 = +-pi/2), their times against the
 !!   reduced ODE's (CVODE at 1e-12 and Newton's method): summary fields roots=... (found)
 !!   roots_ref=... (in the reference) max_root_err=... (the largest time error of a found root)
+!!   root_err_th1=... root_err_pi4=... root_err_w1=... (the same per function)
 !! The reference is the reduced one-degree-of-freedom ODE on the physical branch, integrated by
 !! CVODE at rtol = atol = 1e-13.
 !! Output: '#' lines, the table 't th1 th2 w1 w2 lambda g3 energy' (lambda of eq. 5.2), and the last line
@@ -196,7 +197,7 @@ contains
     function root_fields() result(text)
         character(len=:), allocatable :: text, log
         real(wp), allocatable :: rref(:, :)
-        real(wp) :: worst, d, tl
+        real(wp) :: worst(3), d, tl
         integer :: j, a, b, kind, rs
         text = ''
         if (.not. events) return
@@ -215,12 +216,13 @@ contains
                 do j = 1, size(rref, 2)
                     if (nint(rref(2, j)) == kind) d = min(d, abs(rref(1, j) - tl))
                 end do
-                worst = max(worst, d)
+                worst(kind) = max(worst(kind), d)
             end if
             a = b + 1
         end do
         text = ' roots='//format_int(st%roots_found)//' roots_ref='//format_int(size(rref, 2))// &
-               ' max_root_err='//num(worst)
+               ' max_root_err='//num(maxval(worst))//' root_err_th1='//num(worst(1))//' root_err_pi4='// &
+               num(worst(2))//' root_err_w1='//num(worst(3))
         if (rs /= 0) text = text//' reference_failed'
     end function root_fields
 

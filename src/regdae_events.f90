@@ -180,7 +180,7 @@ contains
     !> The output time to ask of the integrator at time t (its last step h) so that
     !! it takes about one step: t + |h|/1000, or, before its first step, a
     !! millionth of the way to tout (at least 1000 time resolutions); never
-    !! beyond tout. With `land` (stop_at_output), tout itself once t + 2|h|
+    !! beyond tout. With `land` (stop_at_output), tout itself once t + |h|
     !! reaches it (the integrator's step ends there).
     real(wp) function locator_step_target(self, t, h, tout, resolution, land) result(t_ask)
         class(event_locator), intent(in) :: self
@@ -188,7 +188,7 @@ contains
         logical, intent(in) :: land
         real(wp) :: delta
         t_ask = tout
-        if (land .and. t + 2*abs(h) >= tout .and. abs(h) > 0.0_wp) return
+        if (land .and. t + abs(h) >= tout .and. abs(h) > 0.0_wp) return
         if (abs(h) > 0.0_wp) then
             delta = 1.0e-3_wp*abs(h)
         else

@@ -365,8 +365,16 @@ contains
                     end if
                     self%ev_core => core
                 end if
+                ! the rest of the integrator's last step, beyond the previous tout
+                outcome = outcome_reached
+                stepper => active_integrator(core)
+                t_stop = stepper%time()
+                if (t_stop > self%ev%t_lo .and. core%started) then
+                    if (.not. search_roots()) return
+                end if
             end if
             do
+                if (at_root) exit
                 stepper => active_integrator(core)
                 u => stepper%state()
                 t_ask = tout
