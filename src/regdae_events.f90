@@ -202,6 +202,7 @@ contains
     !! stops, `stop` is true, t_root and found() are set and the integrator's state
     !! is at t_root. Without a stopping root the search has
     !! reached t_hi (the integrator's state is left where the last evaluation was).
+    !! msg is allocated only on a failure.
     subroutine locator_scan(self, stepper, t_hi, stop, stat, msg)
         class(event_locator), intent(inout) :: self
         class(integrator), intent(inout), target :: stepper
@@ -212,7 +213,6 @@ contains
         real(wp) :: t_b, h, t_end
         stop = .false.
         stat = regdae_success
-        msg = ''
         if (.not. (t_hi > self%t_lo)) return
         h = abs(stepper%last_step())
         t_b = stepper%time() - h

@@ -327,7 +327,7 @@ contains
         type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
-        logical :: recoverable, events, at_root, stop_user
+        logical :: recoverable, events, at_root, stop_user, held
         integer :: nx, outcome, taken
         real(wp) :: t_reached, t_stop, t_ask
 
@@ -390,9 +390,23 @@ contains
                         return
                     end if
                 end if
-                call stepper%advance(t_ask, t_stop, outcome, stat, msg)
+                held = .false.
+                if (events .and. core%stop_at_pass_end .and. core%started .and. stepper%time() < tout) then
+                    ! the step end passed over (an implicit integrator samples it now): a pass end
+                    ! there stops before the next step, as it does without events
+                    call stepper%advance(stepper%time(), t_stop, outcome, stat, msg)
+                    held = (outcome /= outcome_reached .or. core%monitor%pass_ended)
+                    if (outcome == outcome_reached .and. held) outcome = outcome_pass_end
+                end if
+                if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg)
                 core%opts%stop_at_output = stop_user
                 if (events) then
+                    ! a step beyond t_ask: the integrator did not report a pass end there
+                    if (outcome == outcome_reached .and. core%stop_at_pass_end .and. core%monitor%pass_ended .and. &
+                        stepper%time() < tout) then
+                        outcome = outcome_pass_end
+                        t_stop = stepper%time()
+                    end if
                     if (.not. search_roots()) return
                     if (at_root) exit
                 end if
