@@ -20,6 +20,11 @@ C               Example 5.1's singularity unresolved), 4 (Baumgarte's
 C               multiplier undefined at T = 0); the run goes on after
 C               it; DREGDAEMSG gives the last call's message, also after
 C               a refused call
+C     ROOTS     DREGDAER and DREGDAEMR (NRT, RT, JROOT) on the circle
+C               x = (cos t, sin t): IDID = 5 at each root (pi/2, pi,
+C               3 pi/2 of X2 and X1) within 10 RTOL, JROOT the
+C               function and its direction, T the root, the run goes on
+C               to TOUT (IDID 3) after them; RPAR and IPAR reach RT
 C     RESTART   INFO(1) = 0 again on the same IWORK without DREGDAEFREE
 C               (after a success, a refused start, an inconsistent x0)
 C               gives a fresh run, bit for bit, and frees the old solver
@@ -41,10 +46,12 @@ C               corrupted for a call and restored
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'VECTOR') CALL VECTOR(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'WARN') CALL WARN(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'RESTART') CALL RESTRT(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'ROOTS') CALL ROOTS(NCHK)
       IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
          WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
      *        SUITE(1:LEN_TRIM(SUITE)),
-     *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN, RESTART)'
+     *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN, RESTART, ',
+     *        'ROOTS)'
          STOP 2
       END IF
       WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
@@ -501,6 +508,65 @@ C     INFO(1) = -1 refused, with its message, after a failure
       CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'INFO(1) = -1') .GT. 0,
      *     'INFO(1) = -1: refused, its message', NCHK)
       CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+C     ---- ROOTS -------------------------------------------------------
+C     The circle to TOUT = 5 with RT = (X2, X1): roots of X1 at pi/2
+C     (decreasing) and 3 pi/2 (increasing), of X2 at pi (decreasing);
+C     DREGDAER (first order) and DREGDAEMR (the particle).
+      SUBROUTINE ROOTS(NCHK)
+      EXTERNAL CF, CB, CG, CGX, MM, MF, CRT
+      INTEGER NCHK(2), INFO(20), IWORK(22), IPAR(2), JROOT(2), IDID,
+     *     K, KIND, EXPECT(2, 3)
+      DOUBLE PRECISION RWORK(20), RPAR(2), T, X(2), Y(1), V(2), PI,
+     *     TROOT(3)
+      DATA EXPECT /0, -1, -1, 0, 0, 1/
+      PI = ACOS(-1.0D0)
+      TROOT(1) = 0.5D0 * PI
+      TROOT(2) = PI
+      TROOT(3) = 1.5D0 * PI
+      DO 20 KIND = 1, 2
+         CALL CLEAR(INFO, RWORK, IWORK)
+         CALL CIRCLE0(T, X, IPAR)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         RPAR(1) = 0.0D0
+         DO 10 K = 1, 4
+            IF (KIND .EQ. 1) THEN
+               CALL DREGDAER(CF, CB, CG, CGX, CGX, 2, 1, T, X, Y, 5.0D0,
+     *              INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22,
+     *              RPAR, IPAR, CRT, 2, JROOT)
+            ELSE
+               CALL DREGDAEMR(MM, MF, CG, CGX, CGX, 2, 1, T, X, V, Y,
+     *              5.0D0, INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK,
+     *              22, RPAR, IPAR, CRT, 2, JROOT)
+            END IF
+            IF (K .LE. 3) THEN
+               CALL CHECK(IDID .EQ. 5, 'IDID 5 at a root', NCHK)
+               CALL CHECK(ABS(T - TROOT(K)) .LE. 1.0D-7,
+     *              'the root within 10 RTOL', NCHK)
+               CALL CHECK(JROOT(1) .EQ. EXPECT(1, K) .AND.
+     *              JROOT(2) .EQ. EXPECT(2, K), 'JROOT', NCHK)
+               IF (IDID .NE. 5 .OR. ABS(T - TROOT(K)) .GT. 1.0D-7)
+     *              WRITE (*, '(A, 2I3, 1P, E24.15)')
+     *              '    kind, root, T', KIND, K, T
+            ELSE
+               CALL CHECK(IDID .EQ. 3 .AND. T .EQ. 5.0D0,
+     *              'TOUT after the roots', NCHK)
+            END IF
+   10    CONTINUE
+         CALL CHECK(RPAR(1) .GT. 0.0D0, 'RPAR reaches RT', NCHK)
+         CALL DREGDAEFREE(IWORK, 22)
+   20 CONTINUE
+      END
+C
+C     RT: X2 and X1; counts its calls in RPAR(1).
+      SUBROUTINE CRT(N, T, X, V, NRT, RVAL, RPAR, IPAR)
+      INTEGER N, NRT, IPAR(*)
+      DOUBLE PRECISION T, X(N), V(N), RVAL(NRT), RPAR(*)
+      RVAL(1) = X(2)
+      RVAL(2) = X(1)
+      RPAR(1) = RPAR(1) + 1.0D0
       END
 C
 C     ---- the problems ------------------------------------------------
