@@ -37,7 +37,7 @@ module regdae_dassl
     ! INFO: DASSL's entries 1-11 (DDASPK's 12-15 must be 0) and regdae's 16-20.
     integer, parameter :: info_start = 1         ! 0: first call of a problem; 1: continue
     integer, parameter :: info_vector_tol = 2    ! 1: ATOL a vector (RTOL too, with equal entries)
-    integer, parameter :: info_intermediate = 3  ! 1: return after every step (not available)
+    integer, parameter :: info_intermediate = 3  ! 1: return after every step (IDID = 1)
     integer, parameter :: info_tstop = 4         ! 1: do not pass TSTOP = RWORK(1)
     integer, parameter :: info_hmax = 7          ! 1: HMAX = RWORK(2)
     integer, parameter :: info_h0 = 8            ! 1: H0 = RWORK(3)
@@ -80,7 +80,7 @@ module regdae_dassl
     ! DREGDAER and DREGDAEMR) a root of RT, as DDASKR's. DDASKR's 4 (the initial values
     ! alone, INFO(14) = 1, refused here) cannot occur.
     integer, parameter :: idid_exact = 2, idid_interpolated = 3, idid_multiplier_undefined = 4, idid_unresolved = 6
-    integer, parameter :: idid_root = 5
+    integer, parameter :: idid_root = 5, idid_step = 1   ! a root of RT; INFO(3) = 1: a step short of TOUT
     integer, parameter :: idid_user_stop = -11, idid_initial_values = -12, idid_bad_input = -33
 
     integer, parameter :: kind_first_order = 1, kind_mechanical = 2
@@ -128,6 +128,7 @@ contains
         if (.not. open_call(kind_first_order, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
                             opts)) return
         call attach(s, g, gx, gt, rpar, ipar)
+        call s%solver%return_each_step(info(info_intermediate) == 1)
         s%routines%f => f
         s%routines%b => b
         stat = regdae_success
@@ -175,6 +176,7 @@ contains
         if (.not. open_call(kind_mechanical, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
                             opts)) return
         call attach(s, g, gx, gt, rpar, ipar)
+        call s%solver%return_each_step(info(info_intermediate) == 1)
         s%routines%mass => mass
         s%routines%forces => forces
         stat = regdae_success
@@ -393,6 +395,7 @@ contains
         select case (stat)
         case (regdae_success)
             idid = merge(idid_exact, idid_interpolated, s%exact_stops)
+            if (st%t < tout) idid = idid_step
         case (regdae_warn_multiplier_undefined)
             idid = idid_multiplier_undefined
         case (regdae_warn_unresolved)
@@ -410,7 +413,7 @@ contains
         case default
             idid = stat
         end select
-        if (idid == idid_root) then
+        if (idid == idid_root .or. idid == idid_step) then
             t = st%t
             info(info_start) = 1
         else if (idid > 0) then
@@ -479,7 +482,7 @@ contains
         end do
         do i = 3, 15
             if (len(msg) > 0) exit
-            if (info(i) /= 0 .and. any(i == [info_intermediate, 5, 6, 9, 10, 12, 13, 14, 15])) &
+            if (info(i) /= 0 .and. any(i == [5, 6, 9, 10, 12, 13, 14, 15])) &
                 msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)
         end do
         if (len(msg) > 0) return
@@ -542,9 +545,6 @@ contains
         integer, intent(in) :: i
         character(len=:), allocatable :: text
         select case (i)
-        case (3)
-            text = 'a return after every step, which DREGDAE does not have (the singular-pass checks and the '// &
-                   'integrator switching work between output times): set INFO(3) = 0 and ask for closer TOUT'
         case (5)
             text = 'a JAC routine, which DREGDAE does not take (it forms the Jacobian of the regularized system '// &
                    'itself from GX and difference quotients): set INFO(5) = 0'

@@ -62,6 +62,7 @@ module regdae_solver_front
         logical :: assigned = .false.   ! the target of an assignment (which does not copy)
         type(event_locator) :: ev       ! the event functions and their search (regdae_events)
         type(solver_core), pointer :: ev_core => null()   ! the problem the search started on
+        logical :: each_step = .false.  ! advance returns after every step (DASSL's INFO(3) = 1)
     contains
         !> Set up a problem: check the input, compute consistent initial values
         !! and create the IDA objects. `init(problem, t0, x0, opts, stat)` for a
@@ -85,6 +86,8 @@ module regdae_solver_front
         !> After a return with regdae_root_found: per event function +1 (a root,
         !! increasing), -1 (decreasing) or 0 (none at that time); length n.
         procedure :: roots => solver_roots
+        !> advance returns after every step of the integrator (on) or at tout (off, the default).
+        procedure :: return_each_step => solver_return_each_step
         !> Statistics of the integration so far.
         procedure :: statistics => solver_statistics
         !> Message of the last call (empty after success).
@@ -305,6 +308,30 @@ module regdae_solver_front
             class(solver_engine), intent(inout) :: self
             character(len=*), intent(in) :: text
         end subroutine engine_note_event
+
+        module subroutine solver_set_events(self, fn, n, stat, direction, stop)
+            class(solver_engine), intent(inout) :: self
+            class(event_functions), intent(in) :: fn        !! the event functions (copied)
+            integer, intent(in) :: n                        !! their number (0: no events)
+            integer, intent(out) :: stat                    !! regdae_success or regdae_err_bad_input
+            integer, intent(in), optional :: direction(:)   !! per function: +1, -1 or 0 (both, the default)
+            logical, intent(in), optional :: stop(:)        !! per function: stop at its roots (the default)
+        end subroutine solver_set_events
+
+        module subroutine solver_return_each_step(self, on)
+            class(solver_engine), intent(inout) :: self
+            logical, intent(in) :: on   !! return after every step (the state at its end, before tout)
+        end subroutine solver_return_each_step
+
+        module function solver_roots(self) result(found)
+            class(solver_engine), intent(in) :: self
+            integer, allocatable :: found(:)
+        end function solver_roots
+
+        module function solver_statistics(self) result(st)
+            class(solver_engine), intent(in) :: self
+            type(solver_stats) :: st
+        end function solver_statistics
     end interface
 
 contains
@@ -327,7 +354,7 @@ contains
         type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
-        logical :: recoverable, events, at_root, stop_user, held
+        logical :: recoverable, events, at_root, stop_user, held, driving
         integer :: nx, outcome, taken
         real(wp) :: t_reached, t_stop, t_ask
 
@@ -346,6 +373,7 @@ contains
         t_reached = tout
         at_root = .false.
         events = self%ev%n > 0
+        driving = events .or. self%each_step   ! one step at a time
         if (tout > core%t) then
             ! The integrator in charge to tout; with integrator=auto the explicit one hands
             ! over to the implicit one where the system is stiff, and back where it is not
@@ -378,7 +406,7 @@ contains
                 stepper => active_integrator(core)
                 u => stepper%state()
                 t_ask = tout
-                if (events) then
+                if (driving) then
                     t_ask = self%ev%step_target(stepper%time(), stepper%last_step(), tout, time_resolution(core%t, tout), &
                                                 stop_user)
                     core%opts%stop_at_output = stop_user .and. t_ask == tout
@@ -391,7 +419,7 @@ contains
                     end if
                 end if
                 held = .false.
-                if (events .and. core%stop_at_pass_end .and. core%started .and. stepper%time() < tout) then
+                if (driving .and. core%stop_at_pass_end .and. core%started .and. stepper%time() < tout) then
                     ! the step end passed over (an implicit integrator samples it now): a pass end
                     ! there stops before the next step, as it does without events
                     call stepper%advance(stepper%time(), t_stop, outcome, stat, msg)
@@ -400,20 +428,24 @@ contains
                 end if
                 if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg)
                 core%opts%stop_at_output = stop_user
-                if (events) then
+                if (driving) then
                     ! a step beyond t_ask: the integrator did not report a pass end there
                     if (outcome == outcome_reached .and. core%stop_at_pass_end .and. core%monitor%pass_ended .and. &
                         stepper%time() < tout) then
                         outcome = outcome_pass_end
                         t_stop = stepper%time()
                     end if
+                end if
+                if (events) then
                     if (.not. search_roots()) return
                     if (at_root) exit
                 end if
                 select case (outcome)
                 case (outcome_reached)
-                    if (t_ask < tout .and. .not. core%monitor%alarm) cycle
                     t_reached = t_ask
+                    if (self%each_step .and. t_ask < tout .and. stepper%time() < tout) t_reached = stepper%time()
+                    if (t_ask < tout .and. .not. core%monitor%alarm .and. .not. self%each_step) cycle
+                    if (self%each_step .and. t_ask < tout .and. .not. (stepper%time() < tout)) cycle
                     exit
                 case (outcome_pass_end)
                     t_reached = t_stop
@@ -441,9 +473,9 @@ contains
             end do
             core%t = t_reached
             core%started = .true.
-            if (events) then
+            if (driving) then
                 stepper => active_integrator(core)
-                if (self%ev%t_state /= core%t) call stepper%interpolate(core%t, stat)
+                if (self%ev%t_state /= core%t .or. .not. events) call stepper%interpolate(core%t, stat)
                 self%ev%t_state = core%t
             end if
         end if
@@ -644,59 +676,6 @@ contains
             index2 = core%second_order .and. core%opts%index == 2
         end function index2
     end subroutine solver_advance
-
-    subroutine solver_set_events(self, fn, n, stat, direction, stop)
-        class(solver_engine), intent(inout) :: self
-        class(event_functions), intent(in) :: fn   !! the event functions (copied)
-        integer, intent(in) :: n                   !! their number (0: no events)
-        integer, intent(out) :: stat               !! regdae_success or regdae_err_bad_input
-        integer, intent(in), optional :: direction(:)   !! per function: +1 increasing only, -1 decreasing
-                                                        !! only, 0 both (the default)
-        logical, intent(in), optional :: stop(:)   !! per function: return at its roots (the default) or
-                                                   !! log them and continue
-        character(len=:), allocatable :: msg
-        integer :: code
-        call self%ev%set(fn, n, code, msg, direction, stop)
-        call self%record(code, msg, stat)
-    end subroutine solver_set_events
-
-    function solver_roots(self) result(found)
-        class(solver_engine), intent(in) :: self
-        integer, allocatable :: found(:)
-        if (self%ev%n > 0) then
-            found = self%ev%found
-        else
-            allocate (found(0))
-        end if
-    end function solver_roots
-
-    function solver_statistics(self) result(st)
-        class(solver_engine), intent(in) :: self
-        type(solver_stats) :: st
-        class(integrator), pointer :: active
-
-        st%t = self%t
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            st%switches = core%switches
-            ! the implicit integrator's counts (none if it never ran) plus the explicit one's;
-            ! the last step of the one in charge
-            active => active_integrator(core)
-            if (allocated(core%stiff)) call core%stiff%statistics(st, associated(active, core%stiff))
-            if (allocated(core%nonstiff)) call core%nonstiff%statistics(st, associated(active, core%nonstiff))
-            st%singular_passes = core%monitor%n_singular
-            st%sigma_min = core%monitor%sigma_min
-            st%velocity_jump = core%monitor%jump_max
-            st%max_drift = core%monitor%drift_max
-            st%invariant_change = core%monitor%invariant_change
-            st%work_defect = core%monitor%work_defect
-            st%unresolved_passes = core%monitor%unresolved
-            st%resolution_ratio = core%monitor%resolution_ratio
-            st%weight_changes = core%monitor%weights%changes
-            st%eps_changes = core%monitor%scales%eps_changes
-            st%roots_found = self%ev%total
-        end associate
-    end function solver_statistics
 
     function solver_message(self) result(msg)
         class(solver_engine), intent(in) :: self

@@ -100,6 +100,7 @@ module regdae_solver_trust
         integer :: last_stat = regdae_err_not_initialized
         character(len=:), allocatable :: last_message
         logical :: assigned = .false.
+        logical :: each_step = .false.     ! advance returns after every step (return_each_step)
     contains
         !> Set up a problem (see regdae_solver_front for the three forms):
         !! `init(problem, t0, x0, opts, stat)` (order 1), `init(problem, t0, x0, v0, opts, stat)`
@@ -116,6 +117,9 @@ module regdae_solver_trust
         procedure :: set_events => trust_set_events
         !> After regdae_root_found: +1 / -1 / 0 per event function (a root there, its direction).
         procedure :: roots => trust_roots
+        !> `return_each_step(on)`: advance returns after every step (before tout, the state at
+        !! the step's end), as DASSL's INFO(3) = 1; off by default.
+        procedure :: return_each_step => trust_return_each_step
         !> Statistics of the integration so far.
         procedure :: statistics => trust_statistics
         !> Message of the last call (empty after success).
@@ -326,7 +330,7 @@ contains
                 call self%main%checkpoint(tc, zc, frozen, valid)
                 if (frozen .and. valid) call check_pass(self, t_now, ended, x, y, v, a, warn, warn_text)
             end if
-            if (.not. (t_now < tout) .or. stat == regdae_root_found) exit
+            if (.not. (t_now < tout) .or. stat == regdae_root_found .or. self%each_step) exit
         end do
         if (associated(self%estimator)) then
             allocate (xe(size(x)))
@@ -365,6 +369,14 @@ contains
         call self%main%set_events(fn, n, stat, direction, stop)
         call record(self, stat, self%main%message())
     end subroutine trust_set_events
+
+    subroutine trust_return_each_step(self, on)
+        class(regdae_solver), intent(inout) :: self
+        logical, intent(in) :: on   !! return after every step
+        call ensure_engine(self)
+        self%each_step = on
+        call self%main%return_each_step(on)
+    end subroutine trust_return_each_step
 
     function trust_roots(self) result(found)
         class(regdae_solver), intent(in) :: self

@@ -25,6 +25,10 @@ C               x = (cos t, sin t): IDID = 5 at each root (pi/2, pi,
 C               3 pi/2 of X2 and X1) within 10 RTOL, JROOT the
 C               function and its direction, T the root, the run goes on
 C               to TOUT (IDID 3) after them; RPAR and IPAR reach RT
+C     STEPS     INFO(3) = 1: IDID = 1 after every step (T the step's
+C               end, X there on the circle, IWORK(11) one more step
+C               each time), then IDID = 3 at TOUT; the same X at TOUT
+C               as INFO(3) = 0 to 1E-7
 C     RESTART   INFO(1) = 0 again on the same IWORK without DREGDAEFREE
 C               (after a success, a refused start, an inconsistent x0)
 C               gives a fresh run, bit for bit, and frees the old solver
@@ -47,11 +51,12 @@ C               corrupted for a call and restored
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'WARN') CALL WARN(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'RESTART') CALL RESTRT(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'ROOTS') CALL ROOTS(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'STEPS') CALL STEPS(NCHK)
       IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
          WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
      *        SUITE(1:LEN_TRIM(SUITE)),
      *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN, RESTART, ',
-     *        'ROOTS)'
+     *        'ROOTS, STEPS)'
          STOP 2
       END IF
       WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
@@ -130,11 +135,10 @@ C     RWORK too small
       CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'LRW = 19') .GT. 0
      *     .AND. INDEX(MSG, 'LRW >= 20') .GT. 0, 'LRW 19', NCHK)
       CALL DREGDAEFREE(IWORK, 22)
-C     INFO entries: intermediate output, JAC, DDASPK's, a method
+C     INFO entries: INFO(3) not 0/1, JAC, DDASPK's, a method
 C     that is none, an index for DREGDAE, not 0/1 (INFO(2): VECTOR)
 C     (each message says why, and what to set instead)
-      CALL ONEBAD(3, 1, 'return after every step', NCHK)
-      CALL ONEBAD(3, 1, 'set INFO(3) = 0', NCHK)
+      CALL ONEBAD(3, 2, 'INFO(3) = 2 must be 0 or 1', NCHK)
       CALL ONEBAD(5, 1, 'a JAC routine', NCHK)
       CALL ONEBAD(5, 1, 'set INFO(5) = 0', NCHK)
       CALL ONEBAD(6, 1, 'a banded matrix', NCHK)
@@ -448,7 +452,7 @@ C     a fresh run to T = 2 (the reference), freed
       FRESH(2) = X(2)
       CALL DREGDAEFREE(IWORK, 22)
 C     the same IWORK restarted three times without DREGDAEFREE: after
-C     a success, after a refused start (INFO(3) = 1), after x0 off the
+C     a success, after a refused start (INFO(3) = 2), after x0 off the
 C     circle (IDID = -12); each restart runs as the fresh run
       CALL CLEAR(INFO, RWORK, IWORK)
       DO 10 K = 1, 3
@@ -459,7 +463,7 @@ C     circle (IDID = -12); each restart runs as the fresh run
          CALL CHECK(IDID .EQ. 3, 'a run to T = 1', NCHK)
          INFO(1) = 0
          IF (K .EQ. 2) THEN
-            INFO(3) = 1
+            INFO(3) = 2
             CALL CIRCLE0(T, X, IPAR)
             CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK, RPAR,
      *           IPAR)
@@ -556,6 +560,76 @@ C     DREGDAER (first order) and DREGDAEMR (the particle).
             END IF
    10    CONTINUE
          CALL CHECK(RPAR(1) .GT. 0.0D0, 'RPAR reaches RT', NCHK)
+         CALL DREGDAEFREE(IWORK, 22)
+   20 CONTINUE
+      END
+C
+C     ---- STEPS -------------------------------------------------------
+C     The circle to TOUT = 1 with INFO(3) = 1 (DREGDAE and DREGDAEM).
+      SUBROUTINE STEPS(NCHK)
+      EXTERNAL MM, MF, CG, CGX
+      INTEGER NCHK(2), INFO(20), IWORK(22), IPAR(2), IDID, K, NSTEP,
+     *     KIND, LAST
+      DOUBLE PRECISION RWORK(20), RPAR(2), T, X(2), Y(1), V(2), XREF(2),
+     *     TPREV, ERR
+      LOGICAL ONE
+      DO 20 KIND = 1, 2
+C        the reference: INFO(3) = 0
+         CALL CLEAR(INFO, RWORK, IWORK)
+         CALL CIRCLE0(T, X, IPAR)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         IF (KIND .EQ. 1) THEN
+            CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK, RPAR,
+     *           IPAR)
+         ELSE
+            CALL DREGDAEM(MM, MF, CG, CGX, CGX, 2, 1, T, X, V, Y, 1.0D0,
+     *           INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22, RPAR,
+     *           IPAR)
+         END IF
+         XREF(1) = X(1)
+         XREF(2) = X(2)
+         CALL DREGDAEFREE(IWORK, 22)
+         CALL CLEAR(INFO, RWORK, IWORK)
+         INFO(3) = 1
+         CALL CIRCLE0(T, X, IPAR)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         NSTEP = 0
+         ONE = .TRUE.
+         ERR = 0.0D0
+         LAST = 0
+         IDID = 1
+         K = 0
+         DO WHILE (IDID .EQ. 1 .AND. K .LT. 100000)
+            K = K + 1
+            TPREV = T
+            IF (KIND .EQ. 1) THEN
+               CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK,
+     *              RPAR, IPAR)
+            ELSE
+               CALL DREGDAEM(MM, MF, CG, CGX, CGX, 2, 1, T, X, V, Y,
+     *              1.0D0, INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK,
+     *              22, RPAR, IPAR)
+            END IF
+            IF (IDID .EQ. 1) THEN
+               NSTEP = NSTEP + 1
+C              one more step each time (after the integrator's first)
+               IF (K .GT. 20 .AND. IWORK(11) .NE. LAST + 1) ONE =.FALSE.
+               LAST = IWORK(11)
+               IF (.NOT. (T .GT. TPREV .AND. T .LT. 1.0D0)) ONE =.FALSE.
+               ERR = MAX(ERR, ABS(X(1) - COS(T)), ABS(X(2) - SIN(T)))
+            END IF
+         END DO
+         CALL CHECK(IDID .EQ. 3 .AND. T .EQ. 1.0D0, 'IDID 3 at TOUT',
+     *        NCHK)
+         CALL CHECK(NSTEP .GT. 20, 'IDID 1 returns', NCHK)
+         CALL CHECK(ONE, 'one step per return, T the step end', NCHK)
+         CALL CHECK(ERR .LT. 1.0D-6, 'X at the step ends', NCHK)
+         CALL CHECK(ABS(X(1) - XREF(1)) + ABS(X(2) - XREF(2))
+     *        .LT. 1.0D-7, 'X at TOUT as with INFO(3) = 0', NCHK)
+         IF (.NOT. ONE .OR. IDID .NE. 3) WRITE (*, '(A, 3I6)')
+     *        '    kind, returns, IDID', KIND, NSTEP, IDID
          CALL DREGDAEFREE(IWORK, 22)
    20 CONTINUE
       END
