@@ -10,7 +10,8 @@
 !! in all (at most 201; the machine's timing noise shrinks with the count), setup included; outputs are interpolated (no
 !! stop at output times) and nothing is printed while timing.
 !!
-!! Usage: bench [reps=5] [min_time=0.05] [tol_from=3] [tol_to=10] [problem=all|crank|ex51|others|crank_defaults]
+!! Usage: bench [reps=5] [min_time=0.05] [tol_from=3] [tol_to=10]
+!!        [problem=all|crank|ex51|others|crank_defaults|crank_radau]
 !! (reps: an integer in [1, 201]; min_time: seconds in [0, 60]; tol_from <= tol_to: integers k in
 !! [1, 14] of rtol = atol = 10^-k)
 !! (others: order3, redundant, singular_mass and the linear family, every method and
@@ -73,7 +74,7 @@ program bench_driver
         case ('tol_to'); call read_count(prog, key, value, tol_to, 1, 14)
         case ('problem'); which = value
             if (which /= 'all' .and. which /= 'crank' .and. which /= 'ex51' .and. which /= 'others' .and. &
-                which /= 'crank_defaults') call die_usage(prog, 'bad problem '//value)
+                which /= 'crank_defaults' .and. which /= 'crank_radau') call die_usage(prog, 'bad problem '//value)
         case default; call die_usage(prog, 'unknown option "'//key//'"')
         end select
     end do
@@ -92,6 +93,12 @@ program bench_driver
             call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
             call crank('crank3', 'defaults integrator=ida', 3, 'trust_region', 0.0_wp, tol, defaults=.true., &
                        extra='integrator=ida')
+        end if
+        if (which == 'crank_radau') then   ! integrator=radau against the paired oracle (doc/performance.md)
+            call crank('crank3', 'defaults integrator=radau', 3, 'trust_region', 0.0_wp, tol, pair=.true., &
+                       defaults=.true., extra='integrator=radau')
+            call crank('crank3', 'defaults integrator=radau pass_check=no', 3, 'trust_region', 0.0_wp, tol, &
+                       pair=.true., defaults=.true., extra='integrator=radau pass_check=no')
         end if
         if (which == 'all' .or. which == 'crank') then
             call crank('crank3', 'defaults', 3, 'trust_region', 0.0_wp, tol, pair=.true., defaults=.true.)
@@ -198,7 +205,8 @@ contains
         logical, intent(in), optional :: pair
         character(len=*), intent(in), optional :: formulation
         logical, intent(in), optional :: defaults
-        character(len=*), intent(in), optional :: extra   ! 'key=value' set after the defaults
+        character(len=*), intent(in), optional :: extra   ! 'key=value' items set after the defaults
+        character(len=:), allocatable :: rest, item
         type(solver_options) :: opts
         type(regdae_solver) :: solver
         type(solver_stats) :: st
@@ -239,9 +247,15 @@ contains
                 opts%atol = tol
             end if
         end if
-        if (present(extra)) then
-            j = scan(extra, '=')
-            call set_option(opts, extra(:j - 1), extra(j + 1:), stat, msg)
+        if (present(extra)) then   ! 'key=value' items separated by blanks
+            rest = trim(adjustl(extra))
+            do while (len(rest) > 0)
+                j = scan(rest//' ', ' ')
+                item = rest(:j - 1)
+                rest = trim(adjustl(rest(j:)))
+                j = scan(item, '=')
+                call set_option(opts, item(:j - 1), item(j + 1:), stat, msg)
+            end do
         end if
         crank_problem = new_slider_crank(9.8_wp)
         crank_problem%analytic_curvature = .true.   ! the user-supplied g_xx(v, v) (doc/performance.md)

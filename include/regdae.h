@@ -154,6 +154,7 @@ extern "C" {
 #define REGDAE_INTEGRATOR_AUTO 0
 #define REGDAE_INTEGRATOR_IDA 1
 #define REGDAE_INTEGRATOR_DOPRI5 2
+#define REGDAE_INTEGRATOR_RADAU 3
 
 /** excluded: index 3, what leaves the error test (default y). */
 #define REGDAE_EXCLUDED_Y 1
@@ -219,6 +220,7 @@ typedef struct regdae_options {
     int pass_check;            /**< 1: each singular pass re-integrated at rtol/10^k and compared */
     double pass_tol;           /**< agreement of two levels of a pass check, in error weights */
     int error_estimate;        /**< 1: a companion at rtol/10 estimates the error of x (regdae_error_estimate) */
+    int max_order;             /**< IDA's largest BDF order, 1 ... 5 */
 } regdae_options;
 
 /** The statistics (solver_stats of the Fortran API, field for field; doc/api.md section 3). */
@@ -383,7 +385,7 @@ int regdae_set_pattern_values(regdae_solver *solver, int which, regdae_point_fn 
  * h_max, ic_tol, index, gamma0, gamma1, curvature, excluded, singular_threshold,
  * jump_tol, drift_tol, invariant_tol, resolution_tol, work_tol, taylor_h,
  * mass_damping, integrator, linear_solver, check_jacobians, pass_check, pass_tol,
- * error_estimate; a test checks this
+ * error_estimate, max_order; a test checks this
  * list against the options). Numbers are read strictly ("1e-3", ".5"; not "1-3"),
  * and a key or value is taken as given: a blank before or after it ("1e-3 ") is
  * refused. An unknown key or a bad value gives REGDAE_ERR_BAD_INPUT, a message
@@ -410,7 +412,7 @@ int regdae_set_atol_vector(regdae_solver *solver, const double *atol, int n);
 int regdae_set_real_option(regdae_solver *solver, const char *key, double value);
 
 /**
- * Set an integer option by its key: a number (index, max_steps), a code
+ * Set an integer option by its key: a number (index, max_steps, max_order), a code
  * (method: REGDAE_METHOD_*, formulation, lsq, exclusion, excluded, integrator,
  * linear_solver) or a switch, 0 or 1 (stop_at_output, curvature,
  * check_jacobians, pass_check, error_estimate). A value that is no code of the key: REGDAE_ERR_BAD_INPUT.
@@ -490,11 +492,12 @@ static inline int regdae_set_max_steps(regdae_solver *solver, int max_steps)
  * The options: after a successful regdae_init those in force, every REGDAE_AUTO
  * resolved to the value at t0 (formulation, linear_solver and lsq to the choice
  * made; singular_threshold stays REGDAE_AUTO, a rule); before, those set so far.
- * integrator after init: REGDAE_INTEGRATOR_IDA or _DOPRI5 when that integrator
- * was chosen, and for REGDAE_INTEGRATOR_AUTO on a formulation other than
- * eliminated (IDA does the whole run there); REGDAE_INTEGRATOR_AUTO on the
- * eliminated formulation, where the switching policy is in force (dopri5 while
- * the system is not stiff, IDA where it is; regdae_stats.switches counts them).
+ * integrator after init: the integrator in charge at the call, never
+ * REGDAE_INTEGRATOR_AUTO: the one chosen, or with REGDAE_INTEGRATOR_AUTO IDA on a
+ * formulation other than eliminated (IDA does the whole run there) and on the
+ * eliminated formulation the one the switching policy has put in charge (dopri5
+ * while the system is not stiff, IDA or Radau where it is; regdae_stats.switches counts
+ * the switches): dopri5 right after init, which may change along the run.
  */
 int regdae_get_options(const regdae_solver *solver, regdae_options *options);
 

@@ -12,6 +12,8 @@ module regdae
     use regdae_second_order_problem, only: second_order_problem, velocity_constraint, curvature_difference, &
                                            second_order_constraint_dt_difference
     use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
+    ! the default mass_values and constraint_jacobian_values, callable from an override
+    use regdae_mechanical_problem, only: default_mass_values, default_constraint_jacobian_values
     use regdae_sparsity, only: sparsity_pattern, dense_pattern, empty_pattern, diagonal_pattern, band_pattern, &
                                pattern_from_entries, pattern_union
     use regdae_linear_problem, only: linear_dae_problem
@@ -42,6 +44,7 @@ module regdae
     public :: mechanical_structure, sparsity_pattern, dense_pattern, empty_pattern, diagonal_pattern, band_pattern, &
               pattern_from_entries, pattern_union
     public :: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
+    public :: default_mass_values, default_constraint_jacobian_values
     ! regdae_status
     public :: regdae_success, regdae_warn_multiplier_undefined, regdae_warn_unresolved, regdae_err_bad_input, &
               regdae_err_inconsistent_ic, &
@@ -56,7 +59,7 @@ module regdae
               exclusion_name, method_baumgarte, method_trust_region, method_direct, formulation_multiplier, &
               formulation_eliminated, lsq_auto, lsq_normal, lsq_stacked, lsq_checked, exclusion_suppress, exclusion_weights, &
               exclusion_off, excluded_y, excluded_vy, excluded_name, integrator_ida, integrator_dopri5, integrator_auto, &
-              integrator_name, &
+              integrator_radau, integrator_name, &
               formulation_auto, formulation_augmented, augmented_min_n, linear_solver_auto, linear_solver_dense, &
               linear_solver_band, linear_solver_sparse, linear_solver_name, option_auto, resolved_work_tol, option_text
 end module regdae

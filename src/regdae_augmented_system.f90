@@ -43,7 +43,7 @@ module regdae_augmented_system
                                permuted_bandwidths
     use regdae_lapack, only: dgbtrf, dgbtrs
     use regdae_differences, only: central_difference_step
-    use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
+    use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure, complete_structure
     use regdae_implicit_system, only: implicit_system
     use regdae_options, only: solver_options, method_trust_region, method_direct, excluded_vy, option_auto
     implicit none
@@ -125,6 +125,7 @@ contains
             return
         end if
         self%st = self%problem%structure()
+        call complete_structure(self%st, n)   ! force_q, force_v not set: empty
         if (.not. self%st%declared) then
             self%st%mass = dense_pattern(n, n)
             self%st%constraint = dense_pattern(m, n)

@@ -16,8 +16,7 @@ module regdae_c_api
                              status_codes, status_texts, status_text_len, unknown_status_text
     use regdae_format, only: format_int, format_real
     use regdae_options, only: solver_options, set_option, option_auto, method_name, integrator_name, formulation_name, &
-                              lsq_name, exclusion_name, excluded_name, linear_solver_name, integrator_auto, integrator_ida, &
-                              formulation_eliminated
+                              lsq_name, exclusion_name, excluded_name, linear_solver_name
     use regdae_sparsity, only: sparsity_pattern, pattern_from_entries, dense_pattern
     use regdae_mechanical_problem, only: mechanical_structure
     use regdae_solver_trust, only: regdae_solver
@@ -346,7 +345,7 @@ contains
     end function regdae_set_real_option
 
     !> `int regdae_set_int_option(solver, key, value)`: an integer option (index,
-    !! max_steps), a code (method, formulation, lsq, exclusion, excluded, integrator,
+    !! max_steps, max_order), a code (method, formulation, lsq, exclusion, excluded, integrator,
     !! linear_solver: REGDAE_*) or a switch (stop_at_output, curvature,
     !! check_jacobians, pass_check, error_estimate: 0 or 1) by its key.
     integer(c_int) function regdae_set_int_option(handle, key, value) bind(C, name='regdae_set_int_option')
@@ -401,10 +400,7 @@ contains
             opts%formulation = s%solver%formulation()
             opts%linear_solver = s%solver%linear_solver()
             if (s%solver%lsq_method() /= 0) opts%lsq = s%solver%lsq_method()
-            ! integrator=auto serves with dopri5 on the eliminated formulation only: on the
-            ! others IDA does the whole run (regdae_solver_front's start)
-            if (opts%integrator == integrator_auto .and. opts%formulation /= formulation_eliminated) &
-                opts%integrator = integrator_ida
+            ! integrator: options() gives the one in charge (never auto)
         end if
         call c_f_pointer(out, c)
         c = to_c_options(opts)

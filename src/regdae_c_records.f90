@@ -43,6 +43,7 @@ module regdae_c_records
         integer(c_int) :: pass_check          !! 0 or 1
         real(c_double) :: pass_tol
         integer(c_int) :: error_estimate      !! 0 or 1
+        integer(c_int) :: max_order           !! IDA's largest BDF order, 1 ... 5
     end type c_options
 
     !> `regdae_stats` (include/regdae.h): the statistics, as `solver_stats`.
@@ -96,7 +97,7 @@ contains
                       linear_solver=opts%linear_solver, check_jacobians=merge(1, 0, opts%check_jacobians), &
                       resolution_tol=opts%resolution_tol, atol_v=opts%atol_v, &
                       pass_check=merge(1, 0, opts%pass_check), pass_tol=opts%pass_tol, &
-                      error_estimate=merge(1, 0, opts%error_estimate))
+                      error_estimate=merge(1, 0, opts%error_estimate), max_order=opts%max_order)
     end function to_c_options
 
     !> The statistics as the C record.

@@ -27,7 +27,7 @@ module regdae_dassl
                              regdae_root_found, regdae_err_bad_input, &
                              regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_initialized
     use regdae_format, only: format_int, format_real
-    use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_dopri5
+    use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_radau
     use regdae_solver_trust, only: regdae_solver, solver_stats
     use regdae_foreign_problems, only: foreign_first_order, foreign_mechanical
     use regdae_f77_routines, only: f77_routines, f77_point_routine, f77_motion_routine, f77_root_routine, f77_events
@@ -41,10 +41,11 @@ module regdae_dassl
     integer, parameter :: info_tstop = 4         ! 1: do not pass TSTOP = RWORK(1)
     integer, parameter :: info_hmax = 7          ! 1: HMAX = RWORK(2)
     integer, parameter :: info_h0 = 8            ! 1: H0 = RWORK(3)
+    integer, parameter :: info_max_order = 9     ! 1: MAXORD = IWORK(3), 1 ... 5 (IDA's largest order)
     integer, parameter :: info_method = 16       ! 0 (trust_region), 1 baumgarte, 2 trust_region, 3 direct
     integer, parameter :: info_gt = 17           ! 1: GT is supplied
     integer, parameter :: info_index = 18        ! DREGDAEM: 0 (3), 2 or 3
-    integer, parameter :: info_integrator = 19   ! 0 auto, 1 ida, 2 dopri5
+    integer, parameter :: info_integrator = 19   ! 0 auto, 1 ida, 2 dopri5, 3 radau
     integer, parameter :: info_messages = 20     ! 0: error unit; > 0: that unit; -1: none
     !> The length of INFO.
     integer, parameter, public :: info_length = 20
@@ -66,6 +67,7 @@ module regdae_dassl
     ! IWORK(10): 0, or the reason a call that found no session in IWORK was refused
     ! (DASSL keeps an internal counter there; DREGDAE reads none of IWORK(1:10))
     integer, parameter :: iwork_refusal = 10
+    integer, parameter :: iwork_max_order = 3   ! input: MAXORD with INFO(9) = 1 (as DASSL)
     integer, parameter :: refused_no_solver = 1, refused_after_failure = 2, refused_info1 = 3
     ! Default integers that hold an address (2 for 64-bit addresses and 32-bit integers).
     integer, parameter :: address_words = ceiling(real(storage_size(c_null_ptr))/real(storage_size(0)))
@@ -268,7 +270,7 @@ contains
             ! The input first (a refused start creates no solver), then the session: the
             ! one IWORK held (a restart without DREGDAEFREE) is freed first
             call check_call(t, tout, info, rwork, lrw, msg)
-            if (len(msg) == 0) call options_from(kind, n, m, info, rtol, atol, rwork, opts, msg)
+            if (len(msg) == 0) call options_from(kind, n, m, info, rtol, atol, rwork, iwork(iwork_max_order), opts, msg)
             call dassl_free(iwork, liw)
             call new_session(iwork, liw, s)
             s%kind = kind
@@ -458,10 +460,11 @@ contains
     end function in_dassl_words
 
     ! The options from INFO, RTOL, ATOL and RWORK; msg names the first bad entry.
-    subroutine options_from(kind, n, m, info, rtol, atol, rwork, opts, msg)
+    subroutine options_from(kind, n, m, info, rtol, atol, rwork, maxord, opts, msg)
         integer, intent(in) :: kind, n, m
         integer, intent(in) :: info(info_length)
         real(wp), intent(in) :: rtol(*), atol(*), rwork(:)
+        integer, intent(in) :: maxord   ! IWORK(3): the largest order with INFO(9) = 1
         type(solver_options), intent(out) :: opts
         character(len=:), allocatable, intent(inout) :: msg
         integer :: i, stat, n_tol
@@ -482,7 +485,7 @@ contains
         end do
         do i = 3, 15
             if (len(msg) > 0) exit
-            if (info(i) /= 0 .and. any(i == [5, 6, 9, 10, 12, 13, 14, 15])) &
+            if (info(i) /= 0 .and. any(i == [5, 6, 10, 12, 13, 14, 15])) &
                 msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)
         end do
         if (len(msg) > 0) return
@@ -495,12 +498,14 @@ contains
             msg = 'INFO(18) = '//format_int(info(info_index))//': the index is for DREGDAEM; set it to 0'
         else if (.not. any(info(info_index) == [0, 2, 3])) then
             msg = 'INFO(18) = '//format_int(info(info_index))//' must be 0 (index 3), 2 or 3'
-        else if (info(info_integrator) < 0 .or. info(info_integrator) > integrator_dopri5) then
-            msg = 'INFO(19) = '//format_int(info(info_integrator))//' must be 0 (auto), 1 (ida) or 2 (dopri5)'
+        else if (info(info_integrator) < 0 .or. info(info_integrator) > integrator_radau) then
+            msg = 'INFO(19) = '//format_int(info(info_integrator))//' must be 0 (auto), 1 (ida), 2 (dopri5) or 3 (radau)'
         else if (info(info_hmax) == 1 .and. .not. rwork(rwork_hmax) > 0.0_wp) then
             msg = 'INFO(7) = 1 and HMAX = RWORK(2) = '//format_real(rwork(rwork_hmax))//' is not > 0'
         else if (info(info_h0) == 1 .and. .not. rwork(rwork_h0) > 0.0_wp) then
             msg = 'INFO(8) = 1 and H0 = RWORK(3) = '//format_real(rwork(rwork_h0))//' is not > 0'
+        else if (info(info_max_order) == 1 .and. (maxord < 1 .or. maxord > 5)) then
+            msg = 'INFO(9) = 1 and MAXORD = IWORK(3) = '//format_int(maxord)//' is not 1 ... 5 (IDA''s orders)'
         end if
         if (len(msg) > 0) return
         opts%method = merge(method_trust_region, info(info_method), info(info_method) == 0)
@@ -511,6 +516,7 @@ contains
         opts%stop_at_output = (info(info_tstop) == 1)
         if (info(info_hmax) == 1) opts%h_max = rwork(rwork_hmax)
         if (info(info_h0) == 1) opts%h_init = rwork(rwork_h0)
+        if (info(info_max_order) == 1) opts%max_order = maxord
         if (rwork(rwork_eps) /= 0.0_wp) opts%eps = rwork(rwork_eps)
         if (rwork(rwork_gamma) /= 0.0_wp) opts%gamma = rwork(rwork_gamma)
         if (rwork(rwork_gamma0) /= 0.0_wp) opts%gamma0 = rwork(rwork_gamma0)
@@ -552,9 +558,6 @@ contains
             text = 'a banded matrix (IWORK(1), IWORK(2)), which DREGDAE does not take (its systems are dense; the '// &
                    'band solver serves the declared structure of large mechanisms in the Fortran and C APIs, '// &
                    'linear_solver=band): set INFO(6) = 0'
-        case (9)
-            text = 'a maximum order (IWORK(3)), which DREGDAE does not pass on (IDA uses orders up to 5): set '// &
-                   'INFO(9) = 0, and a smaller HMAX (INFO(7)) if the steps must stay short'
         case (10)
             text = 'nonnegative solutions, which DREGDAE does not enforce (it passes no constraints to IDA): set '// &
                    'INFO(10) = 0 and check the signs after each return'

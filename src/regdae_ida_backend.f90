@@ -241,6 +241,7 @@ contains
             end if
         end if
         if (ierr == 0) ierr = FIDASetMaxNumSteps(self%ida_mem, int(opts%max_steps, c_long))
+        if (ierr == 0 .and. opts%max_order < 5) ierr = FIDASetMaxOrd(self%ida_mem, int(opts%max_order, c_int))
         if (ierr == 0 .and. opts%h_init > 0.0_wp) ierr = FIDASetInitStep(self%ida_mem, opts%h_init)
         if (ierr == 0 .and. opts%h_max > 0.0_wp) ierr = FIDASetMaxStep(self%ida_mem, opts%h_max)
         if (ierr /= 0) then

@@ -18,11 +18,10 @@ module regdae_ida_integrator
     use regdae_ida_backend, only: ida_backend
     use regdae_regularized_system, only: new_regularized_system
     use regdae_augmented_system, only: augmented_system
-    use regdae_integrator, only: integrator, outcome_reached, outcome_pass_end, outcome_nonstiff, outcome_alarm, &
-                                 outcome_failed, outcome_exhausted, outcome_broken
+    use regdae_integrator, only: integrator, outcome_reached, outcome_failed, outcome_broken
     use regdae_solver_core, only: solver_core
-    use regdae_solver_sampling, only: sample_step
-    use regdae_switching_policy, only: spectral_radius, explicit_would_do
+    use regdae_switching_policy, only: spectral_radius
+    use regdae_implicit_steps, only: budget_spent, sampled_alarm, after_step
     implicit none
     private
 
@@ -133,18 +132,11 @@ contains
         t_now = self%ida%current_time()
         if (t_now > core%sampled_t .and. t_now <= tout) then   ! a step end passed over at the last output
             call self%ida%interpolate(t_now, ierr)
-            if (sampled_alarm(t_now)) return
+            if (sampled_alarm(core, t_now, t_stop, outcome)) return
         end if
         taken = 0
         do while (t_now < tout)
-            if (taken >= core%opts%max_steps) then
-                t_stop = t_now
-                outcome = outcome_exhausted
-                stat = regdae_err_integration
-                msg = 'IDA took max_steps = '//format_int(core%opts%max_steps)//' steps without reaching tout = '// &
-                      format_real(tout)//' (t = '//format_real(t_now)//')'
-                return
-            end if
+            if (budget_spent(core, 'IDA', taken, t_now, tout, t_stop, outcome, stat, msg)) return
             call self%ida%step(tout, core%opts%stop_at_output, t_now, ierr)
             if (ierr < 0) then
                 t_stop = t_now
@@ -155,21 +147,7 @@ contains
                 return
             end if
             taken = taken + 1
-            if (t_now <= tout) then
-                if (sampled_alarm(t_now)) return
-                if (core%stop_at_pass_end .and. core%monitor%pass_ended .and. t_now < tout) then
-                    t_stop = t_now   ! IDA's state is the step's end
-                    outcome = outcome_pass_end
-                    return
-                end if
-            end if
-            if (core%switching .and. t_now < tout .and. mod(taken, 20) == 0) then
-                if (explicit_would_do(core, t_now)) then
-                    t_stop = t_now
-                    outcome = outcome_nonstiff
-                    return
-                end if
-            end if
+            if (after_step(core, taken, t_now, tout, t_stop, outcome)) return
         end do
         if (t_now > tout) then
             call self%ida%interpolate(tout, ierr)
@@ -179,19 +157,8 @@ contains
                 msg = 'IDA could not interpolate at t = '//format_real(tout)
                 return
             end if
-            if (sampled_alarm(tout)) return
+            if (sampled_alarm(core, tout, t_stop, outcome)) return
         end if
-    contains
-        ! The monitor samples IDA's current state at t; an alarm stops there (true).
-        logical function sampled_alarm(t)
-            real(wp), intent(in) :: t
-            call sample_step(core, t)
-            core%sampled_t = t
-            sampled_alarm = core%monitor%alarm
-            if (.not. sampled_alarm) return
-            t_stop = t
-            outcome = outcome_alarm
-        end function sampled_alarm
     end subroutine ida_advance
 
     function ida_state(self) result(u)

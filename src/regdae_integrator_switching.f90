@@ -1,6 +1,7 @@
 !> The switches of integrator=auto between the explicit Dormand-Prince
-!! integrator (`regdae_dopri5_integrator`, the core's nonstiff slot) and IDA
-!! (`regdae_ida_integrator`, the stiff slot) on the state of one problem
+!! integrator (`regdae_dopri5_integrator`, the core's nonstiff slot) and an
+!! implicit one in the stiff slot, IDA (`regdae_ida_integrator`) or Radau IIA
+!! (`regdae_radau_integrator`, small systems), on the state of one problem
 !! (`regdae_solver_core`): the hand-over to IDA when the explicit method's
 !! stiffness test fires (on the eliminated formulation, or the augmented one for
 !! a mechanical problem that declares its structure; from t0 before the first
@@ -13,22 +14,24 @@ module regdae_integrator_switching
     use regdae_status
     use regdae_mechanical_problem, only: mechanical_problem, mechanical_structure
     use regdae_options, only: solver_options, formulation_auto, formulation_augmented, integrator_ida, &
-                              integrator_dopri5, linear_solver_sparse, exclusion_off
+                              integrator_dopri5, integrator_radau, integrator_name, linear_solver_sparse, exclusion_off
     use regdae_augmented_system, only: augmented_system
     use regdae_format, only: format_real
     use regdae_integrator, only: outcome_stiff, outcome_nonstiff
     use regdae_solver_core, only: solver_core, log_event
     use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
     use regdae_ida_integrator, only: ida_integrator, ida_in_slot
+    use regdae_radau_integrator, only: radau_adapter, radau_in_slot
+    use regdae_switching_policy, only: radau_preferred
     implicit none
     private
 
-    public :: hand_over, switch_to_ida, switch_to_dopri5
+    public :: hand_over, switch_to_implicit, switch_to_dopri5
 
 contains
 
     !> integrator=auto: the switch an integrator's outcome asks for at t_stop:
-    !! outcome_stiff to IDA (switch_to_ida), outcome_nonstiff back to the explicit
+    !! outcome_stiff to the implicit integrator (switch_to_implicit), outcome_nonstiff back to the explicit
     !! method (switch_to_dopri5).
     subroutine hand_over(core, outcome, t_stop, stat, msg)
         type(solver_core), pointer, intent(in) :: core
@@ -39,21 +42,25 @@ contains
         stat = regdae_success
         msg = ''
         if (outcome == outcome_stiff) then
-            call switch_to_ida(core, stat, msg)
+            call switch_to_implicit(core, stat, msg)
         else if (outcome == outcome_nonstiff) then
             call switch_to_dopri5(core, t_stop)
         end if
     end subroutine hand_over
 
-    !> integrator=auto: the explicit method found the system stiff at rk%t: IDA
-    !! takes over there (created at the first switch, restarted at the others).
-    subroutine switch_to_ida(core, stat, msg)
+    !> integrator=auto: the explicit method found the system stiff at rk%t: the
+    !! implicit integrator takes over there (created at the first switch, restarted
+    !! at the others): IDA on the augmented formulation for a mechanical problem that
+    !! declares its structure, else Radau IIA for a small system and IDA for a large
+    !! one (the policy's radau_preferred).
+    subroutine switch_to_implicit(core, stat, msg)
         type(solver_core), pointer, intent(in) :: core
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         real(wp) :: zp(core%n), y(core%m), t, z(core%n)
         real(wp), pointer :: u(:)
         type(ida_integrator), pointer :: ida
+        type(radau_adapter), pointer :: radau
         logical :: recoverable, from_start, restart
         t = core%nonstiff%time()
         u => core%nonstiff%state()
@@ -72,12 +79,21 @@ contains
         end if
         if (augmented_fits(core)) then
             call switch_to_augmented(core, t, z, from_start, stat, msg)
-            if (stat == regdae_success) call now_ida(core, ', augmented formulation with KLU', from_start)
+            if (stat == regdae_success) call now_stiff(core, integrator_ida, ', augmented formulation with KLU', from_start)
             return
         end if
         call core%model%slope_eliminated(t, z, zp, y, stat, recoverable)
         if (stat /= regdae_success) then
             msg = 'switching to IDA at t = '//format_real(t)//': '//core%model%message
+            return
+        end if
+        if (radau_preferred(core)) then
+            radau => radau_in_slot(core)
+            call radau%start(t, z, stat, msg, h0=merge(0.0_wp, core%nonstiff%last_step(), from_start), zp=zp, y=y)
+            if (stat /= regdae_success) msg = 'switching to Radau at t = '//format_real(t)//': '//msg
+            if (stat /= regdae_success) return
+            if (from_start) call start_monitor(core, t, z, zp)
+            call now_stiff(core, integrator_radau, '', from_start)
             return
         end if
         ida => ida_in_slot(core)
@@ -86,22 +102,26 @@ contains
         if (stat /= regdae_success .and. restart) msg = 'switching to IDA at t = '//format_real(t)//': FIDAReInit failed'
         if (stat /= regdae_success) return
         if (from_start) call start_monitor(core, t, z, zp)
-        call now_ida(core, '', from_start)
-    end subroutine switch_to_ida
+        call now_stiff(core, integrator_ida, '', from_start)
+    end subroutine switch_to_implicit
 
-    ! After a switch to IDA: the counters and the event (what: the formulation, if not
-    ! the eliminated one).
-    subroutine now_ida(core, what, from_start)
+    ! After a switch to the implicit integrator `which` (ida or radau): the counters
+    ! and the event (what: the formulation, if not the eliminated one).
+    subroutine now_stiff(core, which, what, from_start)
         type(solver_core), intent(inout) :: core
+        integer, intent(in) :: which
         character(len=*), intent(in) :: what
         logical, intent(in) :: from_start
-        core%active = integrator_ida
+        character(len=:), allocatable :: tail
+        core%active = which
         core%switches = core%switches + 1
         core%explicit_votes = 0
-        call log_event(core, 't = '//format_real(core%nonstiff%time())//': dopri5 -> ida'//what//' (the stiffness test fired: '// &
-                       'h |lambda| at the explicit method''s stability limit for 15 steps)'// &
-                       trim(merge('; IDA starts from t0', '                    ', from_start)))
-    end subroutine now_ida
+        tail = ''
+        if (from_start .and. which == integrator_ida) tail = '; IDA starts from t0'
+        if (from_start .and. which == integrator_radau) tail = '; Radau starts from t0'
+        call log_event(core, 't = '//format_real(core%nonstiff%time())//': dopri5 -> '//integrator_name(which)//what// &
+                       ' (the stiffness test fired: h |lambda| at the explicit method''s stability limit for 15 steps)'//tail)
+    end subroutine now_stiff
 
     ! integrator=auto, formulation=auto: IDA takes the augmented formulation for a
     ! mechanical problem at index 3 that declares its structure (M positive definite:
@@ -166,21 +186,28 @@ contains
         core%active = integrator_ida
     end subroutine switch_to_augmented
 
-    !> integrator=auto: back to the explicit method at t, IDA's state there.
+    !> integrator=auto: back to the explicit method at t, the implicit integrator's state there.
     subroutine switch_to_dopri5(core, t)
         type(solver_core), pointer, intent(in) :: core
         real(wp), intent(in) :: t
         real(wp), pointer :: u(:)
         character(len=:), allocatable :: msg
         integer :: stat
+        logical :: from_radau
         u => core%stiff%state()
         call core%nonstiff%start(t, u(1:core%n), stat, msg, h0=core%stiff%last_step())
+        from_radau = (core%active == integrator_radau)
         core%active = integrator_dopri5
         core%switches = core%switches + 1
         core%back_switches = core%back_switches + 1
         core%explicit_votes = 0
-        call log_event(core, 't = '//format_real(t)//': ida -> dopri5 (the explicit method''s stable step '// &
-                       'exceeds twice IDA''s)')
+        if (from_radau) then
+            call log_event(core, 't = '//format_real(t)//': radau -> dopri5 (the explicit method''s stable step '// &
+                           'exceeds twice Radau''s)')
+        else
+            call log_event(core, 't = '//format_real(t)//': ida -> dopri5 (the explicit method''s stable step '// &
+                           'exceeds twice IDA''s)')
+        end if
     end subroutine switch_to_dopri5
 
 end module regdae_integrator_switching

@@ -25,7 +25,7 @@ module regdae_mechanical_problem
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_err_mass_matrix, regdae_err_structure, regdae_err_memory
     use regdae_lapack, only: dpotrf, dpotrs
-    use regdae_sparsity, only: sparsity_pattern, sparse_times
+    use regdae_sparsity, only: sparsity_pattern, sparse_times, empty_pattern
     use regdae_second_order_problem, only: second_order_problem
     implicit none
     private
@@ -41,8 +41,8 @@ module regdae_mechanical_problem
         type(sparsity_pattern) :: mass           !! n x n: M(q)
         type(sparsity_pattern) :: constraint     !! m x n: G = dg/dq
         type(sparsity_pattern) :: force_q        !! n x n: d(f - M(q) a)/dq for any a (how forces and mass
-                                                 !! depend on q); empty for constant M and q-free forces
-        type(sparsity_pattern) :: force_v        !! n x n: df/dq'
+                                                 !! depend on q); not set: empty (constant M, q-free forces)
+        type(sparsity_pattern) :: force_v        !! n x n: df/dq'; not set: empty (velocity-free forces)
         logical :: curvature_supplied = .false.  !! the problem overrides `constraint_curvature` (used as is;
                                                  !! otherwise a difference quotient of the sparse G)
     end type mechanical_structure
@@ -96,11 +96,10 @@ module regdae_mechanical_problem
         end subroutine forces_iface
     end interface
 
-    ! The default `mass_values` and `constraint_jacobian_values`, for the problems of the C
-    ! interface that declare patterns without giving the values routines (not re-exported
-    ! by `regdae`).
+    ! The default `mass_values` and `constraint_jacobian_values` (public from `regdae`:
+    ! callable from an override, e.g. for the points where an analytic form is not at hand).
     public :: default_mass_values, default_constraint_jacobian_values
-    public :: structured_velocity_constraint
+    public :: structured_velocity_constraint, complete_structure
 
 contains
 
@@ -110,6 +109,10 @@ contains
         st%declared = .false.
     end function default_structure
 
+    !> The default `mass_values`: M from `mass_matrix` (a dense n x n array, O(n^2)
+    !! memory), gathered in the order of `pattern`; `stat = regdae_err_structure` when M
+    !! has a nonzero outside the pattern. Callable from an override:
+    !! `call default_mass_values(self, t, q, pattern, vals, stat)`.
     subroutine default_mass_values(self, t, q, pattern, vals, stat)
         class(mechanical_problem), intent(inout) :: self
         real(wp), intent(in) :: t, q(:)
@@ -123,6 +126,9 @@ contains
         call gather(pattern, dense, vals, stat)
     end subroutine default_mass_values
 
+    !> The default `constraint_jacobian_values`: G from `constraint_jacobian` (dense m x n),
+    !! gathered in the order of `pattern`; `stat = regdae_err_structure` when G has a
+    !! nonzero outside the pattern. Callable from an override.
     subroutine default_constraint_jacobian_values(self, t, q, pattern, vals, stat)
         class(mechanical_problem), intent(inout) :: self
         real(wp), intent(in) :: t, q(:)
@@ -135,6 +141,23 @@ contains
         if (stat /= 0) return
         call gather(pattern, dense, vals, stat)
     end subroutine default_constraint_jacobian_values
+
+    !> A declared structure whose `force_q` or `force_v` was never set (no `empty_pattern`
+    !! or other constructor assigned to it: 0 x 0, no rows) gets the empty n x n pattern:
+    !! no dependence, as the component's documentation says. `mass` and `constraint`
+    !! have no such default (an unset one does not fit and is refused by name).
+    subroutine complete_structure(st, n)
+        type(mechanical_structure), intent(inout) :: st
+        integer, intent(in) :: n   !! the coordinates
+        if (.not. st%declared) return
+        if (never_set(st%force_q)) st%force_q = empty_pattern(n, n)
+        if (never_set(st%force_v)) st%force_v = empty_pattern(n, n)
+    contains
+        pure logical function never_set(p)
+            type(sparsity_pattern), intent(in) :: p
+            never_set = (p%nrows == 0 .and. p%ncols == 0 .and. .not. allocated(p%row_start))
+        end function never_set
+    end subroutine complete_structure
 
     !> The velocity constraint G(q, t) v + g_t(q, t) (length m) of a problem that
     !! declares its structure, from `constraint_jacobian_values` in O(nonzeros)

@@ -13,6 +13,7 @@
 !! | atol_v         | > 0, or auto (= atol): second order, the velocities' atol | auto |
 !! | stop_at_output | yes, no                               | no             |
 !! | max_steps      | >= 1 (per output interval)            | 100000         |
+!! | max_order      | 1 ... 5 (IDA's largest BDF order)     | 5              |
 !! | h_init, h_max  | >= 0 (0: IDA's choice / no limit)     | 0, 0           |
 !! | ic_tol         | > 0                                   | 1e-8           |
 !! | index          | 2, 3 (second-order problems)          | 3              |
@@ -27,7 +28,7 @@
 !! | work_tol       | >= 0 or auto (mechanical: alarm when the work-energy defect exceeds this fraction of the energy scale, 0: off; auto: 0.05 (rtol/1e-3)^(1/5) within [0.02, 0.05]) | auto |
 !! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
-!! | integrator     | auto, ida, dopri5 (explicit, eliminated formulation only; auto: dopri5 while not stiff) | auto |
+!! | integrator     | auto, ida, dopri5 (explicit, eliminated formulation only; auto: dopri5 while not stiff), radau (Radau IIA order 5, eliminated formulation only) | auto |
 !! | linear_solver  | auto, dense, band, sparse (IDA's Newton matrix; band and sparse: augmented) | auto |
 !! | check_jacobians | yes, no (at init: G against difference quotients of g; augmented: the grouped Newton matrix against the full one) | no |
 !! | pass_check     | yes, no (order 1 and 2: each singular pass re-integrated at rtol/10 (and /100, /1000 while they disagree) and held against pass_tol; warning regdae_warn_unresolved if no level agrees) | yes |
@@ -63,7 +64,7 @@ module regdae_options
     !> formulation=auto takes `augmented` from this many coordinates on (with a declared structure).
     integer, parameter, public :: augmented_min_n = 16
 
-    integer, parameter, public :: linear_solver_auto = 0    !! by formulation, size and bandwidth
+    integer, parameter, public :: linear_solver_auto = 0    !! by formulation: dense, or KLU (augmented)
     integer, parameter, public :: linear_solver_dense = 1   !! SUNDIALS dense LU
     integer, parameter, public :: linear_solver_band = 2    !! SUNDIALS band LU (augmented formulation)
     integer, parameter, public :: linear_solver_sparse = 3  !! KLU (augmented formulation)
@@ -78,6 +79,7 @@ module regdae_options
     integer, parameter, public :: integrator_auto = 0    !! dopri5 while the system is not stiff, IDA where it is
     integer, parameter, public :: integrator_ida = 1     !! SUNDIALS IDA (BDF), any stiffness
     integer, parameter, public :: integrator_dopri5 = 2  !! explicit Dormand-Prince 5(4): non-stiff regularized systems
+    integer, parameter, public :: integrator_radau = 3   !! Radau IIA of order 5 (implicit): small stiff systems
 
     integer, parameter, public :: excluded_y = 1    !! index 3: only y leaves the error test
     integer, parameter, public :: excluded_vy = 2   !! index 3: v and y leave it (the paper's choice)
@@ -96,6 +98,7 @@ module regdae_options
                                                        !! per component: the argument atol_vector of init
         logical :: stop_at_output = .false.            !! make a step end at every output time
         integer :: max_steps = 100000                  !! IDA steps allowed per call of `advance`
+        integer :: max_order = 5                       !! IDA's largest BDF order, 1 ... 5 (IDASetMaxOrd)
         real(wp) :: h_init = 0.0_wp                    !! first step size (0: IDA estimates it)
         real(wp) :: h_max = 0.0_wp                     !! largest step size (0: unlimited)
         real(wp) :: ic_tol = 1.0e-8_wp                 !! allowed max |g(x0, t0)| (and |G v0 + g_t|)
@@ -118,7 +121,7 @@ module regdae_options
                                                        !! warns (regdae_warn_unresolved); 0: off
         real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
-        integer :: integrator = integrator_auto        !! auto, ida, or dopri5 (explicit; eliminated formulation)
+        integer :: integrator = integrator_auto        !! auto, ida, dopri5 (explicit) or radau (eliminated formulation)
         integer :: linear_solver = linear_solver_auto  !! IDA's linear solver
         logical :: check_jacobians = .false.           !! compare the user's G (and the grouped Newton matrix) with
                                                        !! difference quotients at init (regdae_err_jacobian)
@@ -183,6 +186,8 @@ contains
             call read_real(value, opts%ic_tol, code)
         case ('max_steps')
             call read_integer(value, opts%max_steps, code)
+        case ('max_order')
+            call read_integer(value, opts%max_order, code)
         case ('index')
             call lookup(value, [character(len=12) :: '1', '2', '3'], code)
             if (code > 1) opts%index = code
@@ -214,8 +219,9 @@ contains
         case ('mass_damping')
             call read_real(value, opts%mass_damping, code)
         case ('integrator')
-            call lookup(value, [character(len=12) :: 'ida', 'dopri5', 'auto'], code)
+            call lookup(value, [character(len=12) :: 'ida', 'dopri5', 'auto', 'radau'], code)
             if (code > 0) opts%integrator = merge(integrator_auto, code, code == 3)
+            if (code == 4) opts%integrator = integrator_radau
         case ('check_jacobians')
             call lookup(value, [character(len=12) :: 'yes', 'no'], code)
             if (code > 0) opts%check_jacobians = (code == 1)
@@ -274,11 +280,11 @@ contains
         call need_nonnegative('mass_damping', opts%mass_damping)
         if (len(msg) > 0) then
             return
-        else if (opts%integrator < integrator_auto .or. opts%integrator > integrator_dopri5) then
-            msg = 'integrator must be auto, ida or dopri5'
-        else if (opts%integrator == integrator_dopri5 .and. opts%formulation /= formulation_eliminated &
-                 .and. opts%formulation /= formulation_auto) then
-            msg = 'integrator=dopri5 needs formulation=eliminated'
+        else if (opts%integrator < integrator_auto .or. opts%integrator > integrator_radau) then
+            msg = 'integrator must be auto, ida, dopri5 or radau'
+        else if ((opts%integrator == integrator_dopri5 .or. opts%integrator == integrator_radau) .and. &
+                 opts%formulation /= formulation_eliminated .and. opts%formulation /= formulation_auto) then
+            msg = 'integrator='//integrator_name(opts%integrator)//' needs formulation=eliminated'
         else if (opts%linear_solver < linear_solver_auto .or. opts%linear_solver > linear_solver_sparse) then
             msg = 'linear_solver must be auto, dense, band or sparse'
         else if ((opts%linear_solver == linear_solver_band .or. opts%linear_solver == linear_solver_sparse) .and. &
@@ -291,6 +297,8 @@ contains
             msg = 'excluded must be y or vy'
         else if (opts%max_steps < 1) then
             msg = 'max_steps must be >= 1 (got '//format_int(opts%max_steps)//')'
+        else if (opts%max_order < 1 .or. opts%max_order > 5) then
+            msg = 'max_order must be 1 ... 5 (got '//format_int(opts%max_order)//')'
         else if (opts%method < method_baumgarte .or. opts%method > method_direct) then
             msg = 'unknown method'
         else if (opts%formulation < formulation_auto .or. opts%formulation > formulation_augmented) then
@@ -413,6 +421,7 @@ contains
         case (integrator_auto); name = 'auto'
         case (integrator_ida); name = 'ida'
         case (integrator_dopri5); name = 'dopri5'
+        case (integrator_radau); name = 'radau'
         case default; name = 'unknown'
         end select
     end function integrator_name
@@ -441,8 +450,9 @@ contains
         case ('stop_at_output', 'curvature', 'check_jacobians', 'pass_check', 'error_estimate'); text = ' (yes or no)'
         case ('index'); text = ' (2 or 3)'
         case ('excluded'); text = ' (y or vy)'
-        case ('integrator'); text = ' (auto, ida or dopri5)'
+        case ('integrator'); text = ' (auto, ida, dopri5 or radau)'
         case ('max_steps'); text = ' (an integer, e.g. 100000)'
+        case ('max_order'); text = ' (an integer, 1 ... 5)'
         case ('work_tol', 'gamma', 'gamma0', 'gamma1', 'eps', 'singular_threshold', 'drift_tol')
             text = ' (a finite number, or auto)'
         case default; text = ' (a finite number, e.g. 1e-6, 2.5 or .5)'

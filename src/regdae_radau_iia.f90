@@ -82,6 +82,10 @@ module regdae_radau_iia
         procedure :: advance => radau_advance
         !> u(t) for t in the last step, from its collocation polynomial.
         procedure :: solution_at => radau_solution_at
+        !> u'(t) for t in the last step: the collocation polynomial's derivative.
+        procedure :: slope_at => radau_slope_at
+        !> The size of the last accepted step (0 before the first).
+        procedure :: last_step => radau_last_step
         !> The current time.
         procedure :: time => radau_time
         !> The step size the next step will try.
@@ -96,7 +100,7 @@ module regdae_radau_iia
         procedure :: status => radau_status
         !> What went wrong ('' after success).
         procedure :: message => radau_message
-        procedure, private :: fail, eval, compute_jacobian, newton, error_estimate, weights, accept
+        procedure, private :: fail, eval, compute_jacobian, newton, error_estimate, weights, accept, step_fraction
     end type radau_integrator
 
 contains
@@ -656,25 +660,61 @@ contains
         real(wp), intent(in) :: t          !! a time in the last step
         real(wp), intent(out) :: u_out(:)  !! u(t)
         integer, intent(out) :: stat       !! regdae_success or regdae_err_bad_input
-        real(wp) :: s, slack
-        if (self%n == 0) then
-            stat = regdae_err_not_initialized
-            return
-        end if
-        stat = regdae_err_bad_input
-        if (size(u_out) /= self%n) return
+        real(wp) :: s
+        if (.not. self%step_fraction(t, size(u_out), s, stat)) return
         if (t == self%t) then
             u_out = self%u
-            stat = regdae_success
+        else
+            u_out = self%u_prev + s*(self%q(:, 1) + s*(self%q(:, 2) + s*self%q(:, 3)))
+        end if
+    end subroutine radau_solution_at
+
+    !> u'(t) for t in [t_prev, t] of the last step (F/m at the start before the first step).
+    subroutine radau_slope_at(self, t, up, stat)
+        class(radau_integrator), intent(in) :: self
+        real(wp), intent(in) :: t          !! a time in the last step
+        real(wp), intent(out) :: up(:)     !! u'(t)
+        integer, intent(out) :: stat       !! regdae_success or regdae_err_bad_input
+        real(wp) :: s
+        if (.not. self%step_fraction(t, size(up), s, stat)) return
+        if (self%have_step) then
+            up = (self%q(:, 1) + s*(2*self%q(:, 2) + 3*s*self%q(:, 3)))/self%h_last
+        else
+            call self%slope(up)
+        end if
+    end subroutine radau_slope_at
+
+    !> Is t in the last step (or t itself before the first) and m the state's size?
+    !! s: (t - t_prev)/h_last; stat: regdae_success, regdae_err_not_initialized or
+    !! regdae_err_bad_input.
+    logical function step_fraction(self, t, m, s, stat) result(ok)
+        class(radau_integrator), intent(in) :: self
+        real(wp), intent(in) :: t
+        integer, intent(in) :: m
+        real(wp), intent(out) :: s
+        integer, intent(out) :: stat
+        real(wp) :: slack
+        ok = .false.
+        s = 1
+        stat = regdae_err_not_initialized
+        if (self%n == 0) return
+        stat = regdae_err_bad_input
+        if (m /= self%n) return
+        if (self%have_step) then
+            slack = 100*epsilon(1.0_wp)*max(abs(self%t), abs(self%h_last))
+            if (.not. (t >= self%t_prev - slack .and. t <= self%t + slack)) return
+            s = (t - self%t_prev)/self%h_last
+        else if (t /= self%t) then
             return
         end if
-        if (.not. self%have_step) return
-        slack = 100*epsilon(1.0_wp)*max(abs(self%t), abs(self%h_last))
-        if (.not. (t >= self%t_prev - slack .and. t <= self%t + slack)) return
-        s = (t - self%t_prev)/self%h_last
-        u_out = self%u_prev + s*(self%q(:, 1) + s*(self%q(:, 2) + s*self%q(:, 3)))
         stat = regdae_success
-    end subroutine radau_solution_at
+        ok = .true.
+    end function step_fraction
+
+    real(wp) function radau_last_step(self)
+        class(radau_integrator), intent(in) :: self
+        radau_last_step = self%h_last
+    end function radau_last_step
 
     real(wp) function radau_time(self)
         class(radau_integrator), intent(in) :: self

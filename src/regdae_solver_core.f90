@@ -24,7 +24,7 @@ module regdae_solver_core
     type, public :: solver_core
         type(regularized_dae), pointer :: model => null()   !! the model the backends evaluate (new_core)
         class(integrator), allocatable :: nonstiff   !! the explicit integrator (integrator=dopri5, auto)
-        class(integrator), allocatable :: stiff      !! the implicit integrator (integrator=ida, auto after a switch)
+        class(integrator), allocatable :: stiff      !! the implicit integrator (integrator=ida or radau, auto after a switch)
         type(solver_options) :: opts      !! the options in force, auto values resolved
         integer :: n = 0, m = 0, neq = 0   !! n: size of the state z; neq: IDA unknowns
         integer :: nx = 0                  !! size of x reported to the user
@@ -36,7 +36,7 @@ module regdae_solver_core
         logical :: augmented = .false.     !! formulation=augmented: the state lives in IDA's vector, y too
         integer :: formulation = formulation_eliminated   !! resolved
         integer :: active = integrator_ida     !! the integrator now in charge: dopri5 (the nonstiff
-                                               !! slot) or another (the stiff slot)
+                                               !! slot) or ida or radau (the stiff slot)
         logical :: switching = .false.         !! integrator=auto: switch between dopri5 and IDA
         integer :: switches = 0                !! switches so far
         integer :: explicit_votes = 0          !! consecutive checks that found the explicit method would do

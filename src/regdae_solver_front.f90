@@ -699,7 +699,10 @@ contains
     function solver_options_in_force(self) result(opts)
         class(solver_engine), intent(in) :: self
         type(solver_options) :: opts
-        if (associated(self%core)) opts = self%core%opts
+        if (.not. associated(self%core)) return
+        opts = self%core%opts
+        ! integrator=auto: the integrator in charge now (it switches along the run)
+        if (opts%integrator == integrator_auto) opts%integrator = self%core%active
     end function solver_options_in_force
 
     integer function solver_formulation(self)

@@ -1,8 +1,8 @@
 !> The init paths of the solver front (`regdae_solver_front`): the input
 !! checked, the consistent initial values, the automatic parameters resolved
 !! (`regdae_auto_parameters`), the monitor started and the first integrator
-!! created in the core's slot: dopri5 or IDA on the eliminated or multiplier
-!! formulation (solver_start), IDA on the augmented formulation of a mechanical
+!! created in the core's slot: dopri5, Radau IIA or IDA on the eliminated or
+!! multiplier formulation (solver_start), IDA on the augmented formulation of a mechanical
 !! problem that declares its structure (solver_start_augmented).
 submodule (regdae_solver_front) regdae_solver_init
     use regdae_second_order_problem, only: velocity_constraint
@@ -13,6 +13,7 @@ submodule (regdae_solver_front) regdae_solver_init
     use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
     use regdae_dopri5_integrator, only: dopri5_integrator, dopri5_in_slot
     use regdae_ida_integrator, only: ida_integrator, ida_in_slot
+    use regdae_radau_integrator, only: radau_adapter, radau_in_slot
     use regdae_auto_parameters, only: set_state_tolerances, resolve_auto_parameters, resolve_augmented_parameters, &
                                       augmented_eps, check_first_step
     use regdae_jacobian_check, only: check_second_order_jacobian, check_structured_jacobian
@@ -223,7 +224,8 @@ contains
         type(mechanical_structure) :: st
         use_augmented = (opts%formulation == formulation_augmented)
         if (opts%formulation /= formulation_auto) return
-        if (opts%integrator == integrator_dopri5 .or. opts%mass_damping > 0.0_wp .or. problem%n < augmented_min_n) return
+        if (opts%integrator == integrator_dopri5 .or. opts%integrator == integrator_radau .or. &
+            opts%mass_damping > 0.0_wp .or. problem%n < augmented_min_n) return
         st = problem%structure()
         use_augmented = st%declared
     end function use_augmented
@@ -303,8 +305,9 @@ contains
             return
         end if
         if (opts%check_jacobians) then
-            call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
-            if (stat == regdae_success) call check_structured_jacobian(problem, sys, t0, q0, stat, msg)
+            ! the user's patterns first, by (row, column) of M, G and the force Jacobians
+            call check_structured_jacobian(problem, sys, t0, q0, v0, stat, msg)
+            if (stat == regdae_success) call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, msg)
                 return
@@ -324,6 +327,7 @@ contains
         type(solver_core), pointer :: core
         type(dopri5_integrator), pointer :: dopri5
         type(ida_integrator), pointer :: ida
+        type(radau_adapter), pointer :: radau
         character(len=:), allocatable :: msg
         real(wp), allocatable :: y0(:), zp0(:)
         integer :: lsq, n, m, nx
@@ -424,6 +428,16 @@ contains
             call dopri5%start(t0, z0, stat, msg, h0=opts%h_init)
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
+                return
+            end if
+            call self%record(regdae_success, '', stat)
+            return
+        end if
+        if (core%active == integrator_radau) then
+            radau => radau_in_slot(core)
+            call radau%start(t0, z0, stat, msg, h0=opts%h_init)
+            if (stat /= regdae_success) then
+                stat = start_failed(self, stat, msg)
                 return
             end if
             call self%record(regdae_success, '', stat)

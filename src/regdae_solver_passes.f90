@@ -152,7 +152,7 @@ contains
             opts%ic_tol = huge(1.0_wp)
             opts%check_jacobians = .false.
             opts%h_init = 0.0_wp
-            opts%integrator = merge(integrator_dopri5, integrator_ida, core%active == integrator_dopri5)
+            opts%integrator = core%active   ! the integrator in charge (dopri5, ida or radau)
             opts%formulation = core%formulation
             opts%linear_solver = merge(core%linear_solver, linear_solver_auto, core%augmented)
             if (core%augmented) then

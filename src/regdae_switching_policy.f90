@@ -1,5 +1,6 @@
-!> The switching policy of integrator=auto, the decisions only: when the
-!! implicit integrator hands back to the explicit one. (The explicit method's own
+!> The switching policy of integrator=auto, the decisions only: which implicit
+!! integrator takes a stiff system (radau_preferred), and when the implicit
+!! integrator hands back to the explicit one (explicit_would_do). (The explicit method's own
 !! stiffness test, Hairer's, decides the hand-over to the implicit one inside
 !! `regdae_explicit_rk`; the switches themselves, which create and start the
 !! integrators, are `regdae_integrator_switching`'s.) The spectral radius of the
@@ -12,7 +13,17 @@ module regdae_switching_policy
     implicit none
     private
 
-    public :: spectral_radius, explicit_would_do
+    public :: spectral_radius, explicit_would_do, radau_preferred
+
+    !> The largest state (size of z) that integrator=auto gives to Radau IIA where
+    !! the system is stiff (above it: IDA). Measured on the stiff chain (mass 1e-2,
+    !! stiffness 1e4, damping 10, rtol 1e-7, eliminated formulation; doc/methods.md,
+    !! "Which implicit integrator"): Radau takes 41-43 steps against IDA's 130 at
+    !! 1-3x IDA's cost per step, 1.0-3.4x less time per run at 4 ... 128 states
+    !! (1 ... 32 links; even at 16 links); both cost O(n^3) per step there (the dense
+    !! eliminated formulation). No crossover was found up to 128: the bound keeps
+    !! Radau's n x n dense LU and n-column Jacobian where it was measured.
+    integer, parameter, public :: radau_max_n = 128
 
 contains
 
@@ -54,6 +65,20 @@ contains
         end do
         call core%model%evaluate(t, z, stat, recoverable)   ! the model back at the state
     end function spectral_radius
+
+    !> integrator=auto, the system found stiff on the eliminated formulation (the
+    !! augmented one, for a mechanical problem that declares its structure, goes to
+    !! IDA with KLU: cheaper per run than Radau on the eliminated formulation from 2
+    !! links of the stiff chain on): Radau IIA for a problem of order 2 (stiff
+    !! springs, large weights) with a state of at most radau_max_n components, IDA
+    !! otherwise. First-order problems stay with IDA: on a stiff forcing that moves
+    !! in time (test_defaults' stiff_middle, x1' = -1e5 (x1 - sin 50t) + ...) Radau's
+    !! error estimate, filtered by (gamma/h - J)^-1, lets steps grow past the
+    !! accuracy (measured at rtol 1e-6: error 9.2e-4 against IDA's 6.4e-6).
+    logical function radau_preferred(core) result(yes)
+        type(solver_core), intent(in) :: core
+        yes = core%second_order .and. core%n <= radau_max_n
+    end function radau_preferred
 
     !> integrator=auto, the implicit integrator active: would the explicit method do
     !! here? Its stable step 3.3/rho (rho: the implicit integrator's stiffness

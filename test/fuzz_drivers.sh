@@ -91,5 +91,19 @@ while IFS= read -r line; do
     fi
 done <"$tmp/cases"
 set +f
+# Values are taken as given: a blank before or after one (an argument "rtol=1e-3 " in
+# quotes) is refused with exit 2 and a message naming the key, in the solver's options,
+# the drivers' own numbers and counts, and nout.
+for arg in 'rtol=1e-3 ' 'rtol= 1e-3' 'tf=3 ' 'nout=10 ' 'method=direct ' 'max_order=2 '; do
+    timeout "$limit" "$bin/ex52" "$arg" >"$tmp/out" 2>"$tmp/err"
+    code=$?
+    key=${arg%%=*}
+    if [ "$code" = 2 ] && grep -q "^ex52: bad value \".*\" for $key: a blank before or after it" "$tmp/err"; then
+        passed=$((passed + 1))
+    else
+        bad "ex52 \"$arg\": exit $code, expected 2 and the message on the blank"
+        cat "$tmp/err"
+    fi
+done
 echo "fuzz: seed $seed, $n command lines; exit 0: $exits0, exit 1: $exits1, exit 2: $exits2"
 finish

@@ -102,8 +102,8 @@ contains
     end subroutine start_pendulum
 
     ! The bottom crossings x1 = 0 of the pendulum stop the integration at
-    ! (2k - 1) T/4, k = 1 ... 4, over [0, 2.2 T] (index 3 and 2, IDA and
-    ! Dormand-Prince, rtol 1e-6 and 1e-8): each within 10 rtol of the exact
+    ! (2k - 1) T/4, k = 1 ... 4, over [0, 2.2 T] (index 3 and 2, IDA,
+    ! Dormand-Prince and Radau IIA, rtol 1e-6 and 1e-8): each within 10 rtol of the exact
     ! time, x1 there within 10 rtol of 0, the direction alternating (-1 first),
     ! and tout reached after the fourth with regdae_success.
     subroutine pendulum_stop_times(chk)
@@ -112,17 +112,18 @@ contains
         type(solver_options) :: opts
         real(wp) :: x(2), v(2), tp, rtol, t
         integer :: stat, index, integ, level, k, found(1)
+        integer, parameter :: integrators(3) = [integrator_ida, integrator_dopri5, integrator_radau]
         character(len=:), allocatable :: what
         tp = period()
         do index = 2, 3
-            do integ = 1, 2
+            do integ = 1, 3
                 do level = 6, 8, 2
                     rtol = 10.0_wp**(-level)
                     opts = solver_options()
                     opts%index = index
                     opts%rtol = rtol
                     opts%atol = rtol
-                    opts%integrator = merge(integrator_ida, integrator_dopri5, integ == 1)
+                    opts%integrator = integrators(integ)
                     what = 'index '//format_int(index)//' '//integrator_name(opts%integrator)//' rtol '// &
                            format_real(rtol)
                     call start_pendulum(solver, opts, [1], stat)

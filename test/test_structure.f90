@@ -23,6 +23,33 @@ module test_structure
         procedure :: forces => sprung_forces
     end type sprung_chain
 
+    !> The chain with a dashpot that pulls joint 1 by the velocity of joint 2
+    !! (x1'' gets -c x2'), force_v declared empty by the inherited structure.
+    type, extends(chain) :: damped_chain
+    contains
+        procedure :: forces => damped_forces
+    end type damped_chain
+
+    !> The chain whose mass_matrix couples x1 and x2 (mass_values, diagonal, does not).
+    type, extends(chain) :: coupled_mass_chain
+    contains
+        procedure :: mass_matrix => coupled_mass
+    end type coupled_mass_chain
+
+    !> The chain declaring M and G only: force_q and force_v never set.
+    type, extends(chain) :: unset_forces_chain
+    contains
+        procedure :: structure => unset_forces_structure
+    end type unset_forces_chain
+
+    !> The chain whose values routines fall back on the public defaults (dense M and G
+    !! gathered in pattern order).
+    type, extends(chain) :: fallback_chain
+    contains
+        procedure :: mass_values => fallback_mass_values
+        procedure :: constraint_jacobian_values => fallback_gx_values
+    end type fallback_chain
+
     !> The chain with one wrong entry in its sparse G.
     type, extends(chain) :: wrong_g_chain
     contains
@@ -50,6 +77,11 @@ contains
                  new_test('sigma_min_matches_svd', sigma_min_matches_svd), &
                  new_test('jacobian_checks_pass', jacobian_checks_pass), &
                  new_test('missing_force_dependence_reported', missing_force_dependence_reported), &
+                 new_test('missing_velocity_dependence_reported', missing_velocity_dependence_reported), &
+                 new_test('mass_outside_its_pattern_reported', mass_outside_its_pattern_reported), &
+                 new_test('unset_force_patterns_are_empty', unset_force_patterns_are_empty), &
+                 new_test('options_report_the_integrator', options_report_the_integrator), &
+                 new_test('default_values_callable_from_an_override', default_values_callable_from_an_override), &
                  new_test('wrong_g_reported', wrong_g_reported), &
                  new_test('pattern_missing_an_entry', pattern_missing_an_entry), &
                  new_test('structure_that_does_not_fit', structure_that_does_not_fit), &
@@ -65,6 +97,54 @@ contains
         call self%chain%forces(t, q, qd, f, stat)
         f(2) = f(2) - 50.0_wp*q(6)
     end subroutine sprung_forces
+
+    subroutine damped_forces(self, t, q, qd, f, stat)
+        class(damped_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:), qd(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(inout) :: stat
+        call self%chain%forces(t, q, qd, f, stat)
+        f(1) = f(1) - 3.0_wp*qd(3)
+    end subroutine damped_forces
+
+    subroutine coupled_mass(self, t, q, mass, stat)
+        class(coupled_mass_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        real(wp), intent(out) :: mass(:, :)
+        integer, intent(inout) :: stat
+        call self%chain%mass_matrix(t, q, mass, stat)
+        mass(1, 2) = 0.25_wp
+        mass(2, 1) = 0.25_wp
+    end subroutine coupled_mass
+
+    function unset_forces_structure(self) result(st)
+        class(unset_forces_chain), intent(in) :: self
+        type(mechanical_structure) :: st
+        type(mechanical_structure) :: full
+        full = self%chain%structure()
+        st%declared = .true.
+        st%curvature_supplied = .true.
+        st%mass = full%mass
+        st%constraint = full%constraint
+    end function unset_forces_structure
+
+    subroutine fallback_mass_values(self, t, q, pattern, vals, stat)
+        class(fallback_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        call default_mass_values(self, t, q, pattern, vals, stat)
+    end subroutine fallback_mass_values
+
+    subroutine fallback_gx_values(self, t, q, pattern, vals, stat)
+        class(fallback_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        call default_constraint_jacobian_values(self, t, q, pattern, vals, stat)
+    end subroutine fallback_gx_values
 
     subroutine wrong_g_values(self, t, q, pattern, vals, stat)
         class(wrong_g_chain), intent(inout) :: self
@@ -231,8 +311,134 @@ contains
         opts%check_jacobians = .true.
         call solver%init(p, 0.0_wp, q0, v0, opts, stat)
         call chk%equal(stat, regdae_err_jacobian, 'reported')
-        call chk%true(index(solver%message(), 'pattern') > 0, 'the message points at the patterns')
+        call chk%true(index(solver%message(), 'force_q pattern misses entry (2, 6)') > 0, &
+                      'the message names force_q and the entry (row 2, column 6) of the user''s numbering')
+        if (index(solver%message(), '(2, 6)') == 0) write (*, '(a)') '    '//solver%message()
     end subroutine missing_force_dependence_reported
+
+    ! A dashpot f_1 = -3 v_3 with force_v declared empty: the entry (1, 3) is named.
+    subroutine missing_velocity_dependence_reported(chk)
+        type(checker), intent(inout) :: chk
+        type(damped_chain) :: p
+        character(len=:), allocatable :: msg
+        integer :: stat
+        p%chain = new_chain(8, .false., 9.81_wp)
+        call checked_init(p, stat, msg)
+        call chk%equal(stat, regdae_err_jacobian, 'reported')
+        call chk%true(index(msg, 'force_v pattern misses entry (1, 3) of df/dv') > 0, &
+                      'the message names force_v and the entry (1, 3)')
+        call chk%true(index(msg, '-3.0') > 0, 'and its value, -3')
+        write (*, '(a)') '    '//msg
+    end subroutine missing_velocity_dependence_reported
+
+    ! init of a chain (p%chain set; straight, at rest) with formulation=augmented and
+    ! check_jacobians=yes: the status and the message.
+    subroutine checked_init(p, stat, msg)
+        class(chain), intent(in) :: p
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        real(wp) :: q0(p%n), v0(p%n)
+        call chain_start(p, q0, v0)
+        opts%formulation = formulation_augmented
+        opts%check_jacobians = .true.
+        call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+        msg = solver%message()
+        call solver%destroy()
+    end subroutine checked_init
+
+    ! mass_matrix with M(1, 2) = M(2, 1) = 0.25 against a diagonal mass pattern (the
+    ! chain's mass_values give the diagonal): the entry is named in M's terms.
+    subroutine mass_outside_its_pattern_reported(chk)
+        type(checker), intent(inout) :: chk
+        type(coupled_mass_chain) :: p
+        character(len=:), allocatable :: msg
+        integer :: stat
+        p%chain = new_chain(8, .false., 9.81_wp)
+        call checked_init(p, stat, msg)
+        call chk%equal(stat, regdae_err_jacobian, 'reported')
+        call chk%true(index(msg, 'M (mass_matrix) has the nonzero entry (1, 2)') > 0, &
+                      'the message names the entry (1, 2) of M')
+    end subroutine mass_outside_its_pattern_reported
+
+    ! force_q and force_v left unset mean empty: the run is the chain's own (which sets
+    ! both to empty_pattern(n, n)), bit for bit, and passes check_jacobians.
+    subroutine unset_force_patterns_are_empty(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: a, b
+        type(unset_forces_chain) :: p
+        type(chain) :: c
+        real(wp) :: q0(16), v0(16), qa(16), qb(16)
+        integer :: stat
+        c = new_chain(8, .true., 9.81_wp)
+        p%chain = c
+        call chain_start(c, q0, v0)
+        opts%check_jacobians = .true.
+        call a%init(p, 0.0_wp, q0, v0, opts, stat)
+        call chk%equal(stat, regdae_success, 'unset force patterns: init')
+        call chk%equal(a%formulation(), formulation_augmented, 'the augmented formulation')
+        call a%advance(1.0_wp, qa, stat=stat)
+        call chk%equal(stat, regdae_success, 'unset force patterns: advance')
+        call b%init(c, 0.0_wp, q0, v0, opts, stat)
+        call b%advance(1.0_wp, qb, stat=stat)
+        call chk%true(all(qa == qb), 'the same run as with empty_pattern(n, n), bit for bit')
+        call a%destroy()
+        call b%destroy()
+    end subroutine unset_force_patterns_are_empty
+
+    ! Overrides that call default_mass_values and default_constraint_jacobian_values
+    ! (public from regdae): the chain's M and G are the same numbers (differences of
+    ! positions, the masses), so the run is the chain's own, bit for bit.
+    subroutine default_values_callable_from_an_override(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: a, b
+        type(fallback_chain) :: p
+        type(chain) :: c
+        real(wp) :: q0(16), v0(16), qa(16), qb(16)
+        integer :: stat
+        c = new_chain(8, .true., 9.81_wp)
+        p%chain = c
+        call chain_start(c, q0, v0)
+        call a%init(p, 0.0_wp, q0, v0, opts, stat)
+        call a%advance(1.0_wp, qa, stat=stat)
+        call chk%equal(stat, regdae_success, 'the run with the default values routines')
+        call chk%equal(a%formulation(), formulation_augmented, 'the augmented formulation')
+        call b%init(c, 0.0_wp, q0, v0, opts, stat)
+        call b%advance(1.0_wp, qb, stat=stat)
+        call chk%true(all(qa == qb), 'the chain''s own run, bit for bit')
+        if (.not. all(qa == qb)) write (*, '(a, es10.2)') '    max difference ', maxval(abs(qa - qb))
+        call a%destroy()
+        call b%destroy()
+    end subroutine default_values_callable_from_an_override
+
+    ! options() reports the integrator in charge, not `auto`: IDA on the augmented
+    ! formulation (a declared structure, n = 16), dopri5 at the start of the slider
+    ! crank's eliminated formulation (not stiff there), and what was asked for otherwise.
+    subroutine options_report_the_integrator(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts, used
+        type(regdae_solver) :: solver
+        type(chain) :: c
+        real(wp) :: q0(16), v0(16)
+        integer :: stat
+        c = new_chain(8, .true., 9.81_wp)
+        call chain_start(c, q0, v0)
+        call solver%init(c, 0.0_wp, q0, v0, opts, stat)
+        used = solver%options()
+        call chk%equal(used%integrator, integrator_ida, 'the chain (augmented): ida')
+        call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [1.0_wp, -1.0_wp], opts, stat)
+        used = solver%options()
+        call chk%equal(solver%formulation(), formulation_eliminated, 'the slider crank: eliminated')
+        call chk%equal(used%integrator, integrator_dopri5, 'the slider crank at t0: dopri5')
+        opts%integrator = integrator_ida
+        call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [pi/2, pi/2], [1.0_wp, -1.0_wp], opts, stat)
+        used = solver%options()
+        call chk%equal(used%integrator, integrator_ida, 'integrator=ida: ida')
+        call solver%destroy()
+    end subroutine options_report_the_integrator
 
     subroutine wrong_g_reported(chk)
         type(checker), intent(inout) :: chk

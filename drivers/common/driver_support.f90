@@ -4,6 +4,7 @@ module driver_support
     use, intrinsic :: iso_fortran_env, only: int64, error_unit
     use regdae, only: wp, format_real, format_int, solver_options, solver_stats, set_option, regdae_success, &
                       regdae_solver, parse_real, parse_integer, option_auto, integrator_name, formulation_name
+    use regdae_parse, only: has_outer_blank
     implicit none
     private
 
@@ -157,10 +158,21 @@ contains
         real(wp), intent(inout) :: x
         character(len=:), allocatable, intent(out) :: msg
         logical :: ok
-        msg = ''
+        msg = blank_message(key, value)
+        if (len(msg) > 0) return
         call parse_real(value, x, ok)
         if (.not. ok) msg = 'bad value "'//value//'" for '//key//' (a finite number, e.g. 1e-3, 2.5 or .5)'
     end subroutine parse_number
+
+    ! Values are taken as given: a blank (or tab, newline) before or after one
+    ! ("rtol=1e-3 " in quotes) is refused, as by the C door, not read as 1e-3.
+    function blank_message(key, value) result(msg)
+        character(len=*), intent(in) :: key, value
+        character(len=:), allocatable :: msg
+        msg = ''
+        if (has_outer_blank(value)) msg = 'bad value "'//value//'" for '//key// &
+                                         ': a blank before or after it (values are taken as given)'
+    end function blank_message
 
     !> Read an integer option value in [lo, hi], or stop with a usage error
     !! naming the key and the range.
@@ -182,7 +194,8 @@ contains
         character(len=:), allocatable, intent(out) :: msg
         integer :: tmp
         logical :: ok
-        msg = ''
+        msg = blank_message(key, value)
+        if (len(msg) > 0) return
         tmp = lo
         call parse_integer(value, tmp, ok)
         if (.not. ok .or. tmp < lo .or. tmp > hi) then
@@ -211,7 +224,10 @@ contains
         integer, intent(inout) :: nout
         character(len=:), allocatable, intent(out) :: msg
         integer :: stat
-        if (key == 'nout') then
+        msg = blank_message(key, value)
+        if (len(msg) > 0) then
+            return
+        else if (key == 'nout') then
             call parse_count(key, value, nout, 1, max_nout, msg)
         else
             call set_option(opts, key, value, stat, msg)

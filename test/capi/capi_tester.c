@@ -460,6 +460,13 @@ static void problems(void)
     /* mechanical: lambda = -1/2 */
     regdae_set_mechanical(s, 2, 1, m_identity, m_no_forces, c_g, c_gradient, NULL, NULL);
     CHECK(circle_run(s, 1, -0.5) < CIRCLE_BOUND);
+    /* the same through Radau IIA (integrator radau, the option's setter), with its statistics */
+    CHECK(regdae_set_integrator(s, REGDAE_INTEGRATOR_RADAU) == REGDAE_SUCCESS);
+    CHECK(circle_run(s, 1, -0.5) < CIRCLE_BOUND);
+    regdae_get_options(s, &opts);
+    regdae_get_statistics(s, &st);
+    CHECK(opts.integrator == REGDAE_INTEGRATOR_RADAU && st.steps > 0 && st.jac_evals > 0 && st.switches == 0);
+    regdae_set_integrator(s, REGDAE_INTEGRATOR_AUTO);
 
     /* K particles: dense (eliminated), then structured (augmented, from the dense
        callbacks, then from the values callbacks) */
@@ -557,6 +564,11 @@ static void callbacks(void)
     CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
     CHECK(regdae_advance(s, 2.0, x, 2, NULL, 0, NULL, 0) == REGDAE_ERR_INTEGRATION);
     CHECK(says(s, "cannot get past t = 1.49"));
+    CHECK(regdae_set_integrator(s, REGDAE_INTEGRATOR_RADAU) == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
+    CHECK(regdae_advance(s, 2.0, x, 2, NULL, 0, NULL, 0) == REGDAE_ERR_INTEGRATION);
+    CHECK(says(s, "Radau failed at t = 1.49") && says(s, "reported failure (stat = 3)"));
+    regdae_set_integrator(s, REGDAE_INTEGRATOR_IDA);
     /* > 0 at the initial point: REGDAE_ERR_USER_CALLBACK */
     d.fail_from = 0.0;
     CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_ERR_USER_CALLBACK);
@@ -605,8 +617,9 @@ static void options(void)
     CHECK(regdae_advance(s, 1.0, x, 2, NULL, 0, NULL, 0) == REGDAE_SUCCESS);
     CHECK(regdae_get_statistics(s, &st) == REGDAE_SUCCESS);
     CHECK(st.t == 1.0 && st.steps > 0 && st.res_evals >= st.steps && st.h_last > 0.0 && st.h_last <= 0.25);
-    /* integrator auto: on the multiplier formulation IDA does the whole run, and
-       regdae_get_options says so; on the eliminated one the switching is in force */
+    /* integrator auto: regdae_get_options gives the integrator in charge: on the
+       multiplier formulation IDA (it does the whole run); on the eliminated one dopri5
+       after init (the explicit method starts; the switching stays in force) */
     CHECK(regdae_set_integrator(s, REGDAE_INTEGRATOR_AUTO) == REGDAE_SUCCESS);
     CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
     regdae_get_options(s, &opts);
@@ -614,7 +627,7 @@ static void options(void)
     CHECK(regdae_set_formulation(s, REGDAE_FORMULATION_ELIMINATED) == REGDAE_SUCCESS);
     CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
     regdae_get_options(s, &opts);
-    CHECK(opts.integrator == REGDAE_INTEGRATOR_AUTO && opts.formulation == REGDAE_FORMULATION_ELIMINATED);
+    CHECK(opts.integrator == REGDAE_INTEGRATOR_DOPRI5 && opts.formulation == REGDAE_FORMULATION_ELIMINATED);
     regdae_destroy(&s);
 }
 

@@ -20,6 +20,10 @@ C               Example 5.1's singularity unresolved), 4 (Baumgarte's
 C               multiplier undefined at T = 0); the run goes on after
 C               it; DREGDAEMSG gives the last call's message, also after
 C               a refused call
+C     MAXORD    INFO(9) = 1 with IWORK(3) = MAXORD limits IDA's order:
+C               MAXORD = 2 and 3 take several times the steps of 5 on
+C               the circle of MECH; MAXORD = 5 is the default run; 0
+C               and 6 are refused
 C     ROOTS     DREGDAER and DREGDAEMR (NRT, RT, JROOT) on the circle
 C               x = (cos t, sin t): IDID = 5 at each root (pi/2, pi,
 C               3 pi/2 of X2 and X1) within 10 RTOL, JROOT the
@@ -50,13 +54,14 @@ C               corrupted for a call and restored
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'VECTOR') CALL VECTOR(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'WARN') CALL WARN(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'RESTART') CALL RESTRT(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'MAXORD') CALL MAXORD(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'ROOTS') CALL ROOTS(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'STEPS') CALL STEPS(NCHK)
       IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
          WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
      *        SUITE(1:LEN_TRIM(SUITE)),
      *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN, RESTART, ',
-     *        'ROOTS, STEPS)'
+     *        'MAXORD, ROOTS, STEPS)'
          STOP 2
       END IF
       WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
@@ -143,8 +148,7 @@ C     (each message says why, and what to set instead)
       CALL ONEBAD(5, 1, 'set INFO(5) = 0', NCHK)
       CALL ONEBAD(6, 1, 'a banded matrix', NCHK)
       CALL ONEBAD(6, 1, 'set INFO(6) = 0', NCHK)
-      CALL ONEBAD(9, 1, 'a maximum order', NCHK)
-      CALL ONEBAD(9, 1, 'set INFO(9) = 0', NCHK)
+      CALL ONEBAD(9, 1, 'MAXORD = IWORK(3) = 0 is not 1 ... 5', NCHK)
       CALL ONEBAD(10, 1, 'nonnegative solutions', NCHK)
       CALL ONEBAD(10, 1, 'set INFO(10) = 0', NCHK)
       CALL ONEBAD(12, 1, 'Krylov method', NCHK)
@@ -695,15 +699,16 @@ C
 C
 C     The circle from (1, 0) to TOUT = 1 with the tolerances RT, AT
 C     (INFO(2) = 1: vectors of length 2); X, IDID and the message.
-      SUBROUTINE TRYVEC(IVEC, RT, AT, X, IDID, MSG)
+      SUBROUTINE TRYVEC(IVEC, INTEG, RT, AT, X, IDID, MSG)
       EXTERNAL CF, CB, CG, CGX
-      INTEGER IVEC, IDID, INFO(20), IWORK(22), IPAR(2)
+      INTEGER IVEC, INTEG, IDID, INFO(20), IWORK(22), IPAR(2)
       DOUBLE PRECISION RT(2), AT(2), X(2), Y(2), RWORK(20), RPAR(2), T
       CHARACTER*(*) MSG
 C     IWORK zeroed too: a start reads IWORK(19:22) to free what an
 C     earlier problem left there (doc/api.md section 8)
       CALL CLEAR(INFO, RWORK, IWORK)
       INFO(2) = IVEC
+      INFO(19) = INTEG
       T = 0.0D0
       X(1) = 1.0D0
       X(2) = 0.0D0
@@ -723,21 +728,33 @@ C
       RT(2) = 1.0D-6
       AT(1) = 1.0D-6
       AT(2) = 1.0D-6
-      CALL TRYVEC(0, RT, AT, XS, IDID, MSG)
+      CALL TRYVEC(0, 0, RT, AT, XS, IDID, MSG)
       CALL CHECK(IDID .GT. 0, 'scalar tolerances: success', NCHK)
-      CALL TRYVEC(1, RT, AT, XV, IDID, MSG)
+      CALL TRYVEC(1, 0, RT, AT, XV, IDID, MSG)
       CALL CHECK(IDID .GT. 0 .AND. XV(1) .EQ. XS(1) .AND.
      *     XV(2) .EQ. XS(2), 'equal ATOL(i): the scalar run', NCHK)
       AT(2) = 1.0D-2
-      CALL TRYVEC(1, RT, AT, XL, IDID, MSG)
+      CALL TRYVEC(1, 0, RT, AT, XL, IDID, MSG)
       CALL CHECK(IDID .GT. 0 .AND. (XL(1) .NE. XS(1) .OR.
      *     XL(2) .NE. XS(2)), 'ATOL(2) = 1e-2: another run', NCHK)
       RT(2) = 1.0D-5
-      CALL TRYVEC(1, RT, AT, XL, IDID, MSG)
+      CALL TRYVEC(1, 0, RT, AT, XL, IDID, MSG)
       CALL CHECK(IDID .EQ. -33 .AND.
      *     INDEX(MSG, 'one relative tolerance') .GT. 0 .AND.
      *     INDEX(MSG, 'through ATOL') .GT. 0,
      *     'unequal RTOL(i) refused, saying what to do', NCHK)
+C     INFO(19) = 3: Radau IIA (integrator radau) on the circle, x(1) =
+C     (cos 1, sin 1) within 1e-4 at tolerances 1e-6 (measured 4e-7);
+C     INFO(19) = 4 refused
+      RT(2) = 1.0D-6
+      AT(2) = 1.0D-6
+      CALL TRYVEC(0, 3, RT, AT, XL, IDID, MSG)
+      CALL CHECK(IDID .GT. 0 .AND. ABS(XL(1) - COS(1.0D0)) .LT. 1D-4
+     *     .AND. ABS(XL(2) - SIN(1.0D0)) .LT. 1D-4,
+     *     'INFO(19) = 3: radau reaches x(1)', NCHK)
+      CALL TRYVEC(0, 4, RT, AT, XL, IDID, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'INFO(19)') .GT. 0,
+     *     'INFO(19) = 4 refused', NCHK)
       END
 C
 C     ---- WARN --------------------------------------------------------
@@ -902,4 +919,70 @@ C
       INTEGER IRES, IPAR(*)
       DOUBLE PRECISION T, X(1), GTV(1), RPAR(*)
       GTV(1) = X(1) - 2.0D0 * T - 1.0D0
+      END
+C
+C     ---- MAXORD ------------------------------------------------------
+C     DREGDAEM on the circle of MECH with IDA (INFO(19) = 1) at orders
+C     up to 2, 3 and 5 (INFO(9) = 1, IWORK(3)), and the default
+C     (INFO(9) = 0, IWORK(3) = 1 ignored).
+      SUBROUTINE MAXORD(NCHK)
+      EXTERNAL MM, MF, CG, CGX
+      INTEGER NCHK(2), INFO(20), IWORK(22), IDID, K, STEPS(4), IDIDS(4)
+      INTEGER MAXO(4), IPAR(2), NRES(4)
+      DOUBLE PRECISION RWORK(20), ERR(4), HOLD(4), T, Q(2), V(2),
+     *     LAMBDA(1), RPAR(2)
+      CHARACTER*300 MSG
+      DATA MAXO /2, 3, 5, 0/
+      DO 10 K = 1, 4
+         CALL CLEAR(INFO, RWORK, IWORK)
+         INFO(19) = 1
+         IF (MAXO(K) .GT. 0) THEN
+            INFO(9) = 1
+            IWORK(3) = MAXO(K)
+         ELSE
+            IWORK(3) = 1
+         END IF
+         CALL MRUN(INFO, RWORK, IWORK, ERR(K), IDIDS(K))
+         STEPS(K) = IWORK(11)
+         NRES(K) = IWORK(12)
+         HOLD(K) = RWORK(7)
+         CALL DREGDAEFREE(IWORK, 22)
+   10 CONTINUE
+C     RTOL = ATOL = 1E-8 as in MECH; the global error of the low orders
+C     gathers more over the 0.8 revolutions (measured 2.8E-6, 1.4E-6
+C     and 2.1E-7 at orders 2, 3 and 5): 1E-5 is 3.5 times the largest
+      CALL CHECK(ERR(1) .LT. 1.0D-5 .AND. ERR(2) .LT. 1.0D-5 .AND.
+     *     ERR(3) .LT. 1.0D-5, 'MAXORD 2, 3, 5: error', NCHK)
+      CALL CHECK(IDIDS(1) .EQ. 3 .AND. IDIDS(2) .EQ. 3 .AND.
+     *     IDIDS(3) .EQ. 3, 'MAXORD 2, 3, 5: IDID 3', NCHK)
+C     the order limited: the local error of order p falls like h^(p+1),
+C     so lower orders take more steps for the same tolerance (measured
+C     4356, 872 and 187 steps at orders 2, 3 and 5)
+      CALL CHECK(STEPS(1) .GT. 2 * STEPS(2) .AND.
+     *     STEPS(2) .GT. 2 * STEPS(3), 'steps: order 2 > 2 x order 3 >'
+     *     // ' 4 x order 5', NCHK)
+      CALL CHECK(STEPS(3) .EQ. STEPS(4) .AND. NRES(3) .EQ. NRES(4)
+     *     .AND. HOLD(3) .EQ. HOLD(4) .AND. ERR(3) .EQ. ERR(4),
+     *     'MAXORD 5 is the default run (steps, evaluations, last '
+     *     // 'step, error)', NCHK)
+      IF (ERR(1) .GE. 1.0D-5 .OR. STEPS(1) .LE. 2 * STEPS(2) .OR.
+     *     STEPS(2) .LE. 2 * STEPS(3) .OR. STEPS(3) .NE. STEPS(4))
+     *     WRITE (*, '(A, 4I8, 1P, 3E10.2)') '    steps, errors',
+     *     STEPS, ERR(1), ERR(2), ERR(3)
+C     MAXORD outside 1 ... 5: refused
+      DO 20 K = 1, 2
+         CALL CLEAR(INFO, RWORK, IWORK)
+         INFO(9) = 1
+         IWORK(3) = 6 * (K - 1)
+         CALL CIRCLE0(T, Q, IPAR)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         CALL DREGDAEM(MM, MF, CG, CGX, CGX, 2, 1, T, Q, V, LAMBDA,
+     *        1.0D0, INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22,
+     *        RPAR, IPAR)
+         CALL DREGDAEMSG(IWORK, 22, MSG)
+         CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'MAXORD = IWORK(3)')
+     *        .GT. 0, 'MAXORD 0 and 6 refused', NCHK)
+         CALL DREGDAEFREE(IWORK, 22)
+   20 CONTINUE
       END

@@ -1,0 +1,271 @@
+!> The Radau IIA integrator of order 5 (`regdae_radau_iia`) behind the integrator
+!! interface (`regdae_integrator`): integrator=radau, and the stiff slot of
+!! integrator=auto for small systems (`regdae_switching_policy`'s rule). It
+!! integrates the eliminated formulation as an ODE z' = F(t, z) (the model's
+!! slope_eliminated, as dopri5 does), with dense LU and difference-quotient
+!! Jacobians; the error test leaves out what the IDA path leaves out (core%excluded).
+!! `advance` takes one step at a time, the monitor sampling every accepted step's
+!! end and the output time, in time order, like the IDA integrator; with
+!! integrator=auto it asks the switching policy every 20 steps whether the
+!! explicit method would do.
+!!
+!! The augmented formulation is not run here: its residual is not M u' - F(t, u)
+!! with a constant diagonal M (the v rows are M(q) v', and the trust region's s
+!! rows hold G(q) v'), which is the form the Radau IIA code takes.
+module regdae_radau_integrator
+    use, intrinsic :: iso_c_binding, only: c_double
+    use regdae_kinds, only: wp
+    use regdae_status
+    use regdae_format, only: format_real
+    use regdae_solver_stats, only: solver_stats
+    use regdae_regularization, only: regularized_dae
+    use regdae_radau_system, only: radau_system, radau_options, radau_stats
+    use regdae_radau_iia, only: radau_integrator
+    use regdae_integrator, only: integrator, outcome_reached, outcome_failed, outcome_broken
+    use regdae_solver_core, only: solver_core
+    use regdae_switching_policy, only: spectral_radius
+    use regdae_implicit_steps, only: budget_spent, sampled_alarm, after_step
+    implicit none
+    private
+
+    public :: radau_in_slot
+
+    !> The eliminated formulation z' = F(t, z) of a model, as a Radau IIA system.
+    type, extends(radau_system) :: eliminated_ode
+        type(regularized_dae), pointer :: model => null()
+        real(wp), allocatable :: y(:)   !! the multiplier of the last evaluation
+        character(len=:), allocatable :: failure   !! the model's message at F's last failure ('' none)
+    contains
+        procedure :: rhs => eliminated_rhs
+    end type eliminated_ode
+
+    !> Radau IIA on the core's model (see the module documentation).
+    type, extends(integrator), public :: radau_adapter
+        type(solver_core), pointer :: core => null()   !! the problem's state (set by radau_in_slot)
+        type(radau_integrator) :: radau                !! the method's state
+        type(eliminated_ode) :: ode                    !! the system it integrates
+        type(radau_stats) :: before                    !! the counters of the earlier starts
+        real(wp), allocatable :: z(:), zp(:)           !! the state and slope at the time reached (or interpolated)
+        logical :: started = .false.                   !! radau holds a started state
+    contains   ! the interface's procedures (regdae_integrator documents them)
+        procedure :: start => radau_start
+        procedure :: advance => radau_advance
+        procedure :: state => radau_state
+        procedure :: slope => radau_slope
+        procedure :: interpolate => radau_interpolate
+        procedure :: time => radau_time
+        procedure :: last_step => radau_last_step
+        procedure :: statistics => radau_statistics
+        procedure :: stiffness => radau_stiffness
+        procedure :: ready => radau_ready
+        procedure :: free => radau_free
+    end type radau_adapter
+
+contains
+
+    !> The Radau integrator in the core's stiff slot (allocated there if the slot
+    !! is empty); null if the slot holds another integrator.
+    function radau_in_slot(core) result(p)
+        type(solver_core), pointer, intent(in) :: core
+        type(radau_adapter), pointer :: p
+        p => null()
+        if (.not. allocated(core%stiff)) allocate (radau_adapter :: core%stiff)
+        select type (s => core%stiff)
+        type is (radau_adapter)
+            p => s
+            p%core => core
+        end select
+    end function radau_in_slot
+
+    subroutine eliminated_rhs(self, t, u, f, stat, recoverable)
+        class(eliminated_ode), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        call self%model%slope_eliminated(t, u, f, self%y, stat, recoverable)
+        if (stat /= regdae_success) self%failure = self%model%message
+    end subroutine eliminated_rhs
+
+    !> Start (again) at (t, z): the core's tolerances (rtol, the state's atol), the
+    !! error test without the excluded components, the first step h0 when given (> 0).
+    subroutine radau_start(self, t, z, stat, msg, h0, zp, y)
+        class(radau_adapter), intent(inout), target :: self
+        real(wp), intent(in) :: t, z(:)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp), intent(in), optional :: h0, zp(:), y(:)
+        type(radau_options) :: ro
+        associate (core => self%core)
+            if (self%started) self%before = add_stats(self%before, self%radau%statistics())
+            self%ode%model => core%model
+            self%ode%failure = ''
+            if (.not. allocated(self%ode%y)) allocate (self%ode%y(core%m))
+            ro%rtol = core%opts%rtol
+            ro%atol_vector = core%atol_z(1:core%n)
+            ro%max_steps = huge(1)   ! the budget is counted per advance (max_steps), here
+            ro%h_max = core%opts%h_max
+            if (present(h0)) ro%h0 = max(0.0_wp, h0)
+            ro%error_test = .not. core%excluded(1:core%n)
+            if (.not. any(ro%error_test)) deallocate (ro%error_test)
+            call self%radau%start(self%ode, t, z, ro, stat)
+            self%started = .true.
+            self%z = z
+            if (.not. allocated(self%zp)) allocate (self%zp(core%n))
+            msg = ''
+            if (stat /= regdae_success) then
+                msg = self%radau%message()
+                return
+            end if
+            call self%radau%slope(self%zp)
+        end associate
+    end subroutine radau_start
+
+    !> Radau one step at a time to tout (landing on it with stop_at_output); the
+    !! outcome: at tout, the end of a singular pass (stop_at_pass_end), the
+    !! monitor's alarm, the policy's hand-back to the explicit method
+    !! (integrator=auto), the step budget spent, or a failure.
+    subroutine radau_advance(self, tout, t_stop, outcome, stat, msg)
+        class(radau_adapter), intent(inout), target :: self
+        real(wp), intent(in) :: tout
+        real(wp), intent(out) :: t_stop
+        integer, intent(out) :: outcome, stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp) :: t_now
+        integer :: taken, istat
+        type(solver_core), pointer :: core
+        core => self%core
+        stat = regdae_success
+        msg = ''
+        t_stop = tout
+        outcome = outcome_reached
+        t_now = self%radau%time()
+        if (t_now > core%sampled_t .and. t_now <= tout) then   ! a step end passed over at the last output
+            call at_step_end()
+            if (sampled_alarm(core, t_now, t_stop, outcome)) return
+        end if
+        taken = 0
+        do while (t_now < tout)
+            if (budget_spent(core, 'Radau', taken, t_now, tout, t_stop, outcome, stat, msg)) then
+                call at_step_end()
+                return
+            end if
+            if (core%opts%stop_at_output) then
+                call self%radau%step(self%ode, stat, tout)
+            else
+                call self%radau%step(self%ode, stat)
+            end if
+            t_now = self%radau%time()
+            call at_step_end()
+            if (stat /= regdae_success) then
+                t_stop = t_now
+                outcome = outcome_failed
+                msg = 'Radau failed at t = '//format_real(t_now)//': '//self%radau%message()
+                if (len(self%ode%failure) > 0) msg = msg//' | last failure of F: '//self%ode%failure
+                return
+            end if
+            taken = taken + 1
+            if (after_step(core, taken, t_now, tout, t_stop, outcome)) return
+        end do
+        if (t_now > tout) then
+            call self%interpolate(tout, istat)
+            if (istat /= regdae_success) then
+                outcome = outcome_broken
+                stat = regdae_err_integration
+                msg = 'Radau could not interpolate at t = '//format_real(tout)
+                return
+            end if
+            if (sampled_alarm(core, tout, t_stop, outcome)) return
+        end if
+    contains
+        ! The state and slope at the end of the last step.
+        subroutine at_step_end()
+            call self%radau%state(self%z)
+            call self%radau%slope(self%zp)
+        end subroutine at_step_end
+    end subroutine radau_advance
+
+    function radau_state(self) result(u)
+        class(radau_adapter), intent(in), target :: self
+        real(c_double), pointer :: u(:)
+        u => self%z
+    end function radau_state
+
+    function radau_slope(self) result(up)
+        class(radau_adapter), intent(in), target :: self
+        real(c_double), pointer :: up(:)
+        up => self%zp
+    end function radau_slope
+
+    !> The last step's collocation polynomial at t (state and slope).
+    subroutine radau_interpolate(self, t, stat)
+        class(radau_adapter), intent(inout), target :: self
+        real(wp), intent(in) :: t
+        integer, intent(out) :: stat
+        call self%radau%solution_at(t, self%z, stat)
+        if (stat == regdae_success) call self%radau%slope_at(t, self%zp, stat)
+    end subroutine radau_interpolate
+
+    real(wp) function radau_time(self)
+        class(radau_adapter), intent(in) :: self
+        radau_time = self%radau%time()
+    end function radau_time
+
+    real(wp) function radau_last_step(self)
+        class(radau_adapter), intent(in) :: self
+        radau_last_step = self%radau%last_step()
+    end function radau_last_step
+
+    !> Radau's counters (over its starts) added to st in IDA's terms: steps
+    !! (accepted), res_evals (F, the difference quotients' included), jac_evals,
+    !! lin_setups (the pairs of real and complex LU), nonlin_iters, err_test_fails
+    !! (rejected steps), conv_fails (Newton failures); its last step when active.
+    subroutine radau_statistics(self, st, active)
+        class(radau_adapter), intent(in) :: self
+        type(solver_stats), intent(inout) :: st
+        logical, intent(in) :: active
+        type(radau_stats) :: own
+        own = self%before
+        if (self%started) own = add_stats(own, self%radau%statistics())
+        st%steps = st%steps + own%accepted
+        st%res_evals = st%res_evals + own%rhs_evals
+        st%jac_res_evals = st%jac_res_evals + own%jacobians*self%core%n
+        st%jac_evals = st%jac_evals + own%jacobians
+        st%lin_setups = st%lin_setups + own%lu_decompositions
+        st%nonlin_iters = st%nonlin_iters + own%newton_iterations
+        st%err_test_fails = st%err_test_fails + own%rejected
+        st%conv_fails = st%conv_fails + own%newton_failures
+        if (active) st%h_last = self%radau%last_step()
+    end subroutine radau_statistics
+
+    pure type(radau_stats) function add_stats(a, b) result(c)
+        type(radau_stats), intent(in) :: a, b
+        c%steps = a%steps + b%steps
+        c%accepted = a%accepted + b%accepted
+        c%rejected = a%rejected + b%rejected
+        c%rhs_evals = a%rhs_evals + b%rhs_evals
+        c%jacobians = a%jacobians + b%jacobians
+        c%lu_decompositions = a%lu_decompositions + b%lu_decompositions
+        c%newton_iterations = a%newton_iterations + b%newton_iterations
+        c%newton_failures = a%newton_failures + b%newton_failures
+    end function add_stats
+
+    !> The spectral radius of the eliminated formulation's Jacobian at the state.
+    real(wp) function radau_stiffness(self, t) result(rho)
+        class(radau_adapter), intent(inout), target :: self
+        real(wp), intent(in) :: t
+        rho = spectral_radius(self%core, t, self%z)
+    end function radau_stiffness
+
+    logical function radau_ready(self)
+        class(radau_adapter), intent(in) :: self
+        radau_ready = self%started
+    end function radau_ready
+
+    subroutine radau_free(self)
+        class(radau_adapter), intent(inout) :: self
+        if (self%started) self%before = add_stats(self%before, self%radau%statistics())
+        self%started = .false.
+    end subroutine radau_free
+
+end module regdae_radau_integrator

@@ -1,0 +1,206 @@
+!> Tests of integrator=radau through the solver (regdae_radau_integrator): its
+!! results against independent references and against integrator=ida and
+!! integrator=dopri5 on the slider crank, the pendulum and the chain; the option's
+!! parsing and refusals; its statistics.
+module test_radau_solver
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use regdae
+    use slider_crank_problem, only: slider_crank_reduced, new_slider_crank
+    use pendulum_problem, only: pendulum_angle, new_pendulum
+    use chain_problem, only: chain, new_chain, chain_start
+    use reference_ode, only: integrate_reference
+    use regdae_testing, only: checker, test_case, new_test
+    implicit none
+    private
+    public :: radau_solver_tests
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+    integer, parameter :: integrators(3) = [integrator_radau, integrator_ida, integrator_dopri5]
+
+contains
+
+    function radau_solver_tests() result(tests)
+        type(test_case), allocatable :: tests(:)
+        tests = [new_test('radau_option', radau_option), &
+                 new_test('radau_slider_crank', radau_slider_crank), &
+                 new_test('radau_pendulum', radau_pendulum), &
+                 new_test('radau_chain', radau_chain), &
+                 new_test('auto_picks_radau_when_small', auto_picks_radau_when_small)]
+    end function radau_solver_tests
+
+    ! integrator=radau is parsed and named; it needs the eliminated formulation.
+    subroutine radau_option(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        character(len=:), allocatable :: msg
+        integer :: stat
+        call set_option(opts, 'integrator', 'radau', stat, msg)
+        call chk%equal(stat, regdae_success, 'integrator=radau parsed')
+        call chk%equal(opts%integrator, integrator_radau, 'integrator=radau sets integrator_radau')
+        call chk%true(integrator_name(integrator_radau) == 'radau', 'its name')
+        call validate_options(opts, stat, msg)
+        call chk%equal(stat, regdae_success, 'integrator=radau valid')
+        opts%formulation = formulation_multiplier
+        call validate_options(opts, stat, msg)
+        call chk%equal(stat, regdae_err_bad_input, 'integrator=radau with formulation=multiplier refused')
+        call chk%true(index(msg, 'integrator=radau needs formulation=eliminated') > 0, 'with a message that says why')
+        opts%formulation = formulation_auto
+        call set_option(opts, 'integrator', 'radau5', stat, msg)
+        call chk%equal(stat, regdae_err_bad_input, 'integrator=radau5 refused')
+        call chk%true(index(msg, 'radau') > 0, 'the message names radau among the values')
+    end subroutine radau_option
+
+    ! The slider crank at index 3 from the paper's start (th = (pi/2, pi/2), at rest),
+    ! 20 outputs on [0, 5] through 3 singular passes, rtol = atol = 1e-8: th1 against
+    ! the reduced ODE by CVODE at 1e-13, for each integrator, and radau against ida and
+    ! dopri5. Measured: errors 1.6e-9 (radau), 2.0e-7 (ida), 1.3e-8 (dopri5); the bound
+    ! 1e-6 = 100 rtol is the tolerance's global error with a margin (the passes amplify
+    ! the local errors: ex52's max_err_th at rtol 1e-8 is 2.5e-8 on [0, 10]).
+    subroutine radau_slider_crank(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st
+        type(slider_crank_reduced) :: reduced
+        real(wp) :: times(20), ref(2, 20), th(2, 20, 3), err(3)
+        integer :: stat, k, i, rstat
+        times = [(0.25_wp*k, k=1, 20)]
+        call integrate_reference(reduced, 0.0_wp, [pi/2, 0.0_wp], times, ref, 1.0e-13_wp, 1.0e-13_wp, rstat)
+        call chk%equal(rstat, 0, 'reference')
+        do i = 1, 3
+            call run_outputs(solver, new_slider_crank(9.8_wp), [pi/2, pi/2], integrators(i), times, th(:, :, i), stat)
+            call chk%true(stat >= 0, 'slider crank, '//integrator_name(integrators(i))//': reaches t = 5')
+            err(i) = maxval(abs(th(1, :, i) - ref(1, :)))
+            call chk%true(err(i) <= 1.0e-6_wp, 'slider crank, '//integrator_name(integrators(i))//': th1 error <= 1e-6')
+            if (i == 1) then
+                st = solver%statistics()
+                call chk%true(st%steps > 0 .and. st%jac_evals > 0 .and. st%lin_setups > 0 .and. &
+                              st%nonlin_iters >= st%steps .and. st%switches == 0, 'radau''s statistics')
+            end if
+            call solver%destroy()
+        end do
+        call chk%true(maxval(abs(th(:, :, 1) - th(:, :, 2))) <= 2.0e-6_wp, 'slider crank: radau = ida within 2e-6')
+        call chk%true(maxval(abs(th(:, :, 1) - th(:, :, 3))) <= 2.0e-6_wp, 'slider crank: radau = dopri5 within 2e-6')
+        write (*, '(a,3es10.2)') '    slider crank th1 error (radau, ida, dopri5): ', err
+    end subroutine radau_slider_crank
+
+    ! The Cartesian pendulum from the horizontal, at rest, on [0, 2] (21 outputs),
+    ! rtol = atol = 1e-8: the position against the angle ODE by CVODE at 1e-13, for
+    ! each integrator. Measured: 9.2e-10 (radau), 6.9e-8 (ida), 9.4e-9 (dopri5); bound 1e-6.
+    subroutine radau_pendulum(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(pendulum_angle) :: angle
+        real(wp) :: times(21), ref(2, 21), x(2, 21, 3), err(3)
+        integer :: stat, k, i, rstat
+        times = [(0.1_wp*k, k=0, 20)]
+        call integrate_reference(angle, 0.0_wp, [pi/2, 0.0_wp], times, ref, 1.0e-13_wp, 1.0e-13_wp, rstat)
+        call chk%equal(rstat, 0, 'reference')
+        do i = 1, 3
+            call run_outputs(solver, new_pendulum(9.81_wp), [1.0_wp, 0.0_wp], integrators(i), times, x(:, :, i), stat)
+            err(i) = 0.0_wp
+            do k = 1, size(times)
+                err(i) = max(err(i), maxval(abs(x(:, k, i) - [sin(ref(1, k)), -cos(ref(1, k))])))
+            end do
+            call chk%equal(stat, regdae_success, 'pendulum, '//integrator_name(integrators(i))//': reaches t = 2')
+            call chk%true(err(i) <= 1.0e-6_wp, 'pendulum, '//integrator_name(integrators(i))//': position error <= 1e-6')
+            call solver%destroy()
+        end do
+        call chk%true(maxval(abs(x(:, :, 1) - x(:, :, 2))) <= 2.0e-6_wp, 'pendulum: radau = ida within 2e-6')
+        call chk%true(maxval(abs(x(:, :, 1) - x(:, :, 3))) <= 2.0e-6_wp, 'pendulum: radau = dopri5 within 2e-6')
+        write (*, '(a,3es10.2)') '    pendulum position error (radau, ida, dopri5): ', err
+    end subroutine radau_pendulum
+
+    ! The chain of 4 links (8 coordinates) falling from its start, to t = 0.5 at
+    ! rtol = atol = 1e-8 (eliminated formulation): the positions of radau against ida's
+    ! and dopri5's (no closed form: the three integrators agree within their
+    ! tolerance). Measured: 4.9e-10 and 8.1e-9; bound 1e-6.
+    subroutine radau_chain(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts
+        type(chain) :: p
+        real(wp) :: q0(8), v0(8), q(8, 3), diff(2)
+        integer :: stat, i
+        p = new_chain(4, .false., 9.81_wp)
+        call chain_start(p, q0, v0)
+        do i = 1, 3
+            opts = solver_options()
+            opts%rtol = 1.0e-8_wp
+            opts%atol = 1.0e-8_wp
+            opts%integrator = integrators(i)
+            opts%formulation = formulation_eliminated
+            call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+            if (stat >= 0) call solver%advance(0.5_wp, q(:, i), stat=stat)
+            call chk%equal(stat, regdae_success, 'chain of 4, '//integrator_name(integrators(i)))
+            call solver%destroy()
+        end do
+        diff = [maxval(abs(q(:, 1) - q(:, 2))), maxval(abs(q(:, 1) - q(:, 3)))]
+        call chk%true(diff(1) <= 1.0e-6_wp, 'chain: radau = ida within 1e-6')
+        call chk%true(diff(2) <= 1.0e-6_wp, 'chain: radau = dopri5 within 1e-6')
+        write (*, '(a,2es10.2)') '    chain of 4, radau against ida and dopri5: ', diff
+    end subroutine radau_chain
+
+    ! The problem from (x0, 0) at rest with `which` at rtol = atol = 1e-8: x at the
+    ! times (NaN after a failure); the solver left initialized (its statistics).
+    subroutine run_outputs(solver, problem, x0, which, times, x, stat)
+        type(regdae_solver), intent(inout) :: solver
+        class(second_order_problem), intent(in) :: problem
+        real(wp), intent(in) :: x0(:), times(:)
+        integer, intent(in) :: which
+        real(wp), intent(out) :: x(:, :)
+        integer, intent(out) :: stat
+        type(solver_options) :: opts
+        integer :: k
+        opts%rtol = 1.0e-8_wp
+        opts%atol = 1.0e-8_wp
+        opts%integrator = which
+        x = ieee_value(1.0_wp, ieee_quiet_nan)
+        call solver%init(problem, 0.0_wp, x0, 0.0_wp*x0, opts, stat)
+        do k = 1, size(times)
+            if (stat < 0) exit
+            call solver%advance(times(k), x(:, k), stat=stat)
+        end do
+    end subroutine run_outputs
+
+    ! integrator=auto on the stiff chain (mass 1e-2, stiffness 1e4, damping 10) on the
+    ! eliminated formulation: the stiffness test fires near t = 0.027; 4 links (16
+    ! states) go to Radau, 33 links (132 states > radau_max_n) to IDA. Radau's run
+    ! agrees with integrator=ida's at t = 0.05 (rtol 1e-8; measured 6e-15: the dashpots have settled the
+    ! chain on its springs by then; bound 1e-6).
+    subroutine auto_picks_radau_when_small(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts
+        type(chain) :: p
+        real(wp), allocatable :: q0(:), v0(:), q(:, :)
+        character(len=:), allocatable :: events
+        integer :: stat, run, links
+        do run = 1, 3
+            links = merge(33, 4, run == 3)
+            p = new_chain(links, .false., 9.81_wp)
+            p%joint_mass = 1.0e-2_wp
+            p%stiffness = 1.0e4_wp
+            p%damping = 10.0_wp
+            if (allocated(q0)) deallocate (q0, v0)
+            allocate (q0(2*links), v0(2*links))
+            if (run == 1) allocate (q(2*links, 2))
+            call chain_start(p, q0, v0)
+            opts = solver_options()
+            opts%rtol = 1.0e-8_wp
+            opts%atol = 1.0e-8_wp
+            opts%formulation = formulation_eliminated
+            if (run == 2) opts%integrator = integrator_ida
+            call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+            if (run <= 2 .and. stat >= 0) call solver%advance(0.05_wp, q(:, run), stat=stat)
+            if (run == 3 .and. stat >= 0) call solver%advance(0.04_wp, q0, stat=stat)
+            call chk%equal(stat, regdae_success, 'stiff chain of '//integrator_name(opts%integrator))
+            events = solver%events()
+            if (run == 1) call chk%true(index(events, 'dopri5 -> radau') > 0, '4 links: auto hands over to Radau')
+            if (run == 3) call chk%true(index(events, 'dopri5 -> ida') > 0, '33 links: auto hands over to IDA')
+            call solver%destroy()
+        end do
+        call chk%true(maxval(abs(q(:, 1) - q(:, 2))) <= 1.0e-6_wp, 'auto (Radau) = ida within 1e-6')
+        write (*, '(a,es10.2)') '    stiff chain of 4, auto (radau) against ida: ', maxval(abs(q(:, 1) - q(:, 2)))
+    end subroutine auto_picks_radau_when_small
+
+end module test_radau_solver
