@@ -163,22 +163,17 @@ contains
         real(wp) :: x(2), tp
         integer :: stat, found(2)
         tp = period()
-        opts%rtol = 1.0e-8_wp
-        opts%atol = 1.0e-8_wp
+        opts = tolerances(1.0e-8_wp)
         call start_pendulum(solver, opts, [1], stat, direction=[1])
         call solver%advance(2.0_wp*tp, x, stat=stat)
         call chk%equal(stat, regdae_root_found, 'increasing only: a root')
         st = solver%statistics()
         call chk%close(st%t, 0.75_wp*tp, 1.0e-7_wp, 'increasing only: at 3T/4')
         call start_pendulum(solver, opts, [1, 1], stat, direction=[1, -1])
-        call solver%advance(2.0_wp*tp, x, stat=stat)
-        st = solver%statistics()
-        found = solver%roots()
+        call next_stop(solver, 2.0_wp*tp, x, stat, st, found)
         call chk%close(st%t, 0.25_wp*tp, 1.0e-7_wp, 'both: the first at T/4')
         call chk%true(all(found == [0, -1]), 'both: the decreasing one reports it')
-        call solver%advance(2.0_wp*tp, x, stat=stat)
-        st = solver%statistics()
-        found = solver%roots()
+        call next_stop(solver, 2.0_wp*tp, x, stat, st, found)
         call chk%close(st%t, 0.75_wp*tp, 1.0e-7_wp, 'both: the second at 3T/4')
         call chk%true(all(found == [1, 0]), 'both: the increasing one reports it')
     end subroutine direction_filter
@@ -194,8 +189,7 @@ contains
         integer :: stat
         character(len=:), allocatable :: log
         tp = period()
-        opts%rtol = 1.0e-8_wp
-        opts%atol = 1.0e-8_wp
+        opts = tolerances(1.0e-8_wp)
         call start_pendulum(solver, opts, [1, 2], stat, stop=[.false., .false.])
         call solver%advance(1.9_wp*tp, x, stat=stat)
         call chk%equal(stat, regdae_success, 'continue: tout reached')
@@ -213,6 +207,30 @@ contains
         call chk%close(st%t, 0.75_wp*tp, 1.0e-7_wp, 'stop and continue: at 3T/4')
         call chk%equal(st%roots_found, 3, 'stop and continue: 3 roots so far')
     end subroutine continue_counts_and_log
+
+    ! rtol = atol = tol.
+    function tolerances(tol) result(opts)
+        real(wp), intent(in) :: tol
+        type(solver_options) :: opts
+        opts%rtol = tol
+        opts%atol = tol
+    end function tolerances
+
+    ! advance towards tout: the status, the time reached and the roots there.
+    subroutine next_stop(solver, tout, x, stat, st, found)
+        type(regdae_solver), intent(inout) :: solver
+        real(wp), intent(in) :: tout
+        real(wp), intent(out) :: x(:)
+        integer, intent(out) :: stat
+        type(solver_stats), intent(out) :: st
+        integer, intent(out) :: found(:)
+        integer, allocatable :: roots(:)
+        call solver%advance(tout, x, stat=stat)
+        st = solver%statistics()
+        roots = solver%roots()
+        found = 0
+        found(1:min(size(found), size(roots))) = roots(1:min(size(found), size(roots)))
+    end subroutine next_stop
 
     integer function count_text(text, part) result(k)
         character(len=*), intent(in) :: text, part
@@ -237,8 +255,7 @@ contains
         real(wp) :: x(2), tp
         integer :: stat, found(1)
         tp = period()
-        opts%rtol = 1.0e-8_wp
-        opts%atol = 1.0e-8_wp
+        opts = tolerances(1.0e-8_wp)
         call start_pendulum(solver, opts, [2], stat)
         call solver%advance(tp, x, stat=stat)
         call chk%equal(stat, regdae_root_found, 'at t0: a root later')
@@ -260,8 +277,7 @@ contains
         real(wp) :: x(2), tp, t_early, h_step
         integer :: stat, found(2)
         tp = period()
-        opts%rtol = 1.0e-8_wp
-        opts%atol = 1.0e-8_wp
+        opts = tolerances(1.0e-8_wp)
         t_early = 0.25_wp*tp - asin(1.0e-4_wp)/sqrt(2*gravity*(1 - cos(phi0)))
         call start_pendulum(solver, opts, [1, 3], stat, shift=1.0e-4_wp)
         call solver%advance(tp, x, stat=stat)
@@ -272,9 +288,7 @@ contains
         call chk%close(st%t, t_early, 1.0e-7_wp, 'two in a step: x1 = 1e-4 first')
         call chk%true(all(found == [0, -1]), 'two in a step: the shifted function first')
         call chk%true(h_step > 10*(0.25_wp*tp - t_early), 'two in a step: the step is longer than their distance')
-        call solver%advance(tp, x, stat=stat)
-        st = solver%statistics()
-        found = solver%roots()
+        call next_stop(solver, tp, x, stat, st, found)
         call chk%equal(stat, regdae_root_found, 'two in a step: the second stop')
         call chk%close(st%t, 0.25_wp*tp, 1.0e-7_wp, 'two in a step: x1 = 0 next')
         call chk%true(all(found == [-1, 0]), 'two in a step: x1 second')
@@ -360,21 +374,16 @@ contains
         type(solver_stats) :: st
         real(wp) :: x(1), t_sing
         integer :: stat, found(2)
-        opts%rtol = 1.0e-8_wp
-        opts%atol = 1.0e-8_wp
+        opts = tolerances(1.0e-8_wp)
         call solver%init(new_ex51(orientation_psd), -1.0_wp, [0.0_wp], opts, stat)
         ev%which = [6, 7]
         call solver%set_events(ev, 2, stat)
-        call solver%advance(1.0_wp, x, stat=stat)
-        st = solver%statistics()
-        found = solver%roots()
+        call next_stop(solver, 1.0_wp, x, stat, st, found)
         call chk%equal(stat, regdae_root_found, 'ex51: a root at the singular point')
         call chk%true(all(found == [0, 1]), 'ex51: x - 1 first')
         t_sing = st%t
         call chk%close(t_sing, 0.0_wp, 1.0e-3_wp, 'ex51: x = 1 near t = 0 (singular, got '//format_real(t_sing)//')')
-        call solver%advance(1.0_wp, x, stat=stat)
-        st = solver%statistics()
-        found = solver%roots()
+        call next_stop(solver, 1.0_wp, x, stat, st, found)
         call chk%equal(stat, regdae_root_found, 'ex51: a second root')
         call chk%close(st%t, 0.5_wp, 1.0e-7_wp, 'ex51: x = 1.5 at t = 0.5')
         call chk%true(all(found == [1, 0]), 'ex51: x - 1.5 second')
