@@ -10,6 +10,11 @@
 !!   branch_tol=0.1 (a larger |th1 + th2 - pi| flags the run as off the physical branch)
 !!   and formulation, lsq, exclusion, stop_at_output (yes), max_steps, h_init, h_max, ic_tol,
 !!   singular_threshold (0.05: sigma_min(GB) below it at an output time counts as singular)
+!!   events=no|yes: three event functions, logged and continued (th1 through 0, the singular
+!!   passes; th1 through pi/4; th1' = 0, the turning points th1 = +-pi/2), their times against the
+!!   reduced ODE's (CVODE at 1e-12 and Newton's method): summary fields roots=... (found)
+!!   roots_ref=... (in the reference) max_root_err=... (the largest time error of a found root)
+!!   root_err_th1=... root_err_pi4=... root_err_w1=... (the same per function)
 !! The reference is the reduced one-degree-of-freedom ODE on the physical branch, integrated by
 !! CVODE at rtol = atol = 1e-13.
 !! Output: '#' lines, the table 't th1 th2 w1 w2 lambda g3 energy' (lambda of eq. 5.2), and the last line
@@ -25,6 +30,7 @@ program ex52_driver
     use regdae
     use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
     use reference_ode, only: integrate_reference
+    use crank_roots, only: crank_events, crank_reference_roots
     use driver_support, only: resolved_line, event_lines, &
                               format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, warning_log, &
@@ -40,7 +46,8 @@ program ex52_driver
     type(slider_crank_reduced) :: reduced
     character(len=:), allocatable :: key, value, status_text
     integer :: i, k, nout, stat, rstat
-    logical :: ok, run_failed, off_branch
+    logical :: ok, run_failed, off_branch, events
+    type(crank_events) :: crank_ev
     real(wp) :: th1, w1, tf, branch_tol, th(2), w(2), lam(1), t, e0, e, seconds, output_seconds
     real(wp) :: max_err, max_g3, max_de, max_dev, dev, t_off, ref_drift
     real(wp) :: est(2), err_true, err_est, ratio_min, ratio_max   ! error_estimate=yes
@@ -54,6 +61,7 @@ program ex52_driver
     tf = 10.0_wp
     nout = 1000
     branch_tol = 0.1_wp
+    events = .false.
     opts%stop_at_output = .true.
     do i = 1, command_argument_count()
         call split_key_value(argument(i), key, value, ok)
@@ -63,6 +71,9 @@ program ex52_driver
         case ('w1'); call read_number(prog, key, value, w1)
         case ('tf'); call read_number(prog, key, value, tf)
         case ('branch_tol'); call read_number(prog, key, value, branch_tol)
+        case ('events')
+            if (value /= 'yes' .and. value /= 'no') call die_usage(prog, 'events must be yes or no')
+            events = (value == 'yes')
         case default
             call common_argument(prog, key, value, opts, nout)
         end select
@@ -105,6 +116,7 @@ program ex52_driver
     e0 = crank%energy([th1, pi - th1], [w1, -w1])
     call solve_clock%start()
     call solver%init(crank, t0, [th1, pi - th1], [w1, -w1], opts, stat)
+    if (events .and. stat == regdae_success) call solver%set_events(crank_ev, 3, stat, stop=[.false., .false., .false.])
     call solve_clock%stop()
     if (stat == regdae_success) then
         write (*, '(a)') resolved_line(solver)
@@ -159,7 +171,7 @@ program ex52_driver
         ' status='//status_text//' t_end='//num(st%t)//' max_err_th='//num(max_err)// &
         ' max_abs_g3='//num(max_g3)//' max_energy_err='//num(max_de)//' max_branch_dev='//num(max_dev)// &
         ' singular_passes='//format_int(st%singular_passes)//stats_fields(st, seconds, output_seconds)// &
-        estimate_fields()
+        estimate_fields()//root_fields()
     call solver%destroy()
     run_failed = (status_text == 'failed')
     ! Free what the program allocated: valgrind and LeakSanitizer report the rest as lost.
@@ -179,6 +191,40 @@ contains
                ' est_within10='//format_int(est_within)//' est_ratio_min='//num(ratio_min)// &
                ' est_ratio_max='//num(ratio_max)
     end function estimate_fields
+
+    ! The summary's event fields (events=yes only): the roots logged (their lines
+    ! '# event: t = T: event K ...') against the reduced ODE's.
+    function root_fields() result(text)
+        character(len=:), allocatable :: text, log
+        real(wp), allocatable :: rref(:, :)
+        real(wp) :: worst(3), d, tl
+        integer :: j, a, b, kind, rs
+        text = ''
+        if (.not. events) return
+        call crank_reference_roots(gravity, th1, st%t, rref, rs)
+        log = solver%events()
+        worst = 0.0_wp
+        a = 1
+        do while (a <= len(log))
+            b = index(log(a:), new_line('a')) + a - 1
+            if (b < a) b = len(log) + 1
+            j = index(log(a:b - 1), ': event ')
+            if (log(a:a + 3) == 't = ' .and. j > 0) then
+                read (log(a + 4:a + j - 2), *) tl
+                read (log(a + j + 7:a + j + 7), *) kind
+                d = huge(1.0_wp)
+                do j = 1, size(rref, 2)
+                    if (nint(rref(2, j)) == kind) d = min(d, abs(rref(1, j) - tl))
+                end do
+                worst(kind) = max(worst(kind), d)
+            end if
+            a = b + 1
+        end do
+        text = ' roots='//format_int(st%roots_found)//' roots_ref='//format_int(size(rref, 2))// &
+               ' max_root_err='//num(maxval(worst))//' root_err_th1='//num(worst(1))//' root_err_pi4='// &
+               num(worst(2))//' root_err_w1='//num(worst(3))
+        if (rs /= 0) text = text//' reference_failed'
+    end function root_fields
 
     elemental real(wp) function reduced_energy(th, w)
         real(wp), intent(in) :: th, w

@@ -77,6 +77,9 @@ extern "C" {
 /** Warning: the integration error approaching a singular configuration exceeds resolution_tol times the
  *  tolerance (the solution near it is not converged in the tolerance; regdae_message says where). */
 #define REGDAE_WARN_UNRESOLVED 2
+/** regdae_advance returned at a root of an event function that stops (regdae_set_events): x there; which
+ *  functions: regdae_get_roots. Not a failure: the next regdae_advance goes on from the root. */
+#define REGDAE_ROOT_FOUND 3
 /** Invalid argument or option: NULL pointer, wrong length, unknown key, bad value. */
 #define REGDAE_ERR_BAD_INPUT -101
 /** x0 (and v0) violate g(x0, t0) = 0 (G v0 + g_t = 0) beyond ic_tol. */
@@ -249,6 +252,7 @@ typedef struct regdae_stats {
     double error_estimate;    /**< error_estimate: the estimated error of x at the last output in error weights; -1: none */
     int weight_changes;       /**< automatic Baumgarte weights changed along the run */
     int eps_changes;          /**< automatic eps changed along the run */
+    int roots_found;          /**< roots of the event functions reported (regdae_set_events) */
 } regdae_stats;
 
 /* ---- Handles and messages --------------------------------------------------- */
@@ -518,9 +522,39 @@ int regdae_init(regdae_solver *solver, double t0, const double *x0, int nx0, con
  * REGDAE_WARN_MULTIPLIER_UNDEFINED: x (and v) valid, y NaN;
  * REGDAE_WARN_UNRESOLVED: x is the integrator's, but near a singular configuration
  * passed during this call it may miss the tolerance (once per pass; the option
- * resolution_tol, 0: off).
+ * resolution_tol, 0: off); REGDAE_ROOT_FOUND: returned at a root of an event function
+ * that stops (regdae_set_events), x there, stats.t its time.
  */
 int regdae_advance(regdae_solver *solver, double tout, double *x, int nx, double *y, int ny, double *v, int nv);
+
+/* ---- Events (root finding; doc/api.md, Events) ------------------------------- */
+
+/**
+ * Event functions e_i(t, x, v), i = 0 ... n_events - 1: write e (length n_events) and
+ * return 0 (nonzero: the advance fails with REGDAE_ERR_USER_CALLBACK). x has length n;
+ * v (length n) is the velocity of a second-order or mechanical problem, NULL for a
+ * first-order one (e_i(t, x)).
+ */
+typedef int (*regdae_event_fn)(double t, const double *x, const double *v, double *e, void *user_data);
+
+/**
+ * Set n_events event functions (0: none; they stay set across regdae_init). Each root is
+ * located on the integrator's continuous extension (Illinois) to 4 epsilon max(|t|, |h|).
+ * direction[i] (NULL: all 0): +1 report only increasing crossings, -1 only decreasing,
+ * 0 both. stop[i] (NULL: all 1): 1 regdae_advance returns at the root with
+ * REGDAE_ROOT_FOUND, 0 the root is counted (regdae_stats.roots_found) and logged, and the
+ * integration goes on. A function zero at t0 is not reported there. Returns
+ * REGDAE_SUCCESS or REGDAE_ERR_BAD_INPUT (n_events < 0, events NULL, a direction not in
+ * -1, 0, 1).
+ */
+int regdae_set_events(regdae_solver *solver, int n_events, regdae_event_fn events, const int *direction,
+                      const int *stop, void *user_data);
+
+/**
+ * After REGDAE_ROOT_FOUND: roots[i] = +1 (a root of function i there, increasing), -1
+ * (decreasing) or 0 (none at that time); roots has length n_events.
+ */
+int regdae_get_roots(const regdae_solver *solver, int *roots, int n_events);
 
 /** The statistics of the integration so far (stats->t: the time reached). */
 int regdae_get_statistics(const regdae_solver *solver, regdae_stats *stats);

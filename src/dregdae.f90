@@ -81,6 +81,65 @@ subroutine dregdaem(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, 
                           iwork, liw, rpar, ipar)
 end subroutine dregdaem
 
+!> DREGDAE with root finding in DDASKR's manner: the NRT event functions of RT,
+!! CALL RT(N, T, X, X, NRT, RVAL, RPAR, IPAR) (e_i(t, x)); at a root IDID = 5, T the
+!! root, X and Y there, JROOT(i) = +1 / -1 / 0 (a root of function i there,
+!! increasing / decreasing, none); the next call (INFO(1) = 1) goes on from it.
+subroutine dregdaer(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, rpar, ipar, &
+                    rt, nrt, jroot)
+    use regdae_kinds, only: wp
+    use regdae_dassl, only: dassl_first_order
+    use regdae_f77_routines, only: f77_point_routine, f77_root_routine
+    implicit none
+    procedure(f77_point_routine) :: f, b, g, gx, gt   !! as for DREGDAE
+    integer, intent(in) :: n, m
+    real(wp), intent(inout) :: t, x(*), y(*)
+    real(wp), intent(in) :: tout
+    integer, intent(inout) :: info(*)
+    real(wp), intent(in) :: rtol(*), atol(*)
+    integer, intent(out) :: idid                      !! as for DREGDAE, and 5: a root of RT at T
+    real(wp), intent(inout) :: rwork(*)
+    integer, intent(in) :: lrw
+    integer, intent(inout) :: iwork(*)
+    integer, intent(in) :: liw
+    real(wp), intent(inout) :: rpar(*)
+    integer, intent(inout) :: ipar(*)
+    procedure(f77_root_routine) :: rt                 !! the event functions
+    integer, intent(in) :: nrt                        !! their number (>= 0; read at INFO(1) = 0)
+    integer, intent(out) :: jroot(*)                  !! IDID = 5: JROOT(NRT), +1, -1 or 0 each
+    call dassl_first_order(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, &
+                           rpar, ipar, rt, nrt, jroot)
+end subroutine dregdaer
+
+!> DREGDAEM with root finding: RT(N, T, Q, V, NRT, RVAL, RPAR, IPAR), NRT, JROOT
+!! as for DREGDAER (e_i(t, q, q')).
+subroutine dregdaemr(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
+                     iwork, liw, rpar, ipar, rt, nrt, jroot)
+    use regdae_kinds, only: wp
+    use regdae_dassl, only: dassl_mechanical
+    use regdae_f77_routines, only: f77_point_routine, f77_motion_routine, f77_root_routine
+    implicit none
+    procedure(f77_point_routine) :: mass, g, gx, gt   !! as for DREGDAEM
+    procedure(f77_motion_routine) :: forces
+    integer, intent(in) :: n, m
+    real(wp), intent(inout) :: t, q(*), v(*), lambda(*)
+    real(wp), intent(in) :: tout
+    integer, intent(inout) :: info(*)
+    real(wp), intent(in) :: rtol(*), atol(*)
+    integer, intent(out) :: idid                      !! as for DREGDAEM, and 5: a root of RT at T
+    real(wp), intent(inout) :: rwork(*)
+    integer, intent(in) :: lrw
+    integer, intent(inout) :: iwork(*)
+    integer, intent(in) :: liw
+    real(wp), intent(inout) :: rpar(*)
+    integer, intent(inout) :: ipar(*)
+    procedure(f77_root_routine) :: rt
+    integer, intent(in) :: nrt
+    integer, intent(out) :: jroot(*)
+    call dassl_mechanical(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
+                          iwork, liw, rpar, ipar, rt, nrt, jroot)
+end subroutine dregdaemr
+
 !> The message of the last DREGDAE or DREGDAEM call on the problem of IWORK
 !! (blank after success), cut or blank-padded to the length of MSG.
 subroutine dregdaemsg(iwork, liw, msg)

@@ -23,6 +23,7 @@ module regdae
     use regdae_c_strings, only: c_string
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     use regdae_solver_trust, only: regdae_solver, solver_stats
+    use regdae_events, only: event_functions
     implicit none
     private
 
@@ -35,6 +36,7 @@ module regdae
     end interface constraint_dt_difference
 
     public :: wp, format_real, format_int, dae_problem, constraint_dt_difference, regdae_solver, solver_stats
+    public :: event_functions
     public :: second_order_problem, velocity_constraint, curvature_difference, mechanical_problem, &
               higher_order_problem, taylor_weights
     public :: linear_dae_problem
@@ -50,7 +52,7 @@ module regdae
               regdae_err_not_psd, regdae_err_singular, regdae_err_lapack, regdae_err_sundials, &
               regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, regdae_err_mass_matrix, &
               regdae_err_branch, regdae_err_drift, regdae_err_invariant, regdae_err_structure, regdae_err_jacobian, &
-              regdae_err_work, regdae_err_memory, &
+              regdae_err_work, regdae_err_memory, regdae_root_found, &
               status_message
     ! regdae_options
     public :: solver_options, set_option, validate_options, method_name, formulation_name, lsq_name, &

@@ -24,7 +24,7 @@ module regdae_c_api
                                        routine_b, routine_g, routine_gx, routine_gt, routine_curvature, &
                                        routine_invariant, routine_mass, routine_forces, routine_mass_values, &
                                        routine_gx_values
-    use regdae_c_routines, only: c_routines
+    use regdae_c_routines, only: c_routines, c_events
     use regdae_c_records, only: c_options, c_stats, to_c_options, to_c_stats
     use regdae_c_strings, only: c_string
     use regdae_parse, only: has_outer_blank
@@ -77,6 +77,7 @@ module regdae_c_api
     public :: regdae_set_option, regdae_set_real_option, regdae_set_int_option, regdae_get_options, &
               regdae_set_atol_vector
     public :: regdae_init, regdae_advance, regdae_get_statistics, regdae_error_estimate
+    public :: regdae_set_events, regdae_get_roots
 
 contains
 
@@ -519,6 +520,64 @@ contains
         end if
         regdae_advance = solver_result(s, stat)
     end function regdae_advance
+
+    !> `int regdae_set_events(solver, n_events, events, direction, stop, user_data)`: event
+    !! functions (doc/api.md, Events); direction and stop may be NULL (0: both; 1: stop).
+    integer(c_int) function regdae_set_events(handle, n, events, direction, stop, user_data) &
+        bind(C, name='regdae_set_events')
+        type(c_ptr), value :: handle, direction, stop, user_data
+        integer(c_int), value :: n
+        type(c_funptr), value :: events
+        type(c_session), pointer :: s
+        type(c_events) :: ev
+        integer(c_int), pointer :: ds(:), ss(:)
+        integer :: stat
+        regdae_set_events = regdae_err_bad_input
+        if (.not. open_session(handle, s)) return
+        if (n > 0 .and. .not. c_associated(events)) then
+            regdae_set_events = refuse(s, 'regdae_set_events: events is NULL with n_events = '//format_int(n))
+            return
+        end if
+        ev%callback = events
+        ev%user_data = user_data
+        if (n < 0) then
+            call s%solver%set_events(ev, int(n), stat)
+        else if (c_associated(direction) .and. c_associated(stop)) then
+            call c_f_pointer(direction, ds, [n])
+            call c_f_pointer(stop, ss, [n])
+            call s%solver%set_events(ev, int(n), stat, direction=int(ds), stop=(ss /= 0))
+        else if (c_associated(direction)) then
+            call c_f_pointer(direction, ds, [n])
+            call s%solver%set_events(ev, int(n), stat, direction=int(ds))
+        else if (c_associated(stop)) then
+            call c_f_pointer(stop, ss, [n])
+            call s%solver%set_events(ev, int(n), stat, stop=(ss /= 0))
+        else
+            call s%solver%set_events(ev, int(n), stat)
+        end if
+        regdae_set_events = solver_result(s, stat)
+    end function regdae_set_events
+
+    !> `int regdae_get_roots(const regdae_solver *solver, int *roots, int n_events)`: after
+    !! REGDAE_ROOT_FOUND, +1 / -1 / 0 per event function.
+    integer(c_int) function regdae_get_roots(handle, roots, n) bind(C, name='regdae_get_roots')
+        type(c_ptr), value :: handle, roots
+        integer(c_int), value :: n
+        type(c_session), pointer :: s
+        integer(c_int), pointer :: rs(:)
+        integer, allocatable :: found(:)
+        regdae_get_roots = regdae_err_bad_input
+        if (.not. open_session(handle, s)) return
+        found = s%solver%roots()
+        if (.not. c_associated(roots) .or. n /= size(found)) then
+            regdae_get_roots = refuse(s, 'regdae_get_roots: roots must be an array of n_events = '// &
+                                      format_int(size(found))//' ints')
+            return
+        end if
+        call c_f_pointer(roots, rs, [n])
+        rs = int(found, c_int)
+        regdae_get_roots = record(s, regdae_success, '')
+    end function regdae_get_roots
 
     !> `int regdae_get_statistics(const regdae_solver *solver, regdae_stats *stats)`.
     integer(c_int) function regdae_get_statistics(handle, out) bind(C, name='regdae_get_statistics')

@@ -75,6 +75,7 @@ module regdae_c_records
         real(c_double) :: error_estimate
         integer(c_int) :: weight_changes
         integer(c_int) :: eps_changes
+        integer(c_int) :: roots_found
     end type c_stats
 
     public :: to_c_options, to_c_stats
@@ -112,7 +113,8 @@ contains
                     pass_checks=st%pass_checks, passes_resolved=st%passes_resolved, &
                     passes_unresolved=st%passes_unresolved, pass_error=st%pass_error, &
                     companion_steps=st%companion_steps, error_estimate=st%error_estimate, &
-                    weight_changes=st%weight_changes, eps_changes=st%eps_changes)
+                    weight_changes=st%weight_changes, eps_changes=st%eps_changes, &
+                    roots_found=st%roots_found)
     end function to_c_stats
 
 end module regdae_c_records

@@ -7,13 +7,20 @@
 !!                                 void *user_data);
 !! ```
 !! A callback returns 0 on success, > 0 for a recoverable failure and < 0 to stop,
-!! exactly like the `stat` of a Fortran problem's routine.
+!! exactly like the `stat` of a Fortran problem's routine. And the event functions
+!! of `regdae_set_events` (`c_events`, an extension of `event_functions`):
+!!
+!! ```c
+!! typedef int (*regdae_event_fn)(double t, const double *x, const double *v, double *e,
+!!                                void *user_data);
+!! ```
 module regdae_c_routines
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_funptr, c_null_ptr, c_null_funptr, &
-                                           c_associated, c_f_procpointer
+                                           c_associated, c_f_procpointer, c_loc
     use regdae_kinds, only: wp
     use regdae_format, only: format_int, format_real
     use regdae_foreign_problems, only: foreign_routines, n_routines, routine_name
+    use regdae_events, only: event_functions
     implicit none
     private
 
@@ -37,7 +44,26 @@ module regdae_c_routines
             real(c_double), intent(out) :: val(*)
             type(c_ptr), value :: user_data
         end function motion_callback
+
+        !> The event functions e(1:n) at (t, x, v); v NULL for a first-order problem.
+        integer(c_int) function event_callback(t, x, v, e, user_data) bind(C)
+            import :: c_int, c_double, c_ptr
+            real(c_double), value :: t
+            real(c_double), intent(in) :: x(*)      !! position, length n
+            type(c_ptr), value :: v                 !! velocity, length n, or NULL
+            real(c_double), intent(out) :: e(*)     !! the event functions' values
+            type(c_ptr), value :: user_data
+        end function event_callback
     end interface
+
+    !> The event functions of `regdae_set_events`: a C callback and its user_data.
+    type, extends(event_functions), public :: c_events
+        type(c_funptr) :: callback = c_null_funptr
+        type(c_ptr) :: user_data = c_null_ptr
+        integer :: returned = 0   !! the callback's last nonzero return
+    contains
+        procedure :: values => c_event_values
+    end type c_events
 
     !> C callbacks by routine code (a null pointer: not given) and the user's data.
     type, extends(foreign_routines), public :: c_routines
@@ -76,5 +102,23 @@ contains
         if (stat /= 0) self%failure = 'the callback '//routine_name(which)//' returned '//format_int(stat)// &
                                       ' at t = '//format_real(t)
     end subroutine c_evaluate
+
+    subroutine c_event_values(self, t, x, v, e, stat)
+        class(c_events), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: e(:)
+        integer, intent(inout) :: stat
+        procedure(event_callback), pointer :: events
+        real(c_double), target :: vt(size(v))
+        type(c_ptr) :: vp
+        vp = c_null_ptr
+        if (size(v) > 0) then
+            vt = v
+            vp = c_loc(vt)
+        end if
+        call c_f_procpointer(self%callback, events)
+        stat = int(events(t, x, vp, e, self%user_data))
+        if (stat /= 0) self%returned = stat
+    end subroutine c_event_values
 
 end module regdae_c_routines

@@ -24,20 +24,20 @@ module regdae_dassl
     use, intrinsic :: iso_fortran_env, only: error_unit, int64
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_warn_multiplier_undefined, regdae_warn_unresolved, &
-                             regdae_err_bad_input, &
+                             regdae_root_found, regdae_err_bad_input, &
                              regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_initialized
     use regdae_format, only: format_int, format_real
     use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_radau
     use regdae_solver_trust, only: regdae_solver, solver_stats
     use regdae_foreign_problems, only: foreign_first_order, foreign_mechanical
-    use regdae_f77_routines, only: f77_routines, f77_point_routine, f77_motion_routine
+    use regdae_f77_routines, only: f77_routines, f77_point_routine, f77_motion_routine, f77_root_routine, f77_events
     implicit none
     private
 
     ! INFO: DASSL's entries 1-11 (DDASPK's 12-15 must be 0) and regdae's 16-20.
     integer, parameter :: info_start = 1         ! 0: first call of a problem; 1: continue
     integer, parameter :: info_vector_tol = 2    ! 1: ATOL a vector (RTOL too, with equal entries)
-    integer, parameter :: info_intermediate = 3  ! 1: return after every step (not available)
+    integer, parameter :: info_intermediate = 3  ! 1: return after every step (IDID = 1)
     integer, parameter :: info_tstop = 4         ! 1: do not pass TSTOP = RWORK(1)
     integer, parameter :: info_hmax = 7          ! 1: HMAX = RWORK(2)
     integer, parameter :: info_h0 = 8            ! 1: H0 = RWORK(3)
@@ -78,9 +78,11 @@ module regdae_dassl
 
     ! IDID (DASSL's meanings; the other failures are regdae's status codes). Each
     ! warning has its own positive IDID: 4 (regdae_warn_multiplier_undefined) and 6
-    ! (regdae_warn_unresolved), the call succeeded otherwise. DDASKR's 4 (the initial
-    ! values alone, INFO(14) = 1, refused here) and 5 (a root) cannot occur.
+    ! (regdae_warn_unresolved), the call succeeded otherwise; 5 (regdae_root_found,
+    ! DREGDAER and DREGDAEMR) a root of RT, as DDASKR's. DDASKR's 4 (the initial values
+    ! alone, INFO(14) = 1, refused here) cannot occur.
     integer, parameter :: idid_exact = 2, idid_interpolated = 3, idid_multiplier_undefined = 4, idid_unresolved = 6
+    integer, parameter :: idid_root = 5, idid_step = 1   ! a root of RT; INFO(3) = 1: a step short of TOUT
     integer, parameter :: idid_user_stop = -11, idid_initial_values = -12, idid_bad_input = -33
 
     integer, parameter :: kind_first_order = 1, kind_mechanical = 2
@@ -101,7 +103,7 @@ contains
 
     !> DREGDAE: x' = f(x, t) - B(x, t) y, 0 = g(x, t), from T to TOUT.
     subroutine dassl_first_order(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, &
-                                 iwork, liw, rpar, ipar)
+                                 iwork, liw, rpar, ipar, rt, nrt, jroot)
         procedure(f77_point_routine) :: f, b, g, gx, gt   !! the user's routines (GT used when INFO(17) = 1)
         integer, intent(in) :: n, m                       !! sizes of x and y
         real(wp), intent(inout) :: t                      !! in: T (first call: t0); out: the time reached
@@ -116,6 +118,9 @@ contains
         integer, intent(inout) :: iwork(liw)              !! counters, status and the solver's address
         real(wp), intent(inout), target :: rpar(*)        !! passed to the user's routines
         integer, intent(inout), target :: ipar(*)         !! passed to the user's routines
+        procedure(f77_root_routine), optional :: rt       !! DREGDAER: the event functions
+        integer, intent(in), optional :: nrt              !! their number
+        integer, intent(out), optional :: jroot(*)        !! IDID = 5: +1 / -1 / 0 per function
         type(dassl_session), pointer :: s
         type(foreign_first_order) :: problem
         type(solver_options) :: opts
@@ -125,6 +130,7 @@ contains
         if (.not. open_call(kind_first_order, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
                             opts)) return
         call attach(s, g, gx, gt, rpar, ipar)
+        call s%solver%return_each_step(info(info_intermediate) == 1)
         s%routines%f => f
         s%routines%b => b
         stat = regdae_success
@@ -134,15 +140,16 @@ contains
             problem%m = m
             problem%routines => s%routines
             call s%solver%init(problem, t, x, opts, stat, atol_vector=tolerances(info, atol, n))
+            if (stat == regdae_success .and. present(rt)) call set_roots(s, rt, nrt, stat)
             init_failed = (stat /= regdae_success)
         end if
         if (stat == regdae_success) call s%solver%advance(tout, x, y, stat)
-        call close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid)
+        call close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid, jroot)
     end subroutine dassl_first_order
 
     !> DREGDAEM: M(q) q'' = f(q, q', t) + G^T lambda, 0 = g(q, t), from T to TOUT.
     subroutine dassl_mechanical(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, &
-                                rwork, lrw, iwork, liw, rpar, ipar)
+                                rwork, lrw, iwork, liw, rpar, ipar, rt, nrt, jroot)
         procedure(f77_point_routine) :: mass, g, gx, gt    !! the user's routines (GT used when INFO(17) = 1)
         procedure(f77_motion_routine) :: forces
         integer, intent(in) :: n, m
@@ -159,6 +166,9 @@ contains
         integer, intent(inout) :: iwork(liw)
         real(wp), intent(inout), target :: rpar(*)
         integer, intent(inout), target :: ipar(*)
+        procedure(f77_root_routine), optional :: rt       !! DREGDAEMR: the event functions
+        integer, intent(in), optional :: nrt
+        integer, intent(out), optional :: jroot(*)
         type(dassl_session), pointer :: s
         type(foreign_mechanical) :: problem
         type(solver_options) :: opts
@@ -168,6 +178,7 @@ contains
         if (.not. open_call(kind_mechanical, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
                             opts)) return
         call attach(s, g, gx, gt, rpar, ipar)
+        call s%solver%return_each_step(info(info_intermediate) == 1)
         s%routines%mass => mass
         s%routines%forces => forces
         stat = regdae_success
@@ -177,10 +188,11 @@ contains
             problem%m = m
             problem%routines => s%routines
             call s%solver%init(problem, t, q, v, opts, stat, atol_vector=tolerances(info, atol, 2*n))
+            if (stat == regdae_success .and. present(rt)) call set_roots(s, rt, nrt, stat)
             init_failed = (stat /= regdae_success)
         end if
         if (stat == regdae_success) call s%solver%advance(tout, q, lambda, stat, v=v)
-        call close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid)
+        call close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid, jroot)
     end subroutine dassl_mechanical
 
     !> DREGDAEMSG: the message of the last call on the problem of IWORK ('' after
@@ -339,7 +351,21 @@ contains
     ! After the solver's call: T, the counters, IDID, INFO(1) and the message (the
     ! user's routines named as DREGDAE's argument list names them); a start whose
     ! solver init failed frees the solver's memory (the session keeps the message).
-    subroutine close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid)
+    ! DREGDAER, DREGDAEMR: the NRT functions of RT, each stopping the integration at
+    ! its roots (IDID = 5), both directions.
+    subroutine set_roots(s, rt, nrt, stat)
+        type(dassl_session), intent(inout), target :: s
+        procedure(f77_root_routine) :: rt
+        integer, intent(in) :: nrt
+        integer, intent(out) :: stat
+        type(f77_events) :: ev
+        ev%rt => rt
+        ev%routines => s%routines
+        call s%solver%set_events(ev, nrt, stat)
+        if (stat /= regdae_success .and. nrt < 0) stat = regdae_err_bad_input
+    end subroutine set_roots
+
+    subroutine close_call(s, stat, init_failed, t, tout, info, rwork, iwork, idid, jroot)
         type(dassl_session), intent(inout) :: s
         integer, intent(in) :: stat
         logical, intent(in) :: init_failed   ! this call's start failed in the solver's init
@@ -349,7 +375,9 @@ contains
         real(wp), intent(inout) :: rwork(:)
         integer, intent(inout) :: iwork(:)
         integer, intent(out) :: idid
+        integer, intent(out), optional :: jroot(*)
         type(solver_stats) :: st
+        integer, allocatable :: found(:)
 
         st = s%solver%statistics()
         iwork(iwork_steps) = counter(st%steps)
@@ -369,10 +397,15 @@ contains
         select case (stat)
         case (regdae_success)
             idid = merge(idid_exact, idid_interpolated, s%exact_stops)
+            if (st%t < tout) idid = idid_step
         case (regdae_warn_multiplier_undefined)
             idid = idid_multiplier_undefined
         case (regdae_warn_unresolved)
             idid = idid_unresolved
+        case (regdae_root_found)
+            idid = idid_root
+            found = s%solver%roots()
+            if (present(jroot)) jroot(1:size(found)) = found
         case (regdae_err_bad_input, regdae_err_not_initialized)
             idid = idid_bad_input
         case (regdae_err_inconsistent_ic)
@@ -382,14 +415,18 @@ contains
         case default
             idid = stat
         end select
-        if (idid > 0) then
+        if (idid == idid_root .or. idid == idid_step) then
+            t = st%t
+            info(info_start) = 1
+        else if (idid > 0) then
             t = tout
             info(info_start) = 1
         else
             t = st%t
             info(info_start) = -1
         end if
-        if (stat /= regdae_success) call report(info, s%kind, s%message)   ! a failure or a warning
+        ! a failure or a warning (not a root)
+        if (stat /= regdae_success .and. stat /= regdae_root_found) call report(info, s%kind, s%message)
         call s%routines%forget_failure()
         if (init_failed) call s%solver%destroy()
     end subroutine close_call
@@ -448,7 +485,7 @@ contains
         end do
         do i = 3, 15
             if (len(msg) > 0) exit
-            if (info(i) /= 0 .and. any(i == [info_intermediate, 5, 6, 10, 12, 13, 14, 15])) &
+            if (info(i) /= 0 .and. any(i == [5, 6, 10, 12, 13, 14, 15])) &
                 msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)
         end do
         if (len(msg) > 0) return
@@ -514,9 +551,6 @@ contains
         integer, intent(in) :: i
         character(len=:), allocatable :: text
         select case (i)
-        case (3)
-            text = 'a return after every step, which DREGDAE does not have (the singular-pass checks and the '// &
-                   'integrator switching work between output times): set INFO(3) = 0 and ask for closer TOUT'
         case (5)
             text = 'a JAC routine, which DREGDAE does not take (it forms the Jacobian of the regularized system '// &
                    'itself from GX and difference quotients): set INFO(5) = 0'

@@ -15,6 +15,7 @@ module regdae_f77_routines
     use regdae_format, only: format_int, format_real
     use regdae_foreign_problems, only: foreign_routines, routine_f, routine_b, routine_g, routine_gx, routine_gt, &
                                        routine_mass, routine_forces, routine_name
+    use regdae_events, only: event_functions
     implicit none
     private
 
@@ -42,7 +43,31 @@ module regdae_f77_routines
             real(wp), intent(inout) :: rpar(*)
             integer, intent(inout) :: ipar(*)
         end subroutine f77_motion_routine
+
+        !> RT of DREGDAER and DREGDAEMR (DDASKR's RT with V for YPRIME): the NRT event
+        !! functions at (T, X, V) into RVAL; V is the velocity (DREGDAEMR) or X again
+        !! (DREGDAER: e_i(t, x)).
+        subroutine f77_root_routine(n, t, x, v, nrt, rval, rpar, ipar)
+            import :: wp
+            integer, intent(in) :: n           !! N
+            real(wp), intent(in) :: t
+            real(wp), intent(in) :: x(*)       !! position (state), length N
+            real(wp), intent(in) :: v(*)       !! velocity, length N (DREGDAER: X)
+            integer, intent(in) :: nrt         !! number of event functions
+            real(wp), intent(out) :: rval(*)   !! their values, length NRT
+            real(wp), intent(inout) :: rpar(*)
+            integer, intent(inout) :: ipar(*)
+        end subroutine f77_root_routine
     end interface
+
+    !> The event functions of DREGDAER and DREGDAEMR: RT, with the RPAR and IPAR of
+    !! the current call (from the problem's routines).
+    type, extends(event_functions), public :: f77_events
+        procedure(f77_root_routine), pointer, nopass :: rt => null()
+        type(f77_routines), pointer :: routines => null()   !! the RPAR and IPAR of the call
+    contains
+        procedure :: values => f77_event_values
+    end type f77_events
 
     !> The EXTERNAL routines of one DREGDAE or DREGDAEM problem and the RPAR and
     !! IPAR of the current call (addresses, set at every call).
@@ -67,7 +92,7 @@ module regdae_f77_routines
         procedure :: forget_failure => f77_forget_failure
     end type f77_routines
 
-    public :: f77_point_routine, f77_motion_routine
+    public :: f77_point_routine, f77_motion_routine, f77_root_routine
 
 contains
 
@@ -142,5 +167,22 @@ contains
             if (name(k:k) >= 'a' .and. name(k:k) <= 'z') name(k:k) = achar(iachar(name(k:k)) - 32)
         end do
     end function f77_routine_name
+
+    subroutine f77_event_values(self, t, x, v, e, stat)
+        class(f77_events), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: e(:)
+        integer, intent(inout) :: stat
+        real(wp), pointer, contiguous :: rpar(:)
+        integer, pointer, contiguous :: ipar(:)
+        call c_f_pointer(self%routines%rpar, rpar, [1])
+        call c_f_pointer(self%routines%ipar, ipar, [1])
+        if (size(v) > 0) then
+            call self%rt(size(x), t, x, v, size(e), e, rpar, ipar)
+        else
+            call self%rt(size(x), t, x, x, size(e), e, rpar, ipar)
+        end if
+        stat = 0
+    end subroutine f77_event_values
 
 end module regdae_f77_routines

@@ -46,10 +46,11 @@ module regdae_solver_front
                                  outcome_alarm, outcome_failed, outcome_exhausted
     use regdae_integrator_switching, only: hand_over
     use regdae_auto_parameters, only: time_resolution
+    use regdae_events, only: event_locator, event_functions
     implicit none
     private
 
-    public :: solver_stats
+    public :: solver_stats, event_functions
 
     !> A regularized DAE solver on IDA (see the module documentation).
     type, public :: solver_engine
@@ -59,6 +60,9 @@ module regdae_solver_front
         integer :: last_stat = regdae_err_not_initialized
         character(len=:), allocatable :: last_message
         logical :: assigned = .false.   ! the target of an assignment (which does not copy)
+        type(event_locator) :: ev       ! the event functions and their search (regdae_events)
+        type(solver_core), pointer :: ev_core => null()   ! the problem the search started on
+        logical :: each_step = .false.  ! advance returns after every step (DASSL's INFO(3) = 1)
     contains
         !> Set up a problem: check the input, compute consistent initial values
         !! and create the IDA objects. `init(problem, t0, x0, opts, stat)` for a
@@ -76,6 +80,14 @@ module regdae_solver_front
         !> Integrate to `tout`; return x(tout), the multiplier y(tout) (lambda for a
         !! mechanical problem) and, for second-order problems, optionally v(tout).
         procedure :: advance => solver_advance
+        !> Event functions: `set_events(fn, n, stat [, direction] [, stop])` (regdae_events;
+        !! n = 0 clears them). They persist across init.
+        procedure :: set_events => solver_set_events
+        !> After a return with regdae_root_found: per event function +1 (a root,
+        !! increasing), -1 (decreasing) or 0 (none at that time); length n.
+        procedure :: roots => solver_roots
+        !> advance returns after every step of the integrator (on) or at tout (off, the default).
+        procedure :: return_each_step => solver_return_each_step
         !> Statistics of the integration so far.
         procedure :: statistics => solver_statistics
         !> Message of the last call (empty after success).
@@ -296,6 +308,30 @@ module regdae_solver_front
             class(solver_engine), intent(inout) :: self
             character(len=*), intent(in) :: text
         end subroutine engine_note_event
+
+        module subroutine solver_set_events(self, fn, n, stat, direction, stop)
+            class(solver_engine), intent(inout) :: self
+            class(event_functions), intent(in) :: fn        !! the event functions (copied)
+            integer, intent(in) :: n                        !! their number (0: no events)
+            integer, intent(out) :: stat                    !! regdae_success or regdae_err_bad_input
+            integer, intent(in), optional :: direction(:)   !! per function: +1, -1 or 0 (both, the default)
+            logical, intent(in), optional :: stop(:)        !! per function: stop at its roots (the default)
+        end subroutine solver_set_events
+
+        module subroutine solver_return_each_step(self, on)
+            class(solver_engine), intent(inout) :: self
+            logical, intent(in) :: on   !! return after every step (the state at its end, before tout)
+        end subroutine solver_return_each_step
+
+        module function solver_roots(self) result(found)
+            class(solver_engine), intent(in) :: self
+            integer, allocatable :: found(:)
+        end function solver_roots
+
+        module function solver_statistics(self) result(st)
+            class(solver_engine), intent(in) :: self
+            type(solver_stats) :: st
+        end function solver_statistics
     end interface
 
 contains
@@ -318,9 +354,9 @@ contains
         type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
-        logical :: recoverable
-        integer :: nx, outcome
-        real(wp) :: t_reached, t_stop
+        logical :: recoverable, events, at_root, stop_user, held, driving
+        integer :: nx, outcome, taken
+        real(wp) :: t_reached, t_stop, t_ask
 
         core => self%core
         if (.not. associated(core)) then
@@ -335,17 +371,81 @@ contains
         nx = core%nx
         if (.not. outputs_fit()) return
         t_reached = tout
+        at_root = .false.
+        events = self%ev%n > 0
+        driving = events .or. self%each_step   ! one step at a time
         if (tout > core%t) then
             ! The integrator in charge to tout; with integrator=auto the explicit one hands
             ! over to the implicit one where the system is stiff, and back where it is not
             ! (regdae_integrator_switching). With stop_at_pass_end, the integrator stops
-            ! early at the end of a singular pass.
+            ! early at the end of a singular pass. With events, one step at a time, each
+            ! searched for roots (regdae_events); a stopping root ends the advance there.
+            stop_user = core%opts%stop_at_output
+            taken = 0
+            if (events) then
+                self%ev%found = 0
+                if (.not. (self%ev%primed .and. core%started .and. associated(self%ev_core, core))) then
+                    stepper => active_integrator(core)
+                    call self%ev%prime(stepper, core%t, nx, core%second_order, stat, msg)
+                    if (stat /= regdae_success) then
+                        call fail(stat, msg)
+                        return
+                    end if
+                    self%ev_core => core
+                end if
+                ! the rest of the integrator's last step, beyond the previous tout
+                outcome = outcome_reached
+                stepper => active_integrator(core)
+                t_stop = stepper%time()
+                if (t_stop > self%ev%t_lo .and. core%started) then
+                    if (.not. search_roots()) return
+                end if
+            end if
             do
+                if (at_root) exit
                 stepper => active_integrator(core)
                 u => stepper%state()
-                call stepper%advance(tout, t_stop, outcome, stat, msg)
+                t_ask = tout
+                if (driving) then
+                    t_ask = self%ev%step_target(stepper%time(), stepper%last_step(), tout, time_resolution(core%t, tout), &
+                                                stop_user)
+                    core%opts%stop_at_output = stop_user .and. t_ask == tout
+                    taken = taken + 1
+                    if (taken > core%opts%max_steps) then
+                        call fail(regdae_err_integration, 'max_steps = '//format_int(core%opts%max_steps)// &
+                                  ' steps taken without reaching tout = '//format_real(tout)//' (t = '// &
+                                  format_real(stepper%time())//')')
+                        return
+                    end if
+                end if
+                held = .false.
+                if (driving .and. core%stop_at_pass_end .and. core%started .and. stepper%time() < tout) then
+                    ! the step end passed over (an implicit integrator samples it now): a pass end
+                    ! there stops before the next step, as it does without events
+                    call stepper%advance(stepper%time(), t_stop, outcome, stat, msg)
+                    held = (outcome /= outcome_reached .or. core%monitor%pass_ended)
+                    if (outcome == outcome_reached .and. held) outcome = outcome_pass_end
+                end if
+                if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg)
+                core%opts%stop_at_output = stop_user
+                if (driving) then
+                    ! a step beyond t_ask: the integrator did not report a pass end there
+                    if (outcome == outcome_reached .and. core%stop_at_pass_end .and. core%monitor%pass_ended .and. &
+                        stepper%time() < tout) then
+                        outcome = outcome_pass_end
+                        t_stop = stepper%time()
+                    end if
+                end if
+                if (events) then
+                    if (.not. search_roots()) return
+                    if (at_root) exit
+                end if
                 select case (outcome)
                 case (outcome_reached)
+                    t_reached = t_ask
+                    if (self%each_step .and. t_ask < tout .and. stepper%time() < tout) t_reached = stepper%time()
+                    if (t_ask < tout .and. .not. core%monitor%alarm .and. .not. self%each_step) cycle
+                    if (self%each_step .and. t_ask < tout .and. .not. (stepper%time() < tout)) cycle
                     exit
                 case (outcome_pass_end)
                     t_reached = t_stop
@@ -373,6 +473,11 @@ contains
             end do
             core%t = t_reached
             core%started = .true.
+            if (driving) then
+                stepper => active_integrator(core)
+                if (self%ev%t_state /= core%t .or. .not. events) call stepper%interpolate(core%t, stat)
+                self%ev%t_state = core%t
+            end if
         end if
         stepper => active_integrator(core)
         u => stepper%state()
@@ -462,14 +567,46 @@ contains
             ok = .true.
         end function outputs_fit
 
+        ! The step just taken searched for roots up to its end (or tout); false
+        ! (recorded) on a failure. A stopping root: at_root, the time there.
+        logical function search_roots() result(ok)
+            logical :: stop_here
+            real(wp) :: t_hi
+            ok = .true.
+            select case (outcome)
+            case (outcome_reached, outcome_pass_end, outcome_stiff, outcome_nonstiff)
+                t_hi = t_stop
+                if (outcome == outcome_reached) t_hi = min(stepper%time(), tout)
+                call self%ev%scan(stepper, t_hi, stop_here, stat, msg)
+                if (len(self%ev%log) > 0) then
+                    call log_event(core, self%ev%log(:len(self%ev%log) - 1))
+                    self%ev%log = ''
+                end if
+                if (stat /= regdae_success) then
+                    call fail(stat, msg)
+                    ok = .false.
+                else if (stop_here) then
+                    at_root = .true.
+                    t_reached = self%ev%t_root
+                else if (outcome /= outcome_reached .and. self%ev%t_state /= t_stop) then
+                    call stepper%interpolate(t_stop, stat)   ! the state there for the hand-over
+                    self%ev%t_state = t_stop
+                end if
+            end select
+        end function search_roots
+
         ! Success at tout, or the resolution warning when the monitor flagged a new
-        ! unresolved singular pass during this advance (logged as an event too).
+        ! unresolved singular pass during this advance (logged as an event too); at a
+        ! stopping root, regdae_root_found.
         subroutine record_done()
             if (core%monitor%weights_new) then
                 core%monitor%weights_new = .false.
                 call log_event(core, core%monitor%weights_message)
             end if
-            if (core%monitor%unresolved_new) then
+            if (at_root) then
+                call self%record(regdae_root_found, 'an event function that stops has a root at t = '// &
+                                 format_real(core%t, 16), stat)
+            else if (core%monitor%unresolved_new) then
                 core%monitor%unresolved_new = .false.
                 call log_event(core, 't = '//format_real(core%t)//': unresolved: '//core%monitor%unresolved_message)
                 call self%record(regdae_warn_unresolved, core%monitor%unresolved_message, stat)
@@ -539,33 +676,6 @@ contains
             index2 = core%second_order .and. core%opts%index == 2
         end function index2
     end subroutine solver_advance
-
-    function solver_statistics(self) result(st)
-        class(solver_engine), intent(in) :: self
-        type(solver_stats) :: st
-        class(integrator), pointer :: active
-
-        st%t = self%t
-        if (.not. associated(self%core)) return
-        associate (core => self%core)
-            st%switches = core%switches
-            ! the implicit integrator's counts (none if it never ran) plus the explicit one's;
-            ! the last step of the one in charge
-            active => active_integrator(core)
-            if (allocated(core%stiff)) call core%stiff%statistics(st, associated(active, core%stiff))
-            if (allocated(core%nonstiff)) call core%nonstiff%statistics(st, associated(active, core%nonstiff))
-            st%singular_passes = core%monitor%n_singular
-            st%sigma_min = core%monitor%sigma_min
-            st%velocity_jump = core%monitor%jump_max
-            st%max_drift = core%monitor%drift_max
-            st%invariant_change = core%monitor%invariant_change
-            st%work_defect = core%monitor%work_defect
-            st%unresolved_passes = core%monitor%unresolved
-            st%resolution_ratio = core%monitor%resolution_ratio
-            st%weight_changes = core%monitor%weights%changes
-            st%eps_changes = core%monitor%scales%eps_changes
-        end associate
-    end function solver_statistics
 
     function solver_message(self) result(msg)
         class(solver_engine), intent(in) :: self

@@ -41,6 +41,7 @@ module regdae_solver_stats
                                                !! max_i |e_i| / (rtol |x_i| + atol_i); -1: no estimate
         integer :: weight_changes = 0          !! automatic Baumgarte weights changed along the run
         integer :: eps_changes = 0             !! automatic eps changed along the run
+        integer :: roots_found = 0             !! roots of the event functions reported (set_events)
     end type solver_stats
 
 end module regdae_solver_stats

@@ -35,6 +35,7 @@ module regdae_solver_trust
     use regdae_second_order_problem, only: second_order_problem
     use regdae_higher_order_problem, only: higher_order_problem
     use regdae_solver_front, only: solver_engine, solver_stats
+    use regdae_events, only: event_functions
     use regdae_format, only: format_real, format_int
     implicit none
     private
@@ -99,6 +100,7 @@ module regdae_solver_trust
         integer :: last_stat = regdae_err_not_initialized
         character(len=:), allocatable :: last_message
         logical :: assigned = .false.
+        logical :: each_step = .false.     ! advance returns after every step (return_each_step)
     contains
         !> Set up a problem (see regdae_solver_front for the three forms):
         !! `init(problem, t0, x0, opts, stat)` (order 1), `init(problem, t0, x0, v0, opts, stat)`
@@ -111,6 +113,13 @@ module regdae_solver_trust
         !> Integrate to `tout`; return x(tout), the multiplier y(tout) (lambda for a
         !! mechanical problem) and, for second-order problems, optionally v(tout) and a(tout).
         procedure :: advance => trust_advance
+        !> Event functions: `set_events(fn, n, stat [, direction] [, stop])` (doc/api.md, Events).
+        procedure :: set_events => trust_set_events
+        !> After regdae_root_found: +1 / -1 / 0 per event function (a root there, its direction).
+        procedure :: roots => trust_roots
+        !> `return_each_step(on)`: advance returns after every step (before tout, the state at
+        !! the step's end), as DASSL's INFO(3) = 1; off by default.
+        procedure :: return_each_step => trust_return_each_step
         !> Statistics of the integration so far.
         procedure :: statistics => trust_statistics
         !> Message of the last call (empty after success).
@@ -321,11 +330,11 @@ contains
                 call self%main%checkpoint(tc, zc, frozen, valid)
                 if (frozen .and. valid) call check_pass(self, t_now, ended, x, y, v, a, warn, warn_text)
             end if
-            if (.not. (t_now < tout)) exit
+            if (.not. (t_now < tout) .or. stat == regdae_root_found .or. self%each_step) exit
         end do
         if (associated(self%estimator)) then
             allocate (xe(size(x)))
-            call self%estimator%advance(tout, xe, stat=estat)
+            call self%estimator%advance(t_now, xe, stat=estat)
             if (estat >= 0) then
                 self%x_error = xe - x
                 self%error_norm = self%main%state_distance(xe, x)
@@ -342,8 +351,42 @@ contains
                 deallocate (self%estimator)
             end if
         end if
-        call record(self, warn, warn_text, stat)
+        if (stat == regdae_root_found) then
+            call record(self, stat, self%main%message())
+        else
+            call record(self, warn, warn_text, stat)
+        end if
     end subroutine trust_advance
+
+    subroutine trust_set_events(self, fn, n, stat, direction, stop)
+        class(regdae_solver), intent(inout) :: self
+        class(event_functions), intent(in) :: fn   !! the event functions (copied)
+        integer, intent(in) :: n                   !! their number (0: no events)
+        integer, intent(out) :: stat               !! regdae_success or regdae_err_bad_input
+        integer, intent(in), optional :: direction(:)   !! per function: +1, -1 or 0 (the default)
+        logical, intent(in), optional :: stop(:)   !! per function: stop at its roots (the default) or not
+        call ensure_engine(self)
+        call self%main%set_events(fn, n, stat, direction, stop)
+        call record(self, stat, self%main%message())
+    end subroutine trust_set_events
+
+    subroutine trust_return_each_step(self, on)
+        class(regdae_solver), intent(inout) :: self
+        logical, intent(in) :: on   !! return after every step
+        call ensure_engine(self)
+        self%each_step = on
+        call self%main%return_each_step(on)
+    end subroutine trust_return_each_step
+
+    function trust_roots(self) result(found)
+        class(regdae_solver), intent(in) :: self
+        integer, allocatable :: found(:)
+        if (associated(self%main)) then
+            found = self%main%roots()
+        else
+            allocate (found(0))
+        end if
+    end function trust_roots
 
     ! The pass check at time t (the engine's current time; a pass is going on, or
     ! ended there if `ended`): the ladder started or continued from the

@@ -12,6 +12,8 @@ module regdae_status
     integer, parameter, public :: regdae_warn_multiplier_undefined = 1  !! x(tout) is valid, y(tout) is not (NaN)
     integer, parameter, public :: regdae_warn_unresolved = 2         !! x(tout) is the integrator's, but near a singular
                                                                      !! configuration its error exceeds resolution_tol rtol
+    integer, parameter, public :: regdae_root_found = 3              !! advance returned at a root of an event function
+                                                                     !! that stops (x there; which ones: the roots array)
     integer, parameter, public :: regdae_err_bad_input = -101        !! invalid argument or option
     integer, parameter, public :: regdae_err_inconsistent_ic = -102  !! x(t0) violates g(x, t0) = 0
     integer, parameter, public :: regdae_err_user_callback = -103    !! a user routine reported failure
@@ -36,14 +38,14 @@ module regdae_status
     !> The length of an entry of `status_texts` (the longest text, its NUL and a spare).
     integer, parameter, public :: status_text_len = 106
     !> Every status code; `status_texts` has its description at the same position.
-    integer, parameter, public :: status_codes(21) = [regdae_success, regdae_warn_multiplier_undefined, regdae_warn_unresolved, &
+    integer, parameter, public :: status_codes(22) = [regdae_success, regdae_warn_multiplier_undefined, regdae_warn_unresolved, &
         regdae_err_bad_input, regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_psd, regdae_err_singular, &
         regdae_err_lapack, regdae_err_sundials, regdae_err_integration, regdae_err_not_initialized, regdae_err_nonfinite, &
         regdae_err_mass_matrix, regdae_err_branch, regdae_err_drift, regdae_err_invariant, regdae_err_structure, &
-        regdae_err_work, regdae_err_memory, regdae_err_jacobian]
+        regdae_err_work, regdae_err_memory, regdae_err_jacobian, regdae_root_found]
     !> The fixed description of each code of `status_codes`, NUL-terminated (the C interface
     !! returns them as static texts: `regdae_status_string`) and blank-padded after the NUL.
-    character(len=status_text_len), parameter, public :: status_texts(21) = [character(len=status_text_len) :: &
+    character(len=status_text_len), parameter, public :: status_texts(22) = [character(len=status_text_len) :: &
         'success'//achar(0), &
         'x is valid, but the multiplier is undefined at this time (singular multiplier equation)'//achar(0), &
         'the integration error near a singular configuration exceeds resolution_tol times the tolerance'//achar(0), &
@@ -65,7 +67,8 @@ module regdae_status
         'the work-energy balance failed: the constraint forces did work (energy gained or lost)'//achar(0), &
         'out of memory: the system refused an allocation'//achar(0), &
         'a Jacobian (user G, or the Newton matrix from the declared patterns) disagrees with difference quotients'// &
-        achar(0)]
+        achar(0), &
+        'an event function that stops has a root: the state is returned there'//achar(0)]
     !> The description of a code that is none of `status_codes`, NUL-terminated.
     character(len=*), parameter, public :: unknown_status_text = 'unknown status code (not a regdae status)'//achar(0)
 

@@ -16,6 +16,10 @@
  *              approach to t = 0, REGDAE_WARN_MULTIPLIER_UNDEFINED at t = 0
  *   version    regdae_version against REGDAE_VERSION_*; regdae_status_string of every
  *              status (static, distinct, never NULL) and of codes that are none
+ *   events     regdae_set_events on the circle (x = (cos t, sin t)): stops at the exact
+ *              roots within 10 rtol, the direction filter, roots[], a continuing
+ *              function counted in the statistics, v NULL for a first-order problem,
+ *              user_data passed through, bad input
  *   threads    two handles in two POSIX threads at once, each on the same problems,
  *              give what one handle gives run serially, bit for bit
  */
@@ -764,8 +768,9 @@ static void version(void)
                                 REGDAE_ERR_NOT_PSD, REGDAE_ERR_SINGULAR, REGDAE_ERR_LAPACK, REGDAE_ERR_SUNDIALS,
                                 REGDAE_ERR_INTEGRATION, REGDAE_ERR_NOT_INITIALIZED, REGDAE_ERR_NONFINITE,
                                 REGDAE_ERR_MASS_MATRIX, REGDAE_ERR_BRANCH, REGDAE_ERR_DRIFT, REGDAE_ERR_INVARIANT,
-                                REGDAE_ERR_STRUCTURE, REGDAE_ERR_JACOBIAN, REGDAE_ERR_WORK, REGDAE_ERR_MEMORY};
-    static const int not_codes[] = {-1, 3, 100, -100, -119, -33};
+                                REGDAE_ERR_STRUCTURE, REGDAE_ERR_JACOBIAN, REGDAE_ERR_WORK, REGDAE_ERR_MEMORY,
+                                REGDAE_ROOT_FOUND};
+    static const int not_codes[] = {-1, 4, 100, -100, -119, -33};
     const int n_codes = (int)(sizeof codes / sizeof codes[0]);
     char expected[64];
     const char *text;
@@ -795,6 +800,76 @@ static void version(void)
         text = regdae_status_string(not_codes[i]);
         CHECK(text != NULL && strstr(text, "unknown status code") != NULL);
     }
+}
+
+/* ---- events ---------------------------------------------------------------------------- */
+
+typedef struct {
+    long calls;
+    int v_null;   /* v was NULL at the last call */
+} event_data;
+
+/* e = (x2, x1) (first order) or (v1, x1) (second order): on the circle x = (cos t, sin t)
+   the roots are x2 at k pi, x1 at pi/2 + k pi, v1 = -sin t at k pi. */
+static int circle_events(double t, const double *x, const double *v, double *e, void *u)
+{
+    event_data *d = (event_data *)u;
+    (void)t;
+    d->calls++;
+    d->v_null = (v == NULL);
+    e[0] = v == NULL ? x[1] : v[0];
+    e[1] = x[0];
+    return 0;
+}
+
+static void events(void)
+{
+    const double pi = acos(-1.0), x0[2] = {1.0, 0.0}, v0[2] = {0.0, 1.0};
+    const int direction[2] = {0, 1}, stop_none[2] = {0, 0}, bad_direction[2] = {2, 0};
+    double x[2], v[2];
+    int roots[2], status;
+    event_data d = {0, 0};
+    regdae_stats st;
+    regdae_solver *s = circle_solver(NULL);
+
+    /* first order: x2 both ways, x1 increasing only; rtol 1e-8, the roots within 1e-7 */
+    CHECK(regdae_set_events(s, 2, circle_events, direction, NULL, &d) == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
+    status = regdae_advance(s, 5.0, x, 2, NULL, 0, NULL, 0);
+    regdae_get_statistics(s, &st);
+    CHECK(status == REGDAE_ROOT_FOUND);
+    CHECK(fabs(st.t - pi) <= 1e-7); /* x1 = 0 at pi/2 is decreasing: filtered */
+    CHECK(regdae_get_roots(s, roots, 2) == REGDAE_SUCCESS && roots[0] == -1 && roots[1] == 0);
+    CHECK(fabs(x[1]) <= 1e-7);
+    CHECK(d.calls > 0 && d.v_null);
+    status = regdae_advance(s, 5.0, x, 2, NULL, 0, NULL, 0);
+    regdae_get_statistics(s, &st);
+    CHECK(status == REGDAE_ROOT_FOUND && fabs(st.t - 1.5 * pi) <= 1e-7);
+    CHECK(regdae_get_roots(s, roots, 2) == REGDAE_SUCCESS && roots[0] == 0 && roots[1] == 1);
+    CHECK(regdae_advance(s, 5.0, x, 2, NULL, 0, NULL, 0) == REGDAE_SUCCESS);
+    regdae_get_statistics(s, &st);
+    CHECK(st.roots_found == 2 && st.t == 5.0);
+    CHECK(regdae_get_roots(s, roots, 1) == REGDAE_ERR_BAD_INPUT && says(s, "n_events = 2"));
+    regdae_destroy(&s);
+
+    /* second order: v1 = -sin t and x1 = cos t logged and continued over [0, 5]: pi/2, pi, 3pi/2 */
+    s = regdae_create();
+    regdae_set_second_order(s, 2, 1, c2_f, c2_b, c_g, c_gradient, NULL, NULL);
+    regdae_set_rtol(s, 1e-8);
+    regdae_set_atol(s, 1e-8);
+    CHECK(regdae_set_events(s, 2, circle_events, NULL, stop_none, &d) == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, v0, 2) == REGDAE_SUCCESS);
+    CHECK(regdae_advance(s, 5.0, x, 2, NULL, 0, v, 2) == REGDAE_SUCCESS);
+    regdae_get_statistics(s, &st);
+    CHECK(st.roots_found == 3 && !d.v_null);
+
+    /* bad input: n_events < 0, no routine, a direction of 2 */
+    CHECK(regdae_set_events(s, -1, circle_events, NULL, NULL, &d) == REGDAE_ERR_BAD_INPUT);
+    CHECK(regdae_set_events(s, 2, NULL, NULL, NULL, &d) == REGDAE_ERR_BAD_INPUT && says(s, "NULL"));
+    CHECK(regdae_set_events(s, 2, circle_events, bad_direction, NULL, &d) == REGDAE_ERR_BAD_INPUT &&
+          says(s, "direction"));
+    CHECK(regdae_set_events(s, 0, NULL, NULL, NULL, NULL) == REGDAE_SUCCESS); /* none */
+    regdae_destroy(&s);
 }
 
 /* ---- threads -------------------------------------------------------------------------- */
@@ -880,7 +955,7 @@ int main(int argc, char **argv)
         void (*run)(void);
     } suites[] = {{"bad_input", bad_input}, {"problems", problems}, {"handles", handles},
                   {"callbacks", callbacks}, {"options", options}, {"atol_vector", atol_vector},
-                  {"warnings", warnings}, {"version", version}, {"threads", threads}};
+                  {"warnings", warnings}, {"version", version}, {"events", events}, {"threads", threads}};
     const int n_suites = (int)(sizeof suites / sizeof suites[0]);
     int i, ran = 0;
     for (i = 0; i < n_suites; i++) {
@@ -891,7 +966,7 @@ int main(int argc, char **argv)
     }
     if (ran == 0) {
         printf("capi_tester: unknown suite \"%s\" (bad_input, problems, handles, callbacks, options, atol_vector, "
-               "warnings, version, threads)\n",
+               "warnings, version, events, threads)\n",
                argv[1]);
         return 2;
     }

@@ -24,6 +24,15 @@ C     MAXORD    INFO(9) = 1 with IWORK(3) = MAXORD limits IDA's order:
 C               MAXORD = 2 and 3 take several times the steps of 5 on
 C               the circle of MECH; MAXORD = 5 is the default run; 0
 C               and 6 are refused
+C     ROOTS     DREGDAER and DREGDAEMR (NRT, RT, JROOT) on the circle
+C               x = (cos t, sin t): IDID = 5 at each root (pi/2, pi,
+C               3 pi/2 of X2 and X1) within 10 RTOL, JROOT the
+C               function and its direction, T the root, the run goes on
+C               to TOUT (IDID 3) after them; RPAR and IPAR reach RT
+C     STEPS     INFO(3) = 1: IDID = 1 after every step (T the step's
+C               end, X there on the circle, IWORK(11) one more step
+C               each time), then IDID = 3 at TOUT; the same X at TOUT
+C               as INFO(3) = 0 to 1E-7
 C     RESTART   INFO(1) = 0 again on the same IWORK without DREGDAEFREE
 C               (after a success, a refused start, an inconsistent x0)
 C               gives a fresh run, bit for bit, and frees the old solver
@@ -46,11 +55,13 @@ C               corrupted for a call and restored
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'WARN') CALL WARN(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'RESTART') CALL RESTRT(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'MAXORD') CALL MAXORD(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'ROOTS') CALL ROOTS(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'STEPS') CALL STEPS(NCHK)
       IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
          WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
      *        SUITE(1:LEN_TRIM(SUITE)),
      *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN, RESTART, ',
-     *        'MAXORD)'
+     *        'MAXORD, ROOTS, STEPS)'
          STOP 2
       END IF
       WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
@@ -129,11 +140,10 @@ C     RWORK too small
       CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'LRW = 19') .GT. 0
      *     .AND. INDEX(MSG, 'LRW >= 20') .GT. 0, 'LRW 19', NCHK)
       CALL DREGDAEFREE(IWORK, 22)
-C     INFO entries: intermediate output, JAC, DDASPK's, a method
+C     INFO entries: INFO(3) not 0/1, JAC, DDASPK's, a method
 C     that is none, an index for DREGDAE, not 0/1 (INFO(2): VECTOR)
 C     (each message says why, and what to set instead)
-      CALL ONEBAD(3, 1, 'return after every step', NCHK)
-      CALL ONEBAD(3, 1, 'set INFO(3) = 0', NCHK)
+      CALL ONEBAD(3, 2, 'INFO(3) = 2 must be 0 or 1', NCHK)
       CALL ONEBAD(5, 1, 'a JAC routine', NCHK)
       CALL ONEBAD(5, 1, 'set INFO(5) = 0', NCHK)
       CALL ONEBAD(6, 1, 'a banded matrix', NCHK)
@@ -446,7 +456,7 @@ C     a fresh run to T = 2 (the reference), freed
       FRESH(2) = X(2)
       CALL DREGDAEFREE(IWORK, 22)
 C     the same IWORK restarted three times without DREGDAEFREE: after
-C     a success, after a refused start (INFO(3) = 1), after x0 off the
+C     a success, after a refused start (INFO(3) = 2), after x0 off the
 C     circle (IDID = -12); each restart runs as the fresh run
       CALL CLEAR(INFO, RWORK, IWORK)
       DO 10 K = 1, 3
@@ -457,7 +467,7 @@ C     circle (IDID = -12); each restart runs as the fresh run
          CALL CHECK(IDID .EQ. 3, 'a run to T = 1', NCHK)
          INFO(1) = 0
          IF (K .EQ. 2) THEN
-            INFO(3) = 1
+            INFO(3) = 2
             CALL CIRCLE0(T, X, IPAR)
             CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK, RPAR,
      *           IPAR)
@@ -506,6 +516,135 @@ C     INFO(1) = -1 refused, with its message, after a failure
       CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'INFO(1) = -1') .GT. 0,
      *     'INFO(1) = -1: refused, its message', NCHK)
       CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+C     ---- ROOTS -------------------------------------------------------
+C     The circle to TOUT = 5 with RT = (X2, X1): roots of X1 at pi/2
+C     (decreasing) and 3 pi/2 (increasing), of X2 at pi (decreasing);
+C     DREGDAER (first order) and DREGDAEMR (the particle).
+      SUBROUTINE ROOTS(NCHK)
+      EXTERNAL CF, CB, CG, CGX, MM, MF, CRT
+      INTEGER NCHK(2), INFO(20), IWORK(22), IPAR(2), JROOT(2), IDID,
+     *     K, KIND, EXPECT(2, 3)
+      DOUBLE PRECISION RWORK(20), RPAR(2), T, X(2), Y(1), V(2), PI,
+     *     TROOT(3)
+      DATA EXPECT /0, -1, -1, 0, 0, 1/
+      PI = ACOS(-1.0D0)
+      TROOT(1) = 0.5D0 * PI
+      TROOT(2) = PI
+      TROOT(3) = 1.5D0 * PI
+      DO 20 KIND = 1, 2
+         CALL CLEAR(INFO, RWORK, IWORK)
+         CALL CIRCLE0(T, X, IPAR)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         RPAR(1) = 0.0D0
+         DO 10 K = 1, 4
+            IF (KIND .EQ. 1) THEN
+               CALL DREGDAER(CF, CB, CG, CGX, CGX, 2, 1, T, X, Y, 5.0D0,
+     *              INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22,
+     *              RPAR, IPAR, CRT, 2, JROOT)
+            ELSE
+               CALL DREGDAEMR(MM, MF, CG, CGX, CGX, 2, 1, T, X, V, Y,
+     *              5.0D0, INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK,
+     *              22, RPAR, IPAR, CRT, 2, JROOT)
+            END IF
+            IF (K .LE. 3) THEN
+               CALL CHECK(IDID .EQ. 5, 'IDID 5 at a root', NCHK)
+               CALL CHECK(ABS(T - TROOT(K)) .LE. 1.0D-7,
+     *              'the root within 10 RTOL', NCHK)
+               CALL CHECK(JROOT(1) .EQ. EXPECT(1, K) .AND.
+     *              JROOT(2) .EQ. EXPECT(2, K), 'JROOT', NCHK)
+               IF (IDID .NE. 5 .OR. ABS(T - TROOT(K)) .GT. 1.0D-7)
+     *              WRITE (*, '(A, 2I3, 1P, E24.15)')
+     *              '    kind, root, T', KIND, K, T
+            ELSE
+               CALL CHECK(IDID .EQ. 3 .AND. T .EQ. 5.0D0,
+     *              'TOUT after the roots', NCHK)
+            END IF
+   10    CONTINUE
+         CALL CHECK(RPAR(1) .GT. 0.0D0, 'RPAR reaches RT', NCHK)
+         CALL DREGDAEFREE(IWORK, 22)
+   20 CONTINUE
+      END
+C
+C     ---- STEPS -------------------------------------------------------
+C     The circle to TOUT = 1 with INFO(3) = 1 (DREGDAE and DREGDAEM).
+      SUBROUTINE STEPS(NCHK)
+      EXTERNAL MM, MF, CG, CGX
+      INTEGER NCHK(2), INFO(20), IWORK(22), IPAR(2), IDID, K, NSTEP,
+     *     KIND, LAST
+      DOUBLE PRECISION RWORK(20), RPAR(2), T, X(2), Y(1), V(2), XREF(2),
+     *     TPREV, ERR
+      LOGICAL ONE
+      DO 20 KIND = 1, 2
+C        the reference: INFO(3) = 0
+         CALL CLEAR(INFO, RWORK, IWORK)
+         CALL CIRCLE0(T, X, IPAR)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         IF (KIND .EQ. 1) THEN
+            CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK, RPAR,
+     *           IPAR)
+         ELSE
+            CALL DREGDAEM(MM, MF, CG, CGX, CGX, 2, 1, T, X, V, Y, 1.0D0,
+     *           INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK, 22, RPAR,
+     *           IPAR)
+         END IF
+         XREF(1) = X(1)
+         XREF(2) = X(2)
+         CALL DREGDAEFREE(IWORK, 22)
+         CALL CLEAR(INFO, RWORK, IWORK)
+         INFO(3) = 1
+         CALL CIRCLE0(T, X, IPAR)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         NSTEP = 0
+         ONE = .TRUE.
+         ERR = 0.0D0
+         LAST = 0
+         IDID = 1
+         K = 0
+         DO WHILE (IDID .EQ. 1 .AND. K .LT. 100000)
+            K = K + 1
+            TPREV = T
+            IF (KIND .EQ. 1) THEN
+               CALL CSTEP(T, X, Y, 1.0D0, INFO, IDID, RWORK, IWORK,
+     *              RPAR, IPAR)
+            ELSE
+               CALL DREGDAEM(MM, MF, CG, CGX, CGX, 2, 1, T, X, V, Y,
+     *              1.0D0, INFO, 1.0D-8, 1.0D-8, IDID, RWORK, 20, IWORK,
+     *              22, RPAR, IPAR)
+            END IF
+            IF (IDID .EQ. 1) THEN
+               NSTEP = NSTEP + 1
+C              one more step each time (after the integrator's first)
+               IF (K .GT. 20 .AND. IWORK(11) .NE. LAST + 1) ONE =.FALSE.
+               LAST = IWORK(11)
+               IF (.NOT. (T .GT. TPREV .AND. T .LT. 1.0D0)) ONE =.FALSE.
+               ERR = MAX(ERR, ABS(X(1) - COS(T)), ABS(X(2) - SIN(T)))
+            END IF
+         END DO
+         CALL CHECK(IDID .EQ. 3 .AND. T .EQ. 1.0D0, 'IDID 3 at TOUT',
+     *        NCHK)
+         CALL CHECK(NSTEP .GT. 20, 'IDID 1 returns', NCHK)
+         CALL CHECK(ONE, 'one step per return, T the step end', NCHK)
+         CALL CHECK(ERR .LT. 1.0D-6, 'X at the step ends', NCHK)
+         CALL CHECK(ABS(X(1) - XREF(1)) + ABS(X(2) - XREF(2))
+     *        .LT. 1.0D-7, 'X at TOUT as with INFO(3) = 0', NCHK)
+         IF (.NOT. ONE .OR. IDID .NE. 3) WRITE (*, '(A, 3I6)')
+     *        '    kind, returns, IDID', KIND, NSTEP, IDID
+         CALL DREGDAEFREE(IWORK, 22)
+   20 CONTINUE
+      END
+C
+C     RT: X2 and X1; counts its calls in RPAR(1).
+      SUBROUTINE CRT(N, T, X, V, NRT, RVAL, RPAR, IPAR)
+      INTEGER N, NRT, IPAR(*)
+      DOUBLE PRECISION T, X(N), V(N), RVAL(NRT), RPAR(*)
+      RVAL(1) = X(2)
+      RVAL(2) = X(1)
+      RPAR(1) = RPAR(1) + 1.0D0
       END
 C
 C     ---- the problems ------------------------------------------------
