@@ -13,12 +13,13 @@
 !! `min_time` seconds in all (at most 201).
 !!
 !! Usage: car_axis [reps=5] [min_time=0.05] [tol_from=4] [tol_to=8] [tol_step=2]
-!!        [config=all|defaults|radau|ida] [check=yes|no]
+!!        [config=all|defaults|radau|ida] [check=yes|no] [extra='key=value ...']
 !! (tol: rtol = atol = 10^-k for k = tol_from, tol_from + tol_step, ... <= tol_to, k in [1, 14];
-!! check=yes first runs each configuration at tight tolerances (1e-11 and 1e-12) and prints
+!! extra: option items added to every configuration's; check=yes first runs each configuration at tight tolerances (1e-11 and 1e-12) and prints
 !! its error on positions and velocities against the published solution.)
 !! Output: '#' lines, rows 'car_axis config rtol pos_err digits seconds steps res_evals
-!! jac_evals lin_setups status x_radau5_time x_radau5_steps' (digits: the test set's mixed
+!! jac_evals lin_setups newton_iters rejected conv_fails status x_radau5_time x_radau5_steps'
+!! (steps: accepted; rejected: error test failures; conv_fails: Newton failures; digits: the test set's mixed
 !! significant digits on the positions, -log10 max |err_i| / (1 + |ref_i|); the last two
 !! columns: the ratios to RADAU5's reference point at 1e-4, 1e-6, 1e-8, '-' elsewhere),
 !! and the last line 'summary rows=... ok=... failed=... warned=...'.
@@ -37,7 +38,7 @@ program car_axis_driver
     real(wp), parameter :: radau5_seconds(3) = [0.37e-3_wp, 0.96e-3_wp, 2.4e-3_wp]
     character(len=8), parameter :: config_names(3) = [character(len=8) :: 'defaults', 'radau', 'ida']
     character(len=*), parameter :: config_items(3) = [character(len=16) :: '', 'integrator=radau', 'integrator=ida']
-    character(len=:), allocatable :: key, value, which
+    character(len=:), allocatable :: key, value, which, extra
     integer :: i, k, c, reps, tol_from, tol_to, tol_step
     integer :: row_counts(3) = 0   ! ok, failed, warning
     real(wp) :: min_time
@@ -49,6 +50,7 @@ program car_axis_driver
     tol_to = 8
     tol_step = 2
     which = 'all'
+    extra = ''
     check = .true.
     do i = 1, command_argument_count()
         call split_key_value(argument(i), key, value, ok)
@@ -62,6 +64,7 @@ program car_axis_driver
         case ('tol_step'); call read_count(prog, key, value, tol_step, 1, 13)
         case ('config'); which = value
             if (which /= 'all' .and. all(config_names /= which)) call die_usage(prog, 'bad config '//value)
+        case ('extra'); extra = value
         case ('check')
             if (value /= 'yes' .and. value /= 'no') call die_usage(prog, 'check must be yes or no')
             check = value == 'yes'
@@ -76,24 +79,25 @@ program car_axis_driver
         do c = 1, size(config_names)
             if (which /= 'all' .and. which /= config_names(c)) cycle
             do k = 11, 12
-                call tight(config_names(c), trim(config_items(c)), 10.0_wp**(-k))
+                call tight(config_names(c), trim(config_items(c))//' '//extra, 10.0_wp**(-k))
             end do
         end do
     end if
     write (*, '(a)') '# median of at least '//format_int(reps)//' runs (and '//num(min_time)// &
         ' s) in one process; the solve alone: init and one advance to t = 3'
-    write (*, '(a)') '# problem config rtol pos_err digits seconds steps res_evals jac_evals lin_setups status '// &
+    write (*, '(a)') '# problem config rtol pos_err digits seconds steps res_evals jac_evals lin_setups newton_iters '// &
+        'rejected conv_fails status '// &
         'x_radau5_time x_radau5_steps'
     do k = tol_from, tol_to, tol_step
         do c = 1, size(config_names)
             if (which /= 'all' .and. which /= config_names(c)) cycle
-            call timed(config_names(c), trim(config_items(c)), k)
+            call timed(config_names(c), trim(config_items(c))//' '//extra, k)
         end do
     end do
     write (*, '(a)') 'summary rows='//format_int(sum(row_counts))//' ok='//format_int(row_counts(1))//' failed='// &
         format_int(row_counts(2))//' warned='//format_int(row_counts(3))
     if (allocated(key)) deallocate (key, value)
-    deallocate (which)
+    deallocate (which, extra)
 
 contains
 
@@ -184,7 +188,8 @@ contains
         end if
         write (*, '(a)') 'car_axis '//name//' '//num(10.0_wp**(-k))//' '//num(err)//' '//num(digits)//' '// &
             num(t_med)//' '//format_int(int(st%steps))//' '//format_int(int(st%res_evals))//' '// &
-            format_int(int(st%jac_evals))//' '//format_int(int(st%lin_setups))//' '//status_word(stat)//' '//ratios
+            format_int(int(st%jac_evals))//' '//format_int(int(st%lin_setups))//' '//format_int(int(st%nonlin_iters))// &
+            ' '//format_int(int(st%err_test_fails))//' '//format_int(int(st%conv_fails))//' '//status_word(stat)//' '//ratios
     end subroutine timed
 
     !> ok, warning (the run ended, x valid, the tolerance maybe not met) or failed.
