@@ -144,18 +144,29 @@ contains
         real(wp), intent(inout) :: a(:, :)
         integer, intent(out) :: ipiv(:)
         integer, intent(out) :: info
-        integer :: j, k, p, n
+        real(wp) :: swap, pivot
+        integer :: i, j, k, p, n
         n = size(a, 1)
         info = 0
         do k = 1, n
-            p = k - 1 + maxloc(abs(a(k:n, k)), 1)
+            p = k
+            do i = k + 1, n
+                if (abs(a(i, k)) > abs(a(p, k))) p = i
+            end do
             ipiv(k) = p
             if (a(p, k) == 0) then
                 info = k
                 return
             end if
-            if (p /= k) a([k, p], :) = a([p, k], :)
-            a(k + 1:n, k) = a(k + 1:n, k)/a(k, k)
+            if (p /= k) then
+                do j = 1, n
+                    swap = a(k, j)
+                    a(k, j) = a(p, j)
+                    a(p, j) = swap
+                end do
+            end if
+            pivot = a(k, k)
+            a(k + 1:n, k) = a(k + 1:n, k)/pivot
             do j = k + 1, n
                 a(k + 1:n, j) = a(k + 1:n, j) - a(k + 1:n, k)*a(k, j)
             end do
@@ -167,18 +178,34 @@ contains
         complex(wp), intent(inout) :: a(:, :)
         integer, intent(out) :: ipiv(:)
         integer, intent(out) :: info
-        integer :: j, k, p, n
+        complex(wp) :: swap, pivot
+        real(wp) :: big
+        integer :: i, j, k, p, n
         n = size(a, 1)
         info = 0
         do k = 1, n
-            p = k - 1 + maxloc(abs(a(k:n, k)%re) + abs(a(k:n, k)%im), 1)
+            p = k
+            big = abs(a(k, k)%re) + abs(a(k, k)%im)
+            do i = k + 1, n
+                if (abs(a(i, k)%re) + abs(a(i, k)%im) > big) then
+                    p = i
+                    big = abs(a(i, k)%re) + abs(a(i, k)%im)
+                end if
+            end do
             ipiv(k) = p
-            if (a(p, k) == (0.0_wp, 0.0_wp)) then
+            if (big == 0) then
                 info = k
                 return
             end if
-            if (p /= k) a([k, p], :) = a([p, k], :)
-            a(k + 1:n, k) = a(k + 1:n, k)/a(k, k)
+            if (p /= k) then
+                do j = 1, n
+                    swap = a(k, j)
+                    a(k, j) = a(p, j)
+                    a(p, j) = swap
+                end do
+            end if
+            pivot = a(k, k)
+            a(k + 1:n, k) = a(k + 1:n, k)/pivot
             do j = k + 1, n
                 a(k + 1:n, j) = a(k + 1:n, j) - a(k + 1:n, k)*a(k, j)
             end do
