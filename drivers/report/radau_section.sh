@@ -100,10 +100,25 @@ drivers/report/radau_section.sh` on a trial build) and not adopted: RADAU5's tol
 (2.3-2.4x RADAU5's), but on the slider crank misses the tolerance by up to 70x from 1e-7 on, with
 the pass check's warnings at 1e-8 ... 1e-10; with the velocities' error in addition scaled by h
 (RADAU5's treatment of index-2 components) the steps are RADAU5's (97 / 197 / 409, 0.98x) but the
-digits fall to 3.0 / 4.4 / 5.9: at matched digits no cheaper. Per step Radau pays a
-difference-quotient Jacobian of the eliminated slope at nearly every step (8 evaluations) and
-about 2.2 Newton iterations of 3 evaluations each, and one evaluation of the regularized slope (a
-Cholesky of M, GB and the damped least squares) costs several of the index-3 form's.
+digits fall to 3.0 / 4.4 / 5.9: at matched digits no cheaper. Keeping the Jacobian while the
+Newton rate stays below 0.01 instead of 0.001 saves 27% of the evaluations at 1e-6 on the car axis
+but none at 1e-8, and on the slider crank costs evaluations at 1e-5, 1e-8 ... 1e-10 and doubles
+the error at 1e-5 and 1e-6: not adopted either.
+
+Where the time goes (`valgrind --tool=callgrind build/bin/car_axis config=radau tol_from=6
+tol_to=6 check=no reps=1 min_time=0`, instructions, on 2026-12-02): at fabb634 106M in Radau's
+advance, of which 62M (58%) in the 10710 evaluations of the eliminated slope (29M of them in the
+difference-quotient Jacobians: 579 Jacobians of 8 evaluations, one at nearly every step since the
+Newton rate rarely stays below 0.001; 2.2 Newton iterations of 3 evaluations per step), 27M (25%)
+in LAPACK's LU and solves of the 8 x 8 Newton matrices (mostly LAPACK's argument checks and block
+size queries, lsame and ilaenv), 8M (7%) in the monitor's sample of every step. Since then the
+Newton matrices up to n = 16 are factored by regdae_radau_linear's own loops: 10.5M in the LU and
+solves, 90M in the advance (-15%); the slider crank's Radau advances at 1e-6 (`build/bin/bench
+problem=crank_radau tol_from=6 tol_to=6 reps=1 min_time=0`, both rows) 86M -> 71M (-18%). What is
+left is the slope: one evaluation of the regularized slope costs about 5800 instructions here, of
+which the damped least squares' LAPACK dposv on the 2 x 2 normal equations is over a third
+(22.6M of the slope's 62M, again mostly LAPACK's call overhead; in regdae_damped_lsq, not the
+Radau code's).
 
 ### The slider crank against the Dormand-Prince oracle
 
