@@ -96,7 +96,12 @@ TXT
 
 Where Radau's steps go on the car axis: it meets the tolerance as a local error bound on every
 component of the eliminated state (x, v), so its error at t = 3 is 1-2 digits better than the
-tolerance (RADAU5's is near it) and it takes 2.8-6x RADAU5's steps. Two variants measured (`sh
+tolerance (RADAU5's is near it) and it takes 2.8-6x RADAU5's steps at the same tolerance; at
+matched digits (RADAU5's steps interpolated in its digits, about 2x per 2 digits) 2.0x at 5 digits,
+2.6x at 7.3 and about 3.3x at 9.7 (extrapolated): Radau's steps grow as tol^(-1/4), the order of
+its embedded estimate, where RADAU5's tolerance transform makes them grow as tol^(-2/15). The
+stabilization weights do not move the steps ((gamma1, gamma0) = (1, 1), (20, 200), (2e3, 2e6):
+273-356 steps at 1e-4, 823-949 at 1e-6). Two variants measured (`sh
 drivers/report/radau_section.sh` on a trial build) and not adopted: RADAU5's tolerance transform
 (local tolerance 0.1 rtol^(2/3)) gives RADAU5's digits (4.6 / 6.2 / 7.8) in 230 / 469 / 985 steps
 (2.3-2.4x RADAU5's), but on the slider crank misses the tolerance by up to 70x from 1e-7 on, with
