@@ -15,8 +15,9 @@
 !! Usage: car_axis [reps=5] [min_time=0.05] [tol_from=4] [tol_to=8] [tol_step=2]
 !!        [config=all|defaults|radau|ida] [check=yes|no] [extra='key=value ...']
 !! (tol: rtol = atol = 10^-k for k = tol_from, tol_from + tol_step, ... <= tol_to, k in [1, 14];
-!! extra: option items added to every configuration's; check=yes first runs each configuration at tight tolerances (1e-11 and 1e-12) and prints
-!! its error on positions and velocities against the published solution.)
+!! extra: option items added to every configuration's; check=yes first runs each configuration
+!! at tight tolerances (1e-11 and 1e-12) and prints its error on positions and velocities
+!! against the published solution.)
 !! Output: '#' lines, rows 'car_axis config rtol pos_err digits seconds steps res_evals
 !! jac_evals lin_setups newton_iters rejected conv_fails status x_radau5_time x_radau5_steps'
 !! (steps: accepted; rejected: error test failures; conv_fails: Newton failures; digits: the test set's mixed
