@@ -10,7 +10,12 @@
 !! system is factored as a complex n x n matrix, not as the real 2n x 2n matrix
 !! [E_r, -E_i; E_i, E_r]: measured with the reference LAPACK of this machine, the
 !! factorization (with its assembly) is 1.5x (n = 4), 1.9x (8), 2.8x (16), 3.3x (30),
-!! 3.9x (45) and 4.1x (60) cheaper in complex form, one solve 1.5x-2.4x.
+!! 3.9x (45) and 4.1x (60) cheaper in complex form, one solve 1.5x-2.4x. Up to
+!! `small_n` unknowns the LU and its solves are this module's own loops (the same
+!! partial pivoting, first largest |a| and, complex, |Re| + |Im| as LAPACK's izamax):
+!! on the car axis (n = 8) LAPACK's calls cost a quarter of Radau's instructions, most
+!! of it in its argument checks and block-size queries (lsame, ilaenv), not in the
+!! arithmetic.
 module regdae_radau_linear
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_singular, regdae_err_lapack
@@ -19,6 +24,9 @@ module regdae_radau_linear
     private
 
     public :: radau_newton_matrices
+
+    !> Up to this many unknowns the module's own LU, beyond it LAPACK's.
+    integer, parameter :: small_n = 16
 
     !> The LU factors of E_1 and E_2 and a complex work vector.
     type :: radau_newton_matrices
@@ -69,8 +77,13 @@ contains
             self%e1(i, i) = self%e1(i, i) + fac_real*mass(i)
             self%e2(i, i) = self%e2(i, i) + fac_c*mass(i)
         end do
-        call dgetrf(self%n, self%n, self%e1, self%n, self%ipiv1, info)
-        if (info == 0) call zgetrf(self%n, self%n, self%e2, self%n, self%ipiv2, info)
+        if (self%n <= small_n) then
+            call small_lu_real(self%e1, self%ipiv1, info)
+            if (info == 0) call small_lu_complex(self%e2, self%ipiv2, info)
+        else
+            call dgetrf(self%n, self%n, self%e1, self%n, self%ipiv1, info)
+            if (info == 0) call zgetrf(self%n, self%n, self%e2, self%n, self%ipiv2, info)
+        end if
         stat = regdae_success
         if (info > 0) stat = regdae_err_singular
         if (info < 0) stat = regdae_err_lapack
@@ -79,19 +92,124 @@ contains
     subroutine matrices_solve_real(self, b)
         class(radau_newton_matrices), intent(inout) :: self
         real(wp), intent(inout) :: b(:)   !! right-hand side in, solution out
-        integer :: info
-        call dgetrs('N', self%n, 1, self%e1, self%n, self%ipiv1, b, self%n, info)
+        integer :: info, k, n
+        n = self%n
+        if (n > small_n) then
+            call dgetrs('N', n, 1, self%e1, n, self%ipiv1, b, n, info)
+            return
+        end if
+        do k = 1, n   ! P b: the swaps in their order
+            if (self%ipiv1(k) /= k) b([k, self%ipiv1(k)]) = b([self%ipiv1(k), k])
+        end do
+        do k = 1, n   ! L y = P b
+            b(k + 1:n) = b(k + 1:n) - self%e1(k + 1:n, k)*b(k)
+        end do
+        do k = n, 1, -1   ! U x = y
+            b(k) = b(k)/self%e1(k, k)
+            b(1:k - 1) = b(1:k - 1) - self%e1(1:k - 1, k)*b(k)
+        end do
     end subroutine matrices_solve_real
 
     subroutine matrices_solve_complex(self, b, c)
         class(radau_newton_matrices), intent(inout) :: self
         real(wp), intent(inout) :: b(:)   !! real part of the right-hand side in, of the solution out
         real(wp), intent(inout) :: c(:)   !! imaginary part, likewise
-        integer :: info
-        self%work = cmplx(b, c, wp)
-        call zgetrs('N', self%n, 1, self%e2, self%n, self%ipiv2, self%work, self%n, info)
-        b = real(self%work, wp)
-        c = aimag(self%work)
+        integer :: info, k, n
+        n = self%n
+        associate (w => self%work, e => self%e2, ipiv => self%ipiv2)
+            w = cmplx(b, c, wp)
+            if (n > small_n) then
+                call zgetrs('N', n, 1, e, n, ipiv, w, n, info)
+            else
+                do k = 1, n   ! P b: the swaps in their order
+                    if (ipiv(k) /= k) w([k, ipiv(k)]) = w([ipiv(k), k])
+                end do
+                do k = 1, n   ! L y = P b
+                    w(k + 1:n) = w(k + 1:n) - e(k + 1:n, k)*w(k)
+                end do
+                do k = n, 1, -1   ! U x = y
+                    w(k) = w(k)/e(k, k)
+                    w(1:k - 1) = w(1:k - 1) - e(1:k - 1, k)*w(k)
+                end do
+            end if
+            b = real(w, wp)
+            c = aimag(w)
+        end associate
     end subroutine matrices_solve_complex
+
+    !> LU with partial pivoting of a small real matrix in place (LAPACK's dgetrf
+    !! layout: unit L below the diagonal, U on and above it, row k swapped with
+    !! ipiv(k)); info = k > 0 at the first exactly zero pivot.
+    pure subroutine small_lu_real(a, ipiv, info)
+        real(wp), intent(inout) :: a(:, :)
+        integer, intent(out) :: ipiv(:)
+        integer, intent(out) :: info
+        real(wp) :: swap, pivot
+        integer :: i, j, k, p, n
+        n = size(a, 1)
+        info = 0
+        do k = 1, n
+            p = k
+            do i = k + 1, n
+                if (abs(a(i, k)) > abs(a(p, k))) p = i
+            end do
+            ipiv(k) = p
+            if (a(p, k) == 0) then
+                info = k
+                return
+            end if
+            if (p /= k) then
+                do j = 1, n
+                    swap = a(k, j)
+                    a(k, j) = a(p, j)
+                    a(p, j) = swap
+                end do
+            end if
+            pivot = a(k, k)
+            a(k + 1:n, k) = a(k + 1:n, k)/pivot
+            do j = k + 1, n
+                a(k + 1:n, j) = a(k + 1:n, j) - a(k + 1:n, k)*a(k, j)
+            end do
+        end do
+    end subroutine small_lu_real
+
+    !> The same for a complex matrix, the pivot the first largest |Re| + |Im|.
+    pure subroutine small_lu_complex(a, ipiv, info)
+        complex(wp), intent(inout) :: a(:, :)
+        integer, intent(out) :: ipiv(:)
+        integer, intent(out) :: info
+        complex(wp) :: swap, pivot
+        real(wp) :: big
+        integer :: i, j, k, p, n
+        n = size(a, 1)
+        info = 0
+        do k = 1, n
+            p = k
+            big = abs(a(k, k)%re) + abs(a(k, k)%im)
+            do i = k + 1, n
+                if (abs(a(i, k)%re) + abs(a(i, k)%im) > big) then
+                    p = i
+                    big = abs(a(i, k)%re) + abs(a(i, k)%im)
+                end if
+            end do
+            ipiv(k) = p
+            if (big == 0) then
+                info = k
+                return
+            end if
+            if (p /= k) then
+                do j = 1, n
+                    swap = a(k, j)
+                    a(k, j) = a(p, j)
+                    a(p, j) = swap
+                end do
+            end if
+            pivot = a(k, k)
+            a(k + 1:n, k) = a(k + 1:n, k)/pivot
+            do j = k + 1, n
+                a(k + 1:n, j) = a(k + 1:n, j) - a(k + 1:n, k)*a(k, j)
+            end do
+        end do
+    end subroutine small_lu_complex
 
 end module regdae_radau_linear

@@ -9,14 +9,17 @@
 # minutes on 2 cores at d82beff, the trust grids 12 of them. (drivers/bench's redundant crank with
 # formulation=multiplier or augmented stalled the whole run until the pass ends stopped chattering
 # on the rounding noise of sigma_min: 3.5M pass checks, now 6.)
-# Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only | --sweep-only]   (--reuse: redraw from the raw
+# Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only | --sweep-only | --radau-only]
+#        (--reuse: redraw from the raw
 #        outputs of the last run, kept in build/benchmark/; --reuse-trust: run everything but the
 #        trust grids, taken from the last `sh drivers/report/trust_grids.sh build` in
 #        build/report/trust/; --trust-only: issue 19's section alone, from those grids, with the
 #        error estimate and the cost of trust measured again, spliced into doc/performance.md;
 #        --memory-only: issue 20's memory section alone, drivers/report/chain_memory.sh measured
 #        again (45 s) and spliced in before the trust grids; --sweep-only: issue 13's sweeps on 1 and 2
-#        MPI ranks measured again (about 7 minutes) and their section spliced in)
+#        MPI ranks measured again (about 7 minutes) and their section spliced in; --radau-only: issue 21's
+#        Radau IIA section alone, drivers/report/radau_section.sh measured again (about a minute: the
+#        car axis, the slider crank and the stiff chain under integrator=radau) and spliced in)
 set -eu
 cd "$(dirname "$0")/.."
 sh tools/install-deps.sh --figures
@@ -173,6 +176,17 @@ if [ "${1:-}" = "--memory-only" ]; then
     echo "regdae: the chain memory section of doc/performance.md regenerated"
     exit 0
 fi
+if [ "${1:-}" = "--radau-only" ]; then
+    # Issue 21's section alone, spliced in place of "## Radau IIA" (before "Machine and commands")
+    sh drivers/report/radau_section.sh run build/bin "$raw"
+    sh drivers/report/radau_section.sh report "$raw" >"$tmp/radau_section.md.full"
+    commit=$(git rev-parse --short HEAD 2>/dev/null || echo '?')
+    awk -v c="$commit" -v d="$(date -u +%F)" 'NR == 2 { print ""; print "(This section regenerated alone, by `sh tools/benchmark.sh --radau-only` at commit " c \
+        ", " d "; the other sections are from their own runs.)" } { print }' "$tmp/radau_section.md.full" >"$tmp/radau_section.md"
+    splice "$tmp/radau_section.md" "Radau IIA" "Machine and commands"
+    echo "regdae: the Radau IIA section of doc/performance.md regenerated"
+    exit 0
+fi
 if [ "${1:-}" = "--reuse-trust" ]; then
     reuse_trust=yes
     [ -f build/report/trust/summaries.txt ] || { echo "benchmark.sh: no build/report/trust/summaries.txt to reuse" >&2; exit 2; }
@@ -197,6 +211,7 @@ if [ "${1:-}" != "--reuse" ]; then
     sh drivers/report/chain_bench.sh run build/bin "$raw"   # chain.txt, chain_slider.txt, chain_stiff.txt
     sh drivers/report/chain_memory.sh run build/bin "$raw/chain_memory.txt"   # issue 20: 1024 ... 100000 links
     sweep_measure
+    sh drivers/report/radau_section.sh run build/bin "$raw"   # issue 21: radau_car_axis.txt, radau_crank.txt, radau_chain.txt
     # Issue 19: the trust grids (about 30 minutes on 2 cores), the error estimate against the true
     # error, the cost of trust in instructions (callgrind)
     [ "$reuse_trust" = yes ] || sh drivers/report/trust_grids.sh build
@@ -215,6 +230,8 @@ sh drivers/report/chain_bench.sh report "$raw" "$tmp" >"$tmp/chain_sections.md"
 sh drivers/report/chain_memory.sh report "$raw/chain_memory.txt" "$tmp" >"$tmp/memory_section.md"
 # Issue 19's section (trust_*.png).
 sh drivers/report/trust_section.sh "$raw" "$tmp" >"$tmp/trust_section.md"
+# Issue 21's section (the car axis, the crank and the stiff chain under integrator=radau).
+sh drivers/report/radau_section.sh report "$raw" >"$tmp/radau_section.md"
 
 # Work-precision: error (x) against seconds (y), one curve per configuration.
 curves() {   # curves PROBLEM_REGEX [CONFIG_REGEX]: gnuplot plot clauses, one per (problem, configuration)
@@ -735,6 +752,7 @@ cat "$tmp/chain_sections.md"
 cat "$tmp/memory_section.md"
 cat "$tmp/trust_section.md"
 sweep_section
+cat "$tmp/radau_section.md"
 cat <<'TXT'
 ## Machine and commands
 
