@@ -1,5 +1,8 @@
 !> The C interface (`include/regdae.h`): a thin layer over the Fortran API in the
-!! manner of minpack's `minpack_capi`.
+!! manner of minpack's `minpack_capi`. This module: the handles and messages, the
+!! problem and its patterns, the integration and its results; the options are in
+!! regdae_c_options, the events in regdae_c_events, the session behind a handle in
+!! regdae_c_session.
 !!
 !! A `regdae_solver *` is the address of a `c_session`: the Fortran solver, the
 !! options, the C callbacks with their `void *user_data`, the declared patterns
@@ -11,27 +14,20 @@
 module regdae_c_api
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_funptr, c_null_ptr, c_null_char, &
                                            c_null_funptr, c_associated, c_f_pointer, c_loc
-    use regdae_kinds, only: wp
-    use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_not_initialized, regdae_err_user_callback, &
+    use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_not_initialized, &
                              status_codes, status_texts, status_text_len, unknown_status_text
-    use regdae_format, only: format_int, format_real
-    use regdae_options, only: solver_options, set_option, option_auto, method_name, integrator_name, formulation_name, &
-                              lsq_name, exclusion_name, excluded_name, linear_solver_name
+    use regdae_format, only: format_int
     use regdae_sparsity, only: sparsity_pattern, pattern_from_entries, dense_pattern
     use regdae_mechanical_problem, only: mechanical_structure
-    use regdae_solver_trust, only: regdae_solver
     use regdae_foreign_problems, only: foreign_first_order, foreign_second_order, foreign_mechanical, routine_f, &
                                        routine_b, routine_g, routine_gx, routine_gt, routine_curvature, &
                                        routine_invariant, routine_mass, routine_forces, routine_mass_values, &
                                        routine_gx_values
-    use regdae_c_routines, only: c_routines, c_events
-    use regdae_c_records, only: c_options, c_stats, to_c_options, to_c_stats
-    use regdae_c_strings, only: c_string
-    use regdae_parse, only: has_outer_blank
+    use regdae_c_records, only: c_stats, to_c_stats
+    use regdae_c_session, only: c_session, kind_none, kind_first_order, kind_second_order, kind_mechanical, &
+                                open_session, record, refuse, set_message, solver_result
     implicit none
     private
-
-    integer, parameter :: kind_none = 0, kind_first_order = 1, kind_second_order = 2, kind_mechanical = 3
 
     !> The patterns a mechanical problem may declare (REGDAE_PATTERN_* in include/regdae.h).
     integer, parameter, public :: pattern_mass = 1        !! M, n x n
@@ -55,29 +51,11 @@ module regdae_c_api
         'regdae: no solver (a NULL handle: regdae_create returned NULL, or regdae_destroy has freed it)'//c_null_char
     character(len=len(null_handle_text), kind=c_char), target, protected :: c_null_handle = null_handle_text
 
-    ! What a handle points at.
-    type :: c_session
-        type(regdae_solver) :: solver
-        type(solver_options) :: opts
-        type(c_routines) :: routines
-        integer :: kind = kind_none
-        integer :: n = 0, m = 0
-        logical :: initialized = .false.             ! the last regdae_init succeeded
-        type(sparsity_pattern) :: patterns(4)        ! by pattern code
-        logical :: declared(4) = .false.
-        type(mechanical_structure) :: structure      ! what the last regdae_init declared (the problem points here)
-        character(kind=c_char), allocatable :: message(:)   ! NUL-terminated
-        real(wp), allocatable :: atol_vector(:)      ! regdae_set_atol_vector (unallocated: the atol option)
-    end type c_session
-
     public :: regdae_create, regdae_destroy, regdae_message, regdae_status_string, regdae_version
     public :: regdae_set_first_order, regdae_set_second_order, regdae_set_mechanical, regdae_set_curvature, &
               regdae_set_invariant, regdae_set_pattern, regdae_set_pattern_values, &
               regdae_pattern_position
-    public :: regdae_set_option, regdae_set_real_option, regdae_set_int_option, regdae_get_options, &
-              regdae_set_atol_vector
     public :: regdae_init, regdae_advance, regdae_get_statistics, regdae_error_estimate
-    public :: regdae_set_events, regdae_get_roots
 
 contains
 
@@ -286,127 +264,6 @@ contains
         call set_message(s, '')
     end function regdae_pattern_position
 
-    ! --- options ----------------------------------------------------------------------
-
-    !> `int regdae_set_option(solver, key, value)`: the drivers' key=value parser.
-    integer(c_int) function regdae_set_option(handle, key, value) bind(C, name='regdae_set_option')
-        type(c_ptr), value :: handle, key, value
-        type(c_session), pointer :: s
-        regdae_set_option = regdae_err_bad_input
-        if (.not. open_session(handle, s)) return
-        if (.not. (c_associated(key) .and. c_associated(value))) then
-            regdae_set_option = refuse(s, 'regdae_set_option: key or value is NULL')
-        else
-            regdae_set_option = set_text_option(s, c_string(key), c_string(value), 'regdae_set_option')
-        end if
-    end function regdae_set_option
-
-    !> `int regdae_set_atol_vector(solver, atol, n)`: the absolute tolerance per
-    !! component of the state for the next regdae_init (n: the state's length, 2n for
-    !! second-order and mechanical problems, positions then velocities; checked by
-    !! regdae_init); atol NULL and n 0: back to the atol option.
-    integer(c_int) function regdae_set_atol_vector(handle, atol, n) bind(C, name='regdae_set_atol_vector')
-        type(c_ptr), value :: handle, atol
-        integer(c_int), value :: n
-        type(c_session), pointer :: s
-        real(c_double), pointer :: values(:)
-        regdae_set_atol_vector = regdae_err_bad_input
-        if (.not. open_session(handle, s)) return
-        if (.not. c_associated(atol) .and. n == 0) then
-            if (allocated(s%atol_vector)) deallocate (s%atol_vector)
-        else if (.not. c_associated(atol) .or. n < 1) then
-            regdae_set_atol_vector = refuse(s, 'regdae_set_atol_vector: atol is NULL or n = '//format_int(n)// &
-                                            ' < 1 (NULL and 0 clear the vector)')
-            return
-        else
-            call c_f_pointer(atol, values, [n])
-            s%atol_vector = values
-        end if
-        regdae_set_atol_vector = regdae_success
-        call set_message(s, '')
-    end function regdae_set_atol_vector
-
-    !> `int regdae_set_real_option(solver, key, value)`: a real option by its key
-    !! (REGDAE_AUTO: `auto`); the value reaches the parser with 17 significant
-    !! digits, read back exactly.
-    integer(c_int) function regdae_set_real_option(handle, key, value) bind(C, name='regdae_set_real_option')
-        type(c_ptr), value :: handle, key
-        real(c_double), value :: value
-        type(c_session), pointer :: s
-        regdae_set_real_option = regdae_err_bad_input
-        if (.not. open_session(handle, s)) return
-        if (.not. c_associated(key)) then
-            regdae_set_real_option = refuse(s, 'regdae_set_real_option: key is NULL')
-        else if (value == option_auto) then
-            regdae_set_real_option = set_text_option(s, c_string(key), 'auto', 'regdae_set_real_option')
-        else
-            regdae_set_real_option = set_text_option(s, c_string(key), format_real(value, 16), 'regdae_set_real_option')
-        end if
-    end function regdae_set_real_option
-
-    !> `int regdae_set_int_option(solver, key, value)`: an integer option (index,
-    !! max_steps, max_order), a code (method, formulation, lsq, exclusion, excluded, integrator,
-    !! linear_solver: REGDAE_*) or a switch (stop_at_output, curvature,
-    !! check_jacobians, pass_check, error_estimate: 0 or 1) by its key.
-    integer(c_int) function regdae_set_int_option(handle, key, value) bind(C, name='regdae_set_int_option')
-        type(c_ptr), value :: handle, key
-        integer(c_int), value :: value
-        character(len=*), parameter :: who = 'regdae_set_int_option'
-        type(c_session), pointer :: s
-        character(len=:), allocatable :: name, text
-        regdae_set_int_option = regdae_err_bad_input
-        if (.not. open_session(handle, s)) return
-        if (.not. c_associated(key)) then
-            regdae_set_int_option = refuse(s, who//': key is NULL')
-            return
-        end if
-        name = c_string(key)
-        select case (name)
-        case ('method'); text = method_name(value)
-        case ('formulation'); text = formulation_name(value)
-        case ('lsq'); text = lsq_name(value)
-        case ('exclusion'); text = exclusion_name(value)
-        case ('excluded'); text = excluded_name(value)
-        case ('integrator'); text = integrator_name(value)
-        case ('linear_solver'); text = linear_solver_name(value)
-        case ('stop_at_output', 'curvature', 'check_jacobians', 'pass_check', 'error_estimate')
-            text = 'unknown'
-            if (value == 0 .or. value == 1) text = trim(merge('yes', 'no ', value == 1))
-        case default; text = format_int(value)
-        end select
-        if (text == 'unknown') then
-            regdae_set_int_option = refuse(s, who//': '//format_int(value)//' is not a value of option "'//name//'"')
-        else
-            regdae_set_int_option = set_text_option(s, name, text, who)
-        end if
-    end function regdae_set_int_option
-
-    !> `int regdae_get_options(const regdae_solver *solver, regdae_options *options)`:
-    !! the options in force after a successful regdae_init (`auto` resolved), else those set.
-    integer(c_int) function regdae_get_options(handle, out) bind(C, name='regdae_get_options')
-        type(c_ptr), value :: handle, out
-        type(c_session), pointer :: s
-        type(c_options), pointer :: c
-        type(solver_options) :: opts
-        regdae_get_options = regdae_err_bad_input
-        if (.not. open_session(handle, s)) return
-        if (.not. c_associated(out)) then
-            regdae_get_options = refuse(s, 'regdae_get_options: options is NULL')
-            return
-        end if
-        opts = s%opts
-        if (s%initialized) then
-            opts = s%solver%options()
-            opts%formulation = s%solver%formulation()
-            opts%linear_solver = s%solver%linear_solver()
-            if (s%solver%lsq_method() /= 0) opts%lsq = s%solver%lsq_method()
-            ! integrator: options() gives the one in charge (never auto)
-        end if
-        call c_f_pointer(out, c)
-        c = to_c_options(opts)
-        regdae_get_options = record(s, regdae_success, '')
-    end function regdae_get_options
-
     ! --- integration ------------------------------------------------------------------
 
     !> `int regdae_init(solver, t0, x0, nx0, v0, nv0)`: start the problem at t0 (v0:
@@ -521,64 +378,6 @@ contains
         regdae_advance = solver_result(s, stat)
     end function regdae_advance
 
-    !> `int regdae_set_events(solver, n_events, events, direction, stop, user_data)`: event
-    !! functions (doc/api.md, Events); direction and stop may be NULL (0: both; 1: stop).
-    integer(c_int) function regdae_set_events(handle, n, events, direction, stop, user_data) &
-        bind(C, name='regdae_set_events')
-        type(c_ptr), value :: handle, direction, stop, user_data
-        integer(c_int), value :: n
-        type(c_funptr), value :: events
-        type(c_session), pointer :: s
-        type(c_events) :: ev
-        integer(c_int), pointer :: ds(:), ss(:)
-        integer :: stat
-        regdae_set_events = regdae_err_bad_input
-        if (.not. open_session(handle, s)) return
-        if (n > 0 .and. .not. c_associated(events)) then
-            regdae_set_events = refuse(s, 'regdae_set_events: events is NULL with n_events = '//format_int(n))
-            return
-        end if
-        ev%callback = events
-        ev%user_data = user_data
-        if (n < 0) then
-            call s%solver%set_events(ev, int(n), stat)
-        else if (c_associated(direction) .and. c_associated(stop)) then
-            call c_f_pointer(direction, ds, [n])
-            call c_f_pointer(stop, ss, [n])
-            call s%solver%set_events(ev, int(n), stat, direction=int(ds), stop=(ss /= 0))
-        else if (c_associated(direction)) then
-            call c_f_pointer(direction, ds, [n])
-            call s%solver%set_events(ev, int(n), stat, direction=int(ds))
-        else if (c_associated(stop)) then
-            call c_f_pointer(stop, ss, [n])
-            call s%solver%set_events(ev, int(n), stat, stop=(ss /= 0))
-        else
-            call s%solver%set_events(ev, int(n), stat)
-        end if
-        regdae_set_events = solver_result(s, stat)
-    end function regdae_set_events
-
-    !> `int regdae_get_roots(const regdae_solver *solver, int *roots, int n_events)`: after
-    !! REGDAE_ROOT_FOUND, +1 / -1 / 0 per event function.
-    integer(c_int) function regdae_get_roots(handle, roots, n) bind(C, name='regdae_get_roots')
-        type(c_ptr), value :: handle, roots
-        integer(c_int), value :: n
-        type(c_session), pointer :: s
-        integer(c_int), pointer :: rs(:)
-        integer, allocatable :: found(:)
-        regdae_get_roots = regdae_err_bad_input
-        if (.not. open_session(handle, s)) return
-        found = s%solver%roots()
-        if (.not. c_associated(roots) .or. n /= size(found)) then
-            regdae_get_roots = refuse(s, 'regdae_get_roots: roots must be an array of n_events = '// &
-                                      format_int(size(found))//' ints')
-            return
-        end if
-        call c_f_pointer(roots, rs, [n])
-        rs = int(found, c_int)
-        regdae_get_roots = record(s, regdae_success, '')
-    end function regdae_get_roots
-
     !> `int regdae_get_statistics(const regdae_solver *solver, regdae_stats *stats)`.
     integer(c_int) function regdae_get_statistics(handle, out) bind(C, name='regdae_get_statistics')
         type(c_ptr), value :: handle, out
@@ -617,57 +416,6 @@ contains
         end if
         regdae_error_estimate = record(s, regdae_success, '')
     end function regdae_error_estimate
-
-    ! --- helpers ----------------------------------------------------------------------
-
-    ! The session behind a handle; false for NULL.
-    logical function open_session(handle, s)
-        type(c_ptr), intent(in) :: handle
-        type(c_session), pointer, intent(out) :: s
-        s => null()
-        open_session = c_associated(handle)
-        if (open_session) call c_f_pointer(handle, s)
-    end function open_session
-
-    ! Keep `text` as the handle's message; return `code`.
-    integer(c_int) function record(s, code, text)
-        type(c_session), intent(inout) :: s
-        integer, intent(in) :: code
-        character(len=*), intent(in) :: text
-        call set_message(s, text)
-        record = int(code, c_int)
-    end function record
-
-    ! Bad input: REGDAE_ERR_BAD_INPUT with the message.
-    integer(c_int) function refuse(s, text)
-        type(c_session), intent(inout) :: s
-        character(len=*), intent(in) :: text
-        refuse = record(s, regdae_err_bad_input, text)
-    end function refuse
-
-    subroutine set_message(s, text)
-        type(c_session), intent(inout) :: s
-        character(len=*), intent(in) :: text
-        integer :: k
-        if (allocated(s%message)) deallocate (s%message)
-        allocate (s%message(len(text) + 1))
-        do k = 1, len(text)
-            s%message(k) = text(k:k)
-        end do
-        s%message(len(text) + 1) = c_null_char
-    end subroutine set_message
-
-    ! The status of a solver call and its message; a failing callback is named.
-    integer(c_int) function solver_result(s, stat)
-        type(c_session), intent(inout) :: s
-        integer, intent(in) :: stat
-        character(len=:), allocatable :: text
-        text = ''
-        if (stat /= regdae_success) text = s%solver%message()
-        if (stat == regdae_err_user_callback .and. allocated(s%routines%failure)) &
-            text = text//' ('//s%routines%failure//')'
-        solver_result = record(s, stat, text)
-    end function solver_result
 
     ! What is wrong with the array argument `name` (address p, length given) that
     ! must have length `expected`; '' if nothing.
@@ -786,23 +534,5 @@ contains
             end if
         end subroutine pattern_or_dense
     end subroutine declare_structure
-
-    ! An option from its text (the drivers' parser); the message names the caller. A
-    ! C string has its own length: a blank around the key or the value is refused (the
-    ! parser, written for blank-padded Fortran texts, would ignore it).
-    integer(c_int) function set_text_option(s, key, value, who) result(status)
-        type(c_session), intent(inout) :: s
-        character(len=*), intent(in) :: key, value, who
-        character(len=:), allocatable :: msg
-        integer :: stat
-        if (has_outer_blank(key) .or. has_outer_blank(value)) then
-            status = refuse(s, who//': key "'//key//'" or value "'//value//'" begins or ends with a blank: '// &
-                            'keys and values are read exactly as given')
-            return
-        end if
-        call set_option(s%opts, key, value, stat, msg)
-        if (stat /= regdae_success) msg = who//': '//msg
-        status = record(s, stat, msg)
-    end function set_text_option
 
 end module regdae_c_api

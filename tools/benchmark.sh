@@ -9,8 +9,8 @@
 # minutes on 2 cores at d82beff, the trust grids 12 of them. (drivers/bench's redundant crank with
 # formulation=multiplier or augmented stalled the whole run until the pass ends stopped chattering
 # on the rounding noise of sigma_min: 3.5M pass checks, now 6.)
-# Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only | --sweep-only | --radau-only]
-#        (--reuse: redraw from the raw
+# Usage: tools/benchmark.sh [--reuse | --reuse-trust | --trust-only | --memory-only | --sweep-only | --radau-only
+#        | --events-only] (--reuse: redraw from the raw
 #        outputs of the last run, kept in build/benchmark/; --reuse-trust: run everything but the
 #        trust grids, taken from the last `sh drivers/report/trust_grids.sh build` in
 #        build/report/trust/; --trust-only: issue 19's section alone, from those grids, with the
@@ -19,7 +19,8 @@
 #        again (45 s) and spliced in before the trust grids; --sweep-only: issue 13's sweeps on 1 and 2
 #        MPI ranks measured again (about 7 minutes) and their section spliced in; --radau-only: issue 21's
 #        Radau IIA section alone, drivers/report/radau_section.sh measured again (about a minute: the
-#        car axis, the slider crank and the stiff chain under integrator=radau) and spliced in)
+#        car axis, the slider crank and the stiff chain under integrator=radau) and spliced in; --events-only: issue
+#        22's events section, drivers/report/events_section.sh measured again (about 2 minutes) and spliced in)
 set -eu
 cd "$(dirname "$0")/.."
 sh tools/install-deps.sh --figures
@@ -187,6 +188,17 @@ if [ "${1:-}" = "--radau-only" ]; then
     echo "regdae: the Radau IIA section of doc/performance.md regenerated"
     exit 0
 fi
+if [ "${1:-}" = "--events-only" ]; then
+    # Issue 22's section alone: drivers/report/events_section.sh measured again (about 2 minutes),
+    # spliced in before "Machine and commands"
+    sh drivers/report/events_section.sh build >"$raw/events_section.md.new" && mv "$raw/events_section.md.new" "$raw/events_section.md"
+    commit=$(git rev-parse --short HEAD 2>/dev/null || echo '?')
+    awk -v c="$commit" -v d="$(date -u +%F)" 'NR == 2 { print ""; print "(This section regenerated alone, by `sh tools/benchmark.sh --events-only` at commit " c \
+        ", " d "; the other sections are from their own runs.)" } { print }' "$raw/events_section.md" >"$tmp/events_section.md"
+    splice "$tmp/events_section.md" "Events" "Machine and commands"
+    echo "regdae: the Events section of doc/performance.md regenerated"
+    exit 0
+fi
 if [ "${1:-}" = "--reuse-trust" ]; then
     reuse_trust=yes
     [ -f build/report/trust/summaries.txt ] || { echo "benchmark.sh: no build/report/trust/summaries.txt to reuse" >&2; exit 2; }
@@ -221,6 +233,8 @@ if [ "${1:-}" != "--reuse" ]; then
         mv "$raw/error_estimate.txt.new" "$raw/error_estimate.txt"
     sh drivers/report/cost_of_trust.sh build/bin >"$raw/cost_of_trust.txt.new" &&
         mv "$raw/cost_of_trust.txt.new" "$raw/cost_of_trust.txt"
+    # Issue 22: the events' accuracy and cost (about 2 minutes), the section itself
+    sh drivers/report/events_section.sh build >"$raw/events_section.md.new" && mv "$raw/events_section.md.new" "$raw/events_section.md"
 fi
 cp "$raw/bench.txt" "$raw/stability.txt" "$raw/unchecked.txt" "$raw/stability_defaults.txt" \
     "$raw/stability_extended.txt" "$tmp/"
@@ -753,6 +767,7 @@ cat "$tmp/memory_section.md"
 cat "$tmp/trust_section.md"
 sweep_section
 cat "$tmp/radau_section.md"
+cat "$raw/events_section.md"
 cat <<'TXT'
 ## Machine and commands
 
