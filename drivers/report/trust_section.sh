@@ -171,19 +171,27 @@ the run with the checks off), from \`trust_grids.sh\`'s \`baseline.txt\`:
 $(awk '/^# (silent|false_alarm|undecided) cells/ { show = 1; print; next } /^# (warned|no_reference) cells/ { show = 0 } show && NF' "$grids/baseline.txt" | cut -c1-200)
 \`\`\`
 
-Of the crank's silent cells (the run at 1254138), four spin fast (w1 = 10, 20) at R = 1e-8: the
+Of the crank's silent cells, the four left spin fast (w1 = 10, 20) at R = 1e-8: the
 error is 15-26 times the reference method's over 16 revolutions (1.3-2.6x the bound), the same on
 the baseline, and it is the regular integration's (no pass is unresolved; Dormand-Prince on the
 four-coordinate regularized system against Dormand-Prince on the one-coordinate reduced ODE);
 \`error_estimate=yes\` sees it (ratio estimate/true 0.87-1.8 at \`ex52 th1=3.141493 w1=10 rtol=1e-8
-atol=1e-8 nout=100 error_estimate=yes\`). The other two (w1 = 2 from th1 = 3.7e-3 and 1e-2, R = 1e-7
-and 1e-6) miss the bound by 8% and 4%.
+atol=1e-8 nout=100 error_estimate=yes\`). At the neighbouring R the same starts are 0.3-1.3x the
+reference method's error: the reference's phase error changes sign near R = 1e-8, so its error
+there is 10-40x below its level on either side (the stop-25 diagnosis; the judge is the issue's
+and is not changed). The two near-singular starts that were silent before (w1 = 2 from th1 =
+3.7e-3 and 1e-2, at R = 1e-7 and 1e-6: the automatic weights too stiff there, and IDA's BDF
+error 5-10x the reference's) are ok since \`integrator=auto\` hands a small stiff second-order
+problem to Radau IIA instead of IDA (issue 21): errors 0.63 and 0.76 against bounds of 21 and 29.
 The four-bar's top (the unstable equilibrium at rest) is left by regdae at R = 1e-3 and kept by
 the reference method exactly (its right-hand side vanishes there): the unstable mode grows like
 exp(sqrt(g/r) t), 6e6 over the 5 s, so that a perturbation of 5e-9, far inside what the tolerance
 allows, ends at 0.04 rad; regdae's own starts in the constrained coordinate (th2 5e-7 off at t =
 0.5 at R = 1e-3, the damped least squares' bias eps/sigma^2 normal to the constraints, which the
-Baumgarte terms pull back). rand4/i3 misses by 11%.
+Baumgarte terms pull back). rand4/i3 at R = 1e-3, silent before (a 0.34 s explicit step straight
+over the fold at th1 = -2 pi, no pass seen), is ok since a step longer than the motion's time
+scale has its quarter points probed for a singular pass (\`regdae_explicit_rk\`,
+\`sample_step_end\`): error 3.29 against a bound of 38.6 (was 42.9).
 The long chains are judged against a reference method where one exists: the plain IDA peer at R
 (plain), Dormand-Prince on the slider crank's reduced ODE (2 links with the slider). Their energy
 drift over 10 s of chaotic motion is of the same order as regdae's (at R = 1e-3 the peer's is 12
