@@ -36,6 +36,8 @@ module regdae_implicit_steps
         !! declared non_overridable: gfortran 12 then dispatches a call through
         !! class(integrator) to the wrong binding).
         procedure :: advance => implicit_advance
+        !> Yes: with one_step, advance returns after one accepted step.
+        procedure :: steps_singly => implicit_steps_singly
         !> One step towards tout (landing on it with stop_at_output), state() and
         !! slope() at its end t_now; stat /= regdae_success: it failed at t_now (msg).
         procedure(stepper_step), deferred :: step_towards
@@ -69,12 +71,13 @@ module regdae_implicit_steps
 
 contains
 
-    subroutine implicit_advance(self, tout, t_stop, outcome, stat, msg)
+    subroutine implicit_advance(self, tout, t_stop, outcome, stat, msg, one_step)
         class(implicit_stepper), intent(inout), target :: self
         real(wp), intent(in) :: tout
         real(wp), intent(out) :: t_stop
         integer, intent(out) :: outcome, stat
         character(len=:), allocatable, intent(out) :: msg
+        logical, intent(in), optional :: one_step   !! return after one accepted step (at its end if before tout)
         real(wp) :: t_now
         integer :: taken, istat
         type(solver_core), pointer :: core
@@ -100,6 +103,12 @@ contains
             end if
             taken = taken + 1
             if (after_step(core, taken, t_now, tout, t_stop, outcome)) return
+            if (t_now < tout .and. present(one_step)) then
+                if (one_step) then   ! state() is at the step's end, sampled there
+                    t_stop = t_now
+                    return
+                end if
+            end if
         end do
         if (t_now > tout) then
             call self%interpolate(tout, istat)
@@ -112,6 +121,11 @@ contains
             if (sampled_alarm(core, tout, t_stop, outcome)) return
         end if
     end subroutine implicit_advance
+
+    logical function implicit_steps_singly(self)
+        class(implicit_stepper), intent(in) :: self
+        implicit_steps_singly = .true.
+    end function implicit_steps_singly
 
     !> max_steps steps taken in this advance (`taken`) without reaching tout: stop at
     !! t_now with outcome_exhausted, regdae_err_integration and a message naming `who`.
