@@ -7,9 +7,9 @@
 !! (max_steps), and after an accepted step the monitor's sample
 !! (`regdae_solver_sampling`) with its alarm, the end of a singular pass
 !! (stop_at_pass_end), and with integrator=auto the switching policy's vote every
-!! 20 steps (`regdae_switching_policy`). Each of the functions budget_spent,
-!! sampled_alarm and after_step returns .true. when the advance stops there, with
-!! its outcome (`regdae_integrator`) and t_stop set.
+!! 20 steps (`regdae_switching_policy`). Each of the module's functions
+!! budget_spent, sampled_alarm and after_step returns .true. when the advance
+!! stops there, with its outcome (`regdae_integrator`) and t_stop set.
 module regdae_implicit_steps
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_integration
@@ -21,8 +21,6 @@ module regdae_implicit_steps
     use regdae_switching_policy, only: explicit_would_do
     implicit none
     private
-
-    public :: budget_spent, sampled_alarm, after_step
 
     !> An implicit integrator of the core's model, stepping under the loop of
     !! `advance` (written here once) through the deferred one-step primitives.
@@ -94,7 +92,7 @@ contains
         taken = 0
         do while (t_now < tout)
             ! (state() is at t_now: max_steps >= 1, so a step was taken)
-            if (budget_spent(core, self%name(), taken, t_now, tout, t_stop, outcome, stat, msg)) return
+            if (budget_spent(self, taken, t_now, tout, t_stop, outcome, stat, msg)) return
             call self%step_towards(tout, t_now, stat, msg)
             if (stat /= regdae_success) then
                 t_stop = t_now
@@ -127,27 +125,26 @@ contains
         implicit_steps_singly = .true.
     end function implicit_steps_singly
 
-    !> max_steps steps taken in this advance (`taken`) without reaching tout: stop at
-    !! t_now with outcome_exhausted, regdae_err_integration and a message naming `who`.
-    logical function budget_spent(core, who, taken, t_now, tout, t_stop, outcome, stat, msg) result(stop)
-        type(solver_core), intent(in) :: core
-        character(len=*), intent(in) :: who    !! the integrator's name in the message
+    ! max_steps steps taken in this advance (`taken`) without reaching tout: stop at
+    ! t_now with outcome_exhausted, regdae_err_integration and a message naming the method.
+    logical function budget_spent(self, taken, t_now, tout, t_stop, outcome, stat, msg) result(stop)
+        class(implicit_stepper), intent(in) :: self
         integer, intent(in) :: taken           !! steps taken in this advance
         real(wp), intent(in) :: t_now, tout
         real(wp), intent(inout) :: t_stop
         integer, intent(inout) :: outcome, stat
         character(len=:), allocatable, intent(inout) :: msg
-        stop = (taken >= core%opts%max_steps)
+        stop = (taken >= self%core%opts%max_steps)
         if (.not. stop) return
         t_stop = t_now
         outcome = outcome_exhausted
         stat = regdae_err_integration
-        msg = who//' took max_steps = '//format_int(core%opts%max_steps)//' steps without reaching tout = '// &
+        msg = self%name()//' took max_steps = '//format_int(self%core%opts%max_steps)//' steps without reaching tout = '// &
               format_real(tout)//' (t = '//format_real(t_now)//')'
     end function budget_spent
 
-    !> The monitor samples the implicit integrator's state at t (the stiff slot's
-    !! state() and slope() there); its alarm stops at t (outcome_alarm).
+    ! The monitor samples the implicit integrator's state at t (the stiff slot's
+    ! state() and slope() there); its alarm stops at t (outcome_alarm).
     logical function sampled_alarm(core, t, t_stop, outcome) result(stop)
         type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t
@@ -161,9 +158,9 @@ contains
         outcome = outcome_alarm
     end function sampled_alarm
 
-    !> After the `taken`-th accepted step of this advance, ending at t_now: the sample
-    !! and its alarm and the end of a singular pass (t_now <= tout), the hand-back
-    !! vote of integrator=auto every 20 steps (t_now < tout).
+    ! After the `taken`-th accepted step of this advance, ending at t_now: the sample
+    ! and its alarm and the end of a singular pass (t_now <= tout), the hand-back
+    ! vote of integrator=auto every 20 steps (t_now < tout).
     logical function after_step(core, taken, t_now, tout, t_stop, outcome) result(stop)
         type(solver_core), intent(inout), target :: core
         integer, intent(in) :: taken
