@@ -38,8 +38,8 @@ program bench_driver
     use massless_problem, only: new_massless_carrier
     use pendulum_problem, only: pendulum_angle
     use theory_problems, only: theory_cases, new_theory_problem, theory_problem
-    use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number, read_count, &
-                              warning_log
+    use driver_support, only: format_int, argument, split_key_value, num, die_usage, &
+                              warning_log, timing_option
     implicit none
     character(len=*), parameter :: prog = 'bench'
     real(wp), parameter :: pi = acos(-1.0_wp)
@@ -66,12 +66,8 @@ program bench_driver
     do i = 1, command_argument_count()
         call split_key_value(argument(i), key, value, ok)
         if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
+        if (timing_option(prog, key, value, max_reps, reps, min_time, tol_from, tol_to)) cycle
         select case (key)
-        case ('reps'); call read_count(prog, key, value, reps, 1, max_reps)
-        case ('min_time'); call read_number(prog, key, value, min_time)
-            if (.not. (min_time >= 0 .and. min_time <= 60)) call die_usage(prog, 'min_time must be in [0, 60] seconds')
-        case ('tol_from'); call read_count(prog, key, value, tol_from, 1, 14)
-        case ('tol_to'); call read_count(prog, key, value, tol_to, 1, 14)
         case ('problem'); which = value
             if (which /= 'all' .and. which /= 'crank' .and. which /= 'ex51' .and. which /= 'others' .and. &
                 which /= 'crank_defaults' .and. which /= 'crank_radau') call die_usage(prog, 'bad problem '//value)

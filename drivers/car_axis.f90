@@ -29,7 +29,7 @@ program car_axis_driver
     use regdae
     use car_axis_problem, only: car_axis, new_car_axis, car_axis_reference, car_axis_t_end, car_axis_x0, &
                                 car_axis_v0
-    use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_number, read_count
+    use driver_support, only: format_int, argument, split_key_value, num, die_usage, read_count, timing_option
     implicit none
     character(len=*), parameter :: prog = 'car_axis'
     integer, parameter :: max_reps = 201
@@ -56,12 +56,8 @@ program car_axis_driver
     do i = 1, command_argument_count()
         call split_key_value(argument(i), key, value, ok)
         if (.not. ok) call die_usage(prog, 'argument "'//argument(i)//'" is not of the form key=value')
+        if (timing_option(prog, key, value, max_reps, reps, min_time, tol_from, tol_to)) cycle
         select case (key)
-        case ('reps'); call read_count(prog, key, value, reps, 1, max_reps)
-        case ('min_time'); call read_number(prog, key, value, min_time)
-            if (.not. (min_time >= 0 .and. min_time <= 60)) call die_usage(prog, 'min_time must be in [0, 60] seconds')
-        case ('tol_from'); call read_count(prog, key, value, tol_from, 1, 14)
-        case ('tol_to'); call read_count(prog, key, value, tol_to, 1, 14)
         case ('tol_step'); call read_count(prog, key, value, tol_step, 1, 13)
         case ('config'); which = value
             if (which /= 'all' .and. all(config_names /= which)) call die_usage(prog, 'bad config '//value)

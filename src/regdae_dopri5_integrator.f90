@@ -71,12 +71,13 @@ contains
 
     !> To tout with the core's tolerances and step limits, the monitor sampling the
     !! accepted steps; with integrator=auto, stopped where the stiffness test fires.
-    subroutine dopri5_advance(self, tout, t_stop, outcome, stat, msg)
+    subroutine dopri5_advance(self, tout, t_stop, outcome, stat, msg, one_step)
         class(dopri5_integrator), intent(inout), target :: self
         real(wp), intent(in) :: tout
         real(wp), intent(out) :: t_stop
         integer, intent(out) :: outcome, stat
         character(len=:), allocatable, intent(out) :: msg
+        logical, intent(in), optional :: one_step   !! not honoured (steps_singly() is false)
         associate (core => self%core)
             call self%rk%advance(core%model, tout, core%opts%rtol, core%atol_z, core%opts%h_max, &
                                  core%opts%max_steps, core%opts%stop_at_output, self%z, stat, &

@@ -4,7 +4,8 @@
 !! `time`, `last_step`), in the manner of IDA's and DDASKR's root finding.
 !!
 !! The front (`regdae_solver_front`) drives the integrator one step at a time
-!! while events are set (`step_target`) and, after each step, calls `scan` on
+!! while events are set (the implicit ones by the one-step mode of `advance`,
+!! the others by asking for `step_target`) and, after each step, calls `scan` on
 !! the part (t_lo, t_hi] of the step not yet searched. A function *crosses* in
 !! (t_lo, t_hi] when its value at t_hi is zero or of the sign opposite to its
 !! last nonzero value; a crossing is *reported* when it goes the way the
@@ -177,8 +178,8 @@ contains
         self%primed = .true.
     end subroutine locator_prime
 
-    !> The output time to ask of the integrator at time t (its last step h) so that
-    !! it takes about one step: t + |h|/1000, or, before its first step, a
+    !> The output time to ask of an integrator without a one-step mode (`steps_singly`)
+    !! at time t (its last step h) so that it takes about one step: t + |h|/1000, or, before its first step, a
     !! millionth of the way to tout (at least 1000 time resolutions); never
     !! beyond tout. With `land` (stop_at_output), tout itself once t + |h|
     !! reaches it (the integrator's step ends there).

@@ -3,11 +3,11 @@
 !! on each formulation: the eliminated one (the unknowns z), the multiplier one
 !! ((z, y)) and the augmented one (`regdae_augmented_system`'s vector u, created
 !! by the front's init or the switching policy on that system), with the dense,
-!! band or sparse (KLU) linear solver. `advance` takes IDA one step at a time
-!! (the same steps as IDA_NORMAL), the monitor sampling every accepted step's
-!! end and the output time, in time order; IDA's interpolant gives the state at
-!! tout. With integrator=auto it asks the switching policy every 20 steps whether
-!! the explicit method would do.
+!! band or sparse (KLU) linear solver. Its `advance` is `regdae_implicit_steps`'s
+!! loop over IDA's single steps (the same steps as IDA_NORMAL), the monitor
+!! sampling every accepted step's end and the output time, in time order; IDA's
+!! interpolant gives the state at tout. With integrator=auto the loop asks the
+!! switching policy every 20 steps whether the explicit method would do.
 module regdae_ida_integrator
     use, intrinsic :: iso_c_binding, only: c_double, c_associated
     use regdae_kinds, only: wp
@@ -18,22 +18,22 @@ module regdae_ida_integrator
     use regdae_ida_backend, only: ida_backend
     use regdae_regularized_system, only: new_regularized_system
     use regdae_augmented_system, only: augmented_system
-    use regdae_integrator, only: integrator, outcome_reached, outcome_failed, outcome_broken
     use regdae_solver_core, only: solver_core
     use regdae_switching_policy, only: spectral_radius
-    use regdae_implicit_steps, only: budget_spent, sampled_alarm, after_step
+    use regdae_implicit_steps, only: implicit_stepper
     implicit none
     private
 
     public :: ida_in_slot
 
     !> IDA on one formulation of the core's model (see the module documentation).
-    type, extends(integrator), public :: ida_integrator
-        type(solver_core), pointer :: core => null()   !! the problem's state (set by ida_in_slot)
+    type, extends(implicit_stepper), public :: ida_integrator
         type(ida_backend) :: ida                       !! IDA and its callbacks (a fixed address: user_data)
     contains   ! the interface's procedures (regdae_integrator documents them)
         procedure :: start => ida_start
-        procedure :: advance => ida_advance
+        procedure :: step_towards => ida_step_towards
+        procedure :: to_step_end => ida_to_step_end
+        procedure :: name => ida_name
         procedure :: state => ida_state
         procedure :: slope => ida_slope
         procedure :: interpolate => ida_interpolate
@@ -112,54 +112,34 @@ contains
         end associate
     end subroutine ida_start
 
-    !> IDA one step at a time to tout; the outcome: at tout, the end of a singular
-    !! pass (stop_at_pass_end), the monitor's alarm, the policy's hand-back to the
-    !! explicit method (integrator=auto), or a failure.
-    subroutine ida_advance(self, tout, t_stop, outcome, stat, msg)
+    !> One IDA step towards tout (IDA_ONE_STEP, tstop at tout with stop_at_output).
+    subroutine ida_step_towards(self, tout, t_now, stat, msg)
         class(ida_integrator), intent(inout), target :: self
         real(wp), intent(in) :: tout
-        real(wp), intent(out) :: t_stop
-        integer, intent(out) :: outcome, stat
-        character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: t_now
-        integer :: ierr, taken
-        type(solver_core), pointer :: core
-        core => self%core
+        real(wp), intent(out) :: t_now
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(inout) :: msg
+        integer :: ierr
         stat = regdae_success
-        msg = ''
-        t_stop = tout
-        outcome = outcome_reached
-        t_now = self%ida%current_time()
-        if (t_now > core%sampled_t .and. t_now <= tout) then   ! a step end passed over at the last output
-            call self%ida%interpolate(t_now, ierr)
-            if (sampled_alarm(core, t_now, t_stop, outcome)) return
-        end if
-        taken = 0
-        do while (t_now < tout)
-            if (budget_spent(core, 'IDA', taken, t_now, tout, t_stop, outcome, stat, msg)) return
-            call self%ida%step(tout, core%opts%stop_at_output, t_now, ierr)
-            if (ierr < 0) then
-                t_stop = t_now
-                outcome = outcome_failed
-                stat = self%ida%failure_status()
-                msg = 'IDA failed at t = '//format_real(t_now)//' (flag '//format_int(ierr)//'): '// &
-                      self%ida%ida_message//merge_text(' | last residual failure: ', self%ida%pending_message)
-                return
-            end if
-            taken = taken + 1
-            if (after_step(core, taken, t_now, tout, t_stop, outcome)) return
-        end do
-        if (t_now > tout) then
-            call self%ida%interpolate(tout, ierr)
-            if (ierr /= 0) then
-                outcome = outcome_broken
-                stat = regdae_err_integration
-                msg = 'IDA could not interpolate at t = '//format_real(tout)
-                return
-            end if
-            if (sampled_alarm(core, tout, t_stop, outcome)) return
-        end if
-    end subroutine ida_advance
+        call self%ida%step(tout, self%core%opts%stop_at_output, t_now, ierr)
+        if (ierr >= 0) return
+        stat = self%ida%failure_status()
+        msg = 'IDA failed at t = '//format_real(t_now)//' (flag '//format_int(ierr)//'): '// &
+              self%ida%ida_message//merge_text(' | last residual failure: ', self%ida%pending_message)
+    end subroutine ida_step_towards
+
+    !> IDA's interpolant at the end of its last step.
+    subroutine ida_to_step_end(self)
+        class(ida_integrator), intent(inout), target :: self
+        integer :: ierr
+        call self%ida%interpolate(self%ida%current_time(), ierr)
+    end subroutine ida_to_step_end
+
+    function ida_name(self) result(who)
+        class(ida_integrator), intent(in) :: self
+        character(len=:), allocatable :: who
+        who = 'IDA'
+    end function ida_name
 
     function ida_state(self) result(u)
         class(ida_integrator), intent(in), target :: self

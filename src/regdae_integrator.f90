@@ -19,8 +19,11 @@
 !!  - `start(t, z, stat, msg [, h0, zp, y])`: start, or start again, from a
 !!    consistent state z at t (the state of the eliminated formulation; the
 !!    slope zp and multiplier y where the caller has them, else computed);
-!!  - `advance(tout, t_stop, outcome, stat, msg)`: step towards tout, sampling
-!!    the monitor at every accepted step, until one of the `outcome_*` codes;
+!!  - `advance(tout, t_stop, outcome, stat, msg [, one_step])`: step towards tout,
+!!    sampling the monitor at every accepted step, until one of the `outcome_*`
+!!    codes; with one_step (where `steps_singly()`), return after one accepted
+!!    step with outcome_reached at t_stop = min(the step's end, tout);
+!!  - `steps_singly()`: does advance honour one_step (default: no);
 !!  - `state()`, `slope()`: the integrator's unknowns and their derivatives at the
 !!    time reached (or interpolated), as a pointer into its own storage;
 !!  - `interpolate(t, stat)`: the continuous extension at a t inside the last
@@ -76,6 +79,8 @@ module regdae_integrator
         procedure(integrator_free), deferred :: free
         !> The augmented system integrated, if it is (null otherwise).
         procedure :: augmented => no_augmented_system
+        !> Does advance honour its one_step argument (return after each step)?
+        procedure :: steps_singly => no_single_steps
     end type integrator
 
     abstract interface
@@ -90,13 +95,14 @@ module regdae_integrator
             real(wp), intent(in), optional :: y(:)    !! the multiplier at t
         end subroutine integrator_start
 
-        subroutine integrator_advance(self, tout, t_stop, outcome, stat, msg)
+        subroutine integrator_advance(self, tout, t_stop, outcome, stat, msg, one_step)
             import :: integrator, wp
             class(integrator), intent(inout), target :: self
             real(wp), intent(in) :: tout
             real(wp), intent(out) :: t_stop
             integer, intent(out) :: outcome, stat
             character(len=:), allocatable, intent(out) :: msg
+            logical, intent(in), optional :: one_step   !! return after one accepted step (where steps_singly())
         end subroutine integrator_advance
 
         function integrator_vector(self) result(u)
@@ -148,5 +154,10 @@ contains
         type(augmented_system), pointer :: sys
         sys => null()
     end function no_augmented_system
+
+    logical function no_single_steps(self)
+        class(integrator), intent(in) :: self
+        no_single_steps = .false.
+    end function no_single_steps
 
 end module regdae_integrator

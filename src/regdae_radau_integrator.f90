@@ -4,10 +4,10 @@
 !! integrates the eliminated formulation as an ODE z' = F(t, z) (the model's
 !! slope_eliminated, as dopri5 does), with dense LU and difference-quotient
 !! Jacobians; the error test leaves out what the IDA path leaves out (core%excluded).
-!! `advance` takes one step at a time, the monitor sampling every accepted step's
-!! end and the output time, in time order, like the IDA integrator; with
-!! integrator=auto it asks the switching policy every 20 steps whether the
-!! explicit method would do.
+!! Its `advance` is `regdae_implicit_steps`'s loop over Radau's single steps, the
+!! monitor sampling every accepted step's end and the output time, in time order,
+!! like the IDA integrator; with integrator=auto the loop asks the switching
+!! policy every 20 steps whether the explicit method would do.
 !!
 !! The augmented formulation is not run here: its residual is not M u' - F(t, u)
 !! with a constant diagonal M (the v rows are M(q) v', and the trust region's s
@@ -21,10 +21,9 @@ module regdae_radau_integrator
     use regdae_regularization, only: regularized_dae
     use regdae_radau_system, only: radau_system, radau_options, radau_stats
     use regdae_radau_iia, only: radau_integrator
-    use regdae_integrator, only: integrator, outcome_reached, outcome_failed, outcome_broken
     use regdae_solver_core, only: solver_core
     use regdae_switching_policy, only: spectral_radius
-    use regdae_implicit_steps, only: budget_spent, sampled_alarm, after_step
+    use regdae_implicit_steps, only: implicit_stepper
     implicit none
     private
 
@@ -40,8 +39,7 @@ module regdae_radau_integrator
     end type eliminated_ode
 
     !> Radau IIA on the core's model (see the module documentation).
-    type, extends(integrator), public :: radau_adapter
-        type(solver_core), pointer :: core => null()   !! the problem's state (set by radau_in_slot)
+    type, extends(implicit_stepper), public :: radau_adapter
         type(radau_integrator) :: radau                !! the method's state
         type(eliminated_ode) :: ode                    !! the system it integrates
         type(radau_stats) :: before                    !! the counters of the earlier starts
@@ -49,7 +47,9 @@ module regdae_radau_integrator
         logical :: started = .false.                   !! radau holds a started state
     contains   ! the interface's procedures (regdae_integrator documents them)
         procedure :: start => radau_start
-        procedure :: advance => radau_advance
+        procedure :: step_towards => radau_step_towards
+        procedure :: to_step_end => radau_to_step_end
+        procedure :: name => radau_name
         procedure :: state => radau_state
         procedure :: slope => radau_slope
         procedure :: interpolate => radau_interpolate
@@ -121,69 +121,38 @@ contains
         end associate
     end subroutine radau_start
 
-    !> Radau one step at a time to tout (landing on it with stop_at_output); the
-    !! outcome: at tout, the end of a singular pass (stop_at_pass_end), the
-    !! monitor's alarm, the policy's hand-back to the explicit method
-    !! (integrator=auto), the step budget spent, or a failure.
-    subroutine radau_advance(self, tout, t_stop, outcome, stat, msg)
+    !> One Radau step towards tout (landing on it with stop_at_output), the state
+    !! and slope at its end.
+    subroutine radau_step_towards(self, tout, t_now, stat, msg)
         class(radau_adapter), intent(inout), target :: self
         real(wp), intent(in) :: tout
-        real(wp), intent(out) :: t_stop
-        integer, intent(out) :: outcome, stat
-        character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: t_now
-        integer :: taken, istat
-        type(solver_core), pointer :: core
-        core => self%core
-        stat = regdae_success
-        msg = ''
-        t_stop = tout
-        outcome = outcome_reached
+        real(wp), intent(out) :: t_now
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(inout) :: msg
+        if (self%core%opts%stop_at_output) then
+            call self%radau%step(self%ode, stat, tout)
+        else
+            call self%radau%step(self%ode, stat)
+        end if
         t_now = self%radau%time()
-        if (t_now > core%sampled_t .and. t_now <= tout) then   ! a step end passed over at the last output
-            call at_step_end()
-            if (sampled_alarm(core, t_now, t_stop, outcome)) return
-        end if
-        taken = 0
-        do while (t_now < tout)
-            if (budget_spent(core, 'Radau', taken, t_now, tout, t_stop, outcome, stat, msg)) then
-                call at_step_end()
-                return
-            end if
-            if (core%opts%stop_at_output) then
-                call self%radau%step(self%ode, stat, tout)
-            else
-                call self%radau%step(self%ode, stat)
-            end if
-            t_now = self%radau%time()
-            call at_step_end()
-            if (stat /= regdae_success) then
-                t_stop = t_now
-                outcome = outcome_failed
-                msg = 'Radau failed at t = '//format_real(t_now)//': '//self%radau%message()
-                if (len(self%ode%failure) > 0) msg = msg//' | last failure of F: '//self%ode%failure
-                return
-            end if
-            taken = taken + 1
-            if (after_step(core, taken, t_now, tout, t_stop, outcome)) return
-        end do
-        if (t_now > tout) then
-            call self%interpolate(tout, istat)
-            if (istat /= regdae_success) then
-                outcome = outcome_broken
-                stat = regdae_err_integration
-                msg = 'Radau could not interpolate at t = '//format_real(tout)
-                return
-            end if
-            if (sampled_alarm(core, tout, t_stop, outcome)) return
-        end if
-    contains
-        ! The state and slope at the end of the last step.
-        subroutine at_step_end()
-            call self%radau%state(self%z)
-            call self%radau%slope(self%zp)
-        end subroutine at_step_end
-    end subroutine radau_advance
+        call self%to_step_end()
+        if (stat == regdae_success) return
+        msg = 'Radau failed at t = '//format_real(t_now)//': '//self%radau%message()
+        if (len(self%ode%failure) > 0) msg = msg//' | last failure of F: '//self%ode%failure
+    end subroutine radau_step_towards
+
+    !> The state and slope at the end of the last step.
+    subroutine radau_to_step_end(self)
+        class(radau_adapter), intent(inout), target :: self
+        call self%radau%state(self%z)
+        call self%radau%slope(self%zp)
+    end subroutine radau_to_step_end
+
+    function radau_name(self) result(who)
+        class(radau_adapter), intent(in) :: self
+        character(len=:), allocatable :: who
+        who = 'Radau'
+    end function radau_name
 
     function radau_state(self) result(u)
         class(radau_adapter), intent(in), target :: self

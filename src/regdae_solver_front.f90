@@ -354,7 +354,7 @@ contains
         type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
-        logical :: recoverable, events, at_root, stop_user, held, driving
+        logical :: recoverable, events, at_root, stop_user, held, driving, single
         integer :: nx, outcome, taken
         real(wp) :: t_reached, t_stop, t_ask
 
@@ -406,9 +406,10 @@ contains
                 stepper => active_integrator(core)
                 u => stepper%state()
                 t_ask = tout
+                single = driving .and. stepper%steps_singly()   ! advance returns after one step (else t + |h|/1000)
+                if (driving .and. .not. single) t_ask = self%ev%step_target(stepper%time(), stepper%last_step(), tout, &
+                                                                            time_resolution(core%t, tout), stop_user)
                 if (driving) then
-                    t_ask = self%ev%step_target(stepper%time(), stepper%last_step(), tout, time_resolution(core%t, tout), &
-                                                stop_user)
                     core%opts%stop_at_output = stop_user .and. t_ask == tout
                     taken = taken + 1
                     if (taken > core%opts%max_steps) then
@@ -419,14 +420,16 @@ contains
                     end if
                 end if
                 held = .false.
-                if (driving .and. core%stop_at_pass_end .and. core%started .and. stepper%time() < tout) then
+                if (driving .and. .not. single .and. core%stop_at_pass_end .and. core%started .and. &
+                    stepper%time() < tout) then
                     ! the step end passed over (an implicit integrator samples it now): a pass end
                     ! there stops before the next step, as it does without events
                     call stepper%advance(stepper%time(), t_stop, outcome, stat, msg)
                     held = (outcome /= outcome_reached .or. core%monitor%pass_ended)
                     if (outcome == outcome_reached .and. held) outcome = outcome_pass_end
                 end if
-                if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg)
+                if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg, one_step=single)
+                if (single .and. outcome == outcome_reached) t_ask = t_stop   ! the step's end, or tout
                 core%opts%stop_at_output = stop_user
                 if (driving) then
                     ! a step beyond t_ask: the integrator did not report a pass end there

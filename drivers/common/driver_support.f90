@@ -10,7 +10,7 @@ module driver_support
 
     public :: format_int
     public :: read_number, read_count, common_argument, parse_number, parse_count, common_option
-    public :: stats_fields, run_status, resolved_line, event_lines
+    public :: stats_fields, run_status, resolved_line, event_lines, timing_option
 
     !> The largest `nout` the drivers accept: their tables hold nout + 1 rows.
     integer, parameter, public :: max_nout = 1000000
@@ -204,6 +204,26 @@ contains
             k = tmp
         end if
     end subroutine parse_count
+
+    !> The timing drivers' options (drivers/bench, drivers/car_axis): `reps` (runs per
+    !! row, in [1, max_reps]), `min_time` (seconds per row, in [0, 60]), `tol_from`
+    !! and `tol_to` (the rows' rtol = 10^-k, k in [1, 14]); .true. when key is one
+    !! of them (read, or a usage error), .false. otherwise.
+    logical function timing_option(program_name, key, value, max_reps, reps, min_time, tol_from, tol_to) result(known)
+        character(len=*), intent(in) :: program_name, key, value
+        integer, intent(in) :: max_reps
+        integer, intent(inout) :: reps, tol_from, tol_to
+        real(wp), intent(inout) :: min_time
+        known = .true.
+        select case (key)
+        case ('reps'); call read_count(program_name, key, value, reps, 1, max_reps)
+        case ('min_time'); call read_number(program_name, key, value, min_time)
+            if (.not. (min_time >= 0 .and. min_time <= 60)) call die_usage(program_name, 'min_time must be in [0, 60] seconds')
+        case ('tol_from'); call read_count(program_name, key, value, tol_from, 1, 14)
+        case ('tol_to'); call read_count(program_name, key, value, tol_to, 1, 14)
+        case default; known = .false.
+        end select
+    end function timing_option
 
     !> The arguments all drivers share: `nout` (an integer in [1, max_nout]) and
     !! every solver option; anything else stops with a usage error naming it.
