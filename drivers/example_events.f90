@@ -81,7 +81,6 @@ program example_events
     type(pendulum_events) :: events
     real(wp) :: x(2), v(2), period, a, b, c, err
     integer :: stat, k, i
-    integer, allocatable :: found(:)
 
     problem%n = 2
     problem%m = 1
@@ -107,8 +106,7 @@ program example_events
         if (stat /= regdae_root_found) exit
         k = k + 1
         st = solver%statistics()
-        found = solver%roots()
-        write (*, '(a, i0, a, es23.15, a, 2i3)') 'stop ', k, ' at t =', st%t, ', roots', found
+        write (*, '(a, i0, a, es23.15, a, 2i3)') 'stop ', k, ' at t =', st%t, ', roots', solver%roots()
         err = max(err, abs(st%t - (2*k - 1)*period/4))
     end do
     if (stat < 0) error stop 'advance failed'
