@@ -62,7 +62,7 @@ extern "C" {
 
 /* ---- Version ----------------------------------------------------------------- */
 
-/** The version of this header: CMakeLists.txt's project(VERSION) (ctest capi.version).
+/** The version of this header: CMakeLists.txt's project(VERSION) (ctest capi.version_cmake; capi.version checks the library against the header).
  *  regdae_version() gives the library's at run time. */
 #define REGDAE_VERSION_MAJOR 0
 #define REGDAE_VERSION_MINOR 1
@@ -240,7 +240,7 @@ typedef struct regdae_stats {
     double velocity_jump;     /**< largest relative velocity jump across a singular interval */
     double max_drift;         /**< largest max |g(x, t)| at the samples (order >= 2) */
     double invariant_change;  /**< largest change of the invariant (invariant_tol > 0) */
-    int switches;             /**< integrator auto: switches between dopri5 and IDA */
+    int switches;             /**< integrator auto: switches between dopri5 and the implicit integrator (IDA or Radau) */
     double work_defect;       /**< mechanical: largest work-energy defect, relative */
     int unresolved_passes;    /**< singular passes approached with more error than resolution_tol allows */
     double resolution_ratio;  /**< largest x error implied by the residual on an approach, over the tolerance */

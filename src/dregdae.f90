@@ -8,6 +8,9 @@
 !!    *              IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR)
 !!     CALL DREGDAEM (MASS, FORCES, G, GX, GT, N, M, T, Q, V, LAMBDA, TOUT,
 !!    *               INFO, RTOL, ATOL, IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR)
+!!     CALL DREGDAER (F, B, G, GX, GT, N, M, T, X, Y, TOUT, INFO, RTOL, ATOL,
+!!    *               IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR, RT, NRT, JROOT)
+!!     CALL DREGDAEMR (..., as DREGDAEM ..., RT, NRT, JROOT)   (events: IDID = 5 at a root)
 !!     CALL DREGDAEMSG (IWORK, LIW, MSG)
 !!     CALL DREGDAEFREE (IWORK, LIW)
 !!
@@ -41,7 +44,8 @@ subroutine dregdae(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid,
     integer, intent(inout) :: info(*)                 !! INFO(20): the options (doc/api.md)
     real(wp), intent(in) :: rtol(*), atol(*)          !! relative and absolute tolerance (INFO(2) = 1: vectors of length N)
     integer, intent(out) :: idid                      !! 2 or 3: success; 4: x valid, y undefined; 6: success with
-                                                      !! the warning regdae_warn_unresolved; < 0: failure
+                                                      !! the warning regdae_warn_unresolved; 1: a step's end
+                                                      !! (INFO(3) = 1); 5: a root (DREGDAER); < 0: failure
     real(wp), intent(inout) :: rwork(*)               !! RWORK(LRW), LRW >= 20
     integer, intent(in) :: lrw                        !! declared length of RWORK
     integer, intent(inout) :: iwork(*)                !! IWORK(LIW), LIW >= 22; holds the solver between calls

@@ -415,11 +415,9 @@ contains
         case default
             idid = stat
         end select
-        if (idid == idid_root .or. idid == idid_step) then
+        if (idid > 0) then
+            ! the time reached: TOUT, or with INFO(3) = 1 or at a root the step's end or the root
             t = st%t
-            info(info_start) = 1
-        else if (idid > 0) then
-            t = tout
             info(info_start) = 1
         else
             t = st%t

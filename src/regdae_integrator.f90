@@ -11,9 +11,10 @@
 !! pointer to the solver's core record (`regdae_solver_core`), which holds two
 !! slots: `nonstiff` (the explicit Dormand-Prince, `regdae_dopri5_integrator`)
 !! and `stiff` (SUNDIALS IDA on the eliminated, multiplier or augmented
-!! formulation, `regdae_ida_integrator`). A new integrator (e.g. a Radau IIA on
-!! M u' = F(t, u)) is one new module: its type, extending this one, allocated in
-!! a slot by the front's init (and by the switching policy for `auto`).
+!! formulation, `regdae_ida_integrator`, or Radau IIA on the eliminated one,
+!! `regdae_radau_integrator`). A new integrator is one new module: its type,
+!! extending this one, allocated in a slot by the front's init (and by the
+!! switching policy for `auto`).
 !!
 !! The procedures (doc/methods.md, "The integrator interface"):
 !!  - `start(t, z, stat, msg [, h0, zp, y])`: start, or start again, from a

@@ -76,7 +76,7 @@ module regdae_options
     integer, parameter, public :: exclusion_weights = 2   !! zero error weights (FIDAWFtolerances)
     integer, parameter, public :: exclusion_off = 3       !! y stays in the error test
 
-    integer, parameter, public :: integrator_auto = 0    !! dopri5 while the system is not stiff, IDA where it is
+    integer, parameter, public :: integrator_auto = 0    !! dopri5 while the system is not stiff, Radau or IDA where it is
     integer, parameter, public :: integrator_ida = 1     !! SUNDIALS IDA (BDF), any stiffness
     integer, parameter, public :: integrator_dopri5 = 2  !! explicit Dormand-Prince 5(4): non-stiff regularized systems
     integer, parameter, public :: integrator_radau = 3   !! Radau IIA of order 5 (implicit): small stiff systems

@@ -24,7 +24,7 @@ module regdae_solver_stats
         real(wp) :: velocity_jump = 0.0_wp     !! largest relative velocity jump across a singular interval
         real(wp) :: max_drift = 0.0_wp         !! largest max |g(x, t)| over the samples (order >= 2)
         real(wp) :: invariant_change = 0.0_wp  !! largest |I - I(t0)| of the problem's invariant (invariant_tol > 0)
-        integer :: switches = 0                !! integrator=auto: switches between dopri5 and IDA
+        integer :: switches = 0                !! integrator=auto: switches between dopri5 and the implicit integrator (IDA or Radau)
         real(wp) :: work_defect = 0.0_wp       !! mechanical problems: largest |T - T(t0) - W| relative to the energy
                                                !! scale of the motion (the work-energy check, work_tol)
         integer :: unresolved_passes = 0       !! singular passes approached with an x error, implied by the

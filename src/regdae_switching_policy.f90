@@ -77,7 +77,7 @@ contains
     !! accuracy (measured at rtol 1e-6: error 9.2e-4 against IDA's 6.4e-6).
     logical function radau_preferred(core) result(yes)
         type(solver_core), intent(in) :: core
-        yes = core%second_order .and. core%n <= radau_max_n
+        yes = core%second_order .and. core%model%order == 2 .and. core%n <= radau_max_n
     end function radau_preferred
 
     !> integrator=auto, the implicit integrator active: would the explicit method do
