@@ -192,6 +192,17 @@ Baumgarte terms pull back). rand4/i3 at R = 1e-3, silent before (a 0.34 s explic
 over the fold at th1 = -2 pi, no pass seen), is ok since a step longer than the motion's time
 scale has its quarter points probed for a singular pass (\`regdae_explicit_rk\`,
 \`sample_step_end\`): error 3.29 against a bound of 38.6 (was 42.9).
+**A crank grid on starts no rule was chosen on** (\`build/bin/trust family=crank seed=2026\`: the
+same speeds and R, the 4 near-singular th1 drawn log-uniform in [1e-8, 1e-1] and the 16 others
+uniform from seed 2026; run by hand at 253ffff, 3 minutes; not part of \`trust_grids.sh\`): 1950
+cells, ok 1863, warned 68, silent 8, false alarm 4 (0.2%), failed 6, undecided 1. Its silent
+cells: four fast spins at R = 1e-8 (w1 = 10, 20: 46-68 against bounds of 17-48, the pattern above);
+cell 566 (th1 = 0.97, w1 = 0.1, R = 1e-4: 386 against 306; after a pass the explicit integrator
+accepts 0.55 s steps near the turning point, the energy 1.4% off; 4.5 with pass_check=no, 2.2e-3
+with stop_at_output=yes); cell 1784 (th1 = 3.119, w1 = 1e-5, R = 1e-8: 676 against 354); cells
+1873 and 1874 (th1 = pi - 3e-6 at rest or w1 = 1e-6, R = 1e-3: 1.1e4 and 6.0e3 against 4.8e3
+and 5.0e3), starts at the crank's other singular and unstable configuration, where the reference
+method's own error is already 480-500 units.
 The long chains are judged against a reference method where one exists: the plain IDA peer at R
 (plain), Dormand-Prince on the slider crank's reduced ODE (2 links with the slider). Their energy
 drift over 10 s of chaotic motion is of the same order as regdae's (at R = 1e-3 the peer's is 12
