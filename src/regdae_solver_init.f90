@@ -2,8 +2,8 @@
 !! checked, the consistent initial values, the automatic parameters resolved
 !! (`regdae_auto_parameters`), the monitor started and the first integrator
 !! created in the core's slot: dopri5, Radau IIA or IDA on the eliminated or
-!! multiplier formulation (solver_start), IDA on the augmented formulation of a mechanical
-!! problem that declares its structure (solver_start_augmented).
+!! multiplier formulation (solver_start), IDA or Radau IIA on the augmented formulation of a
+!! mechanical problem (solver_start_augmented).
 submodule (regdae_solver_front) regdae_solver_init
     use regdae_second_order_problem, only: velocity_constraint
     use regdae_mechanical_problem, only: mechanical_structure, structured_velocity_constraint
@@ -324,8 +324,10 @@ contains
             ! the user's patterns first, by (row, column) of M, G and the force Jacobians; then
             ! (IDA) the grouped Newton matrix against the full one
             call check_structured_jacobian(problem, sys, t0, q0, v0, stat, msg)
-            if (stat == regdae_success .and. .not. on_radau) &
+            if (stat == regdae_success .and. .not. on_radau) then
+                ida => ida_in_slot(core)
                 call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
+            end if
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, msg)
                 return
