@@ -42,7 +42,7 @@ module regdae_ida_backend
     use regdae_options, only: solver_options, exclusion_weights, exclusion_suppress, excluded_vy, linear_solver_dense, &
                               linear_solver_band, linear_solver_sparse, linear_solver_name
     use regdae_implicit_system, only: implicit_system
-    use regdae_sparsity, only: sparsity_pattern, color_columns, permuted_bandwidths
+    use regdae_sparsity, only: sparsity_pattern, column_groups, permuted_bandwidths
     use regdae_solver_stats, only: solver_stats
     use regdae_c_strings, only: c_string
     implicit none
@@ -256,27 +256,12 @@ contains
     subroutine prepare_groups(self)
         type(ida_backend), intent(inout) :: self
         type(sparsity_pattern) :: columns
-        integer, allocatable :: color(:), fill(:)
-        integer :: j, c
+        integer :: j
         associate (p => self%system%jac_pattern)
             columns = p%transposed()
             self%csc_start = columns%row_start
             self%csc_rows = columns%cols
-            call color_columns(p, color, self%ngroups)
-            allocate (self%group_start(self%ngroups + 1), self%group_cols(p%ncols), fill(self%ngroups))
-            self%group_start = 0
-            do j = 1, p%ncols
-                self%group_start(color(j) + 1) = self%group_start(color(j) + 1) + 1
-            end do
-            self%group_start(1) = 1
-            do c = 1, self%ngroups
-                self%group_start(c + 1) = self%group_start(c + 1) + self%group_start(c)
-            end do
-            fill = self%group_start(1:self%ngroups)
-            do j = 1, p%ncols
-                self%group_cols(fill(color(j))) = j
-                fill(color(j)) = fill(color(j)) + 1
-            end do
+            call column_groups(p, self%ngroups, self%group_start, self%group_cols)
             call permuted_bandwidths(p, [(j, j=1, p%ncols)], self%band_lower, self%band_upper)
         end associate
         allocate (self%delta(self%neq))
