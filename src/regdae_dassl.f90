@@ -529,8 +529,10 @@ contains
             ! ATOL per component (DREGDAE: N entries; DREGDAEM: 2N, q then q'); regdae's rtol
             ! is one number
             msg = 'INFO(2) = 1 with unequal RTOL(1:'//format_int(n_tol)//'): regdae has one relative tolerance '// &
-                  '(its integrators take a scalar rtol); give RTOL equal entries and set the scale of each '// &
-                  'component through ATOL, which may vary'
+                  '(dopri5 and radau form their error weights from a scalar rtol, and so do regdae''s own '// &
+                  'checks of the passes and the drift); give RTOL equal entries, e.g. all '// &
+                  format_real(minval(rtol(1:n_tol)))//' (the smallest, which meets every component''s), and '// &
+                  'set the scale of each component through ATOL, which may vary'
         end if
         do i = 2, 11
             if (len(msg) == 0 .and. info(i) /= 0 .and. info(i) /= 1) &
@@ -623,9 +625,11 @@ contains
                    trim(merge('DREGDAEJ ', 'DREGDAEMJ', kind == kind_first_order))//' (the same arguments '// &
                    'and JAC after IPAR, as DASSL), or set INFO(5) = 0'
         case (6)
-            text = 'a banded matrix (IWORK(1), IWORK(2)), which DREGDAE does not take (its systems are dense; the '// &
-                   'band solver serves the declared structure of large mechanisms in the Fortran and C APIs, '// &
-                   'linear_solver=band): set INFO(6) = 0'
+            text = 'a banded matrix (IWORK(1), IWORK(2)), which DREGDAE does not take: the Newton matrix of its '// &
+                   'regularized system is not banded when df/dx is (the multiplier y(x) solves (GB) y = G f + ..., '// &
+                   'so every component that G f reads enters every row that B has), and the dense solver '// &
+                   'serves it; set INFO(6) = 0 (for a large mechanism declare its structure in the Fortran or C '// &
+                   'API: the augmented formulation takes linear_solver=band or sparse)'
         case (12, 13, 15)
             text = 'DDASPK''s Krylov method (INFO(12), (13), (15)), which DREGDAE does not have (its Newton '// &
                    'systems are solved directly): set INFO(12), INFO(13) and INFO(15) to 0'

@@ -167,6 +167,7 @@ C     (each message says why, and what to set instead)
       CALL ONEBAD(5, 1, 'set INFO(5) = 0', NCHK)
       CALL ONEBAD(6, 1, 'a banded matrix', NCHK)
       CALL ONEBAD(6, 1, 'set INFO(6) = 0', NCHK)
+      CALL ONEBAD(6, 1, 'not banded when df/dx is', NCHK)
       CALL ONEBAD(9, 1, 'MAXORD = IWORK(3) = 0 is not 1 ... 5', NCHK)
       CALL ONEBAD(10, 2, 'INFO(10) = 2 must be 0 or 1', NCHK)
       CALL ONEBAD(12, 1, 'Krylov method', NCHK)
@@ -248,7 +249,7 @@ C     message that contains PART.
       INTEGER N, M, INFO(20), NCHK(2), IWORK(22), IDID, I, INF(20)
       DOUBLE PRECISION TOUT, RTOL, ATOL, RWORK(20)
       CHARACTER*(*) PART
-      CHARACTER*300 MSG
+      CHARACTER*600 MSG
 C     a copy: DREGDAE sets INFO(1) = -1
       DO 10 I = 1, 20
          INF(I) = INFO(I)
@@ -741,7 +742,7 @@ C
       SUBROUTINE VECTOR(NCHK)
       INTEGER NCHK(2), IDID
       DOUBLE PRECISION RT(2), AT(2), XS(2), XV(2), XL(2)
-      CHARACTER*300 MSG
+      CHARACTER*600 MSG
       RT(1) = 1.0D-6
       RT(2) = 1.0D-6
       AT(1) = 1.0D-6
@@ -759,6 +760,7 @@ C
       CALL TRYVEC(1, 0, RT, AT, XL, IDID, MSG)
       CALL CHECK(IDID .EQ. -33 .AND.
      *     INDEX(MSG, 'one relative tolerance') .GT. 0 .AND.
+     *     INDEX(MSG, 'e.g. all 1.000000E-06') .GT. 0 .AND.
      *     INDEX(MSG, 'through ATOL') .GT. 0,
      *     'unequal RTOL(i) refused, saying what to do', NCHK)
 C     INFO(19) = 3: Radau IIA (integrator radau) on the circle, x(1) =
