@@ -35,9 +35,10 @@ C               each time), then IDID = 3 at TOUT; the same X at TOUT
 C               as INFO(3) = 0 to 1E-7
 C     JAC       DREGDAEJ and DREGDAEMJ (INFO(5) = 1, JAC the Jacobian
 C               of F, of FORCES in Q and V) on stiff nonlinear problems
-C               with exact solutions: the results with JAC are those
-C               without it within the tolerance, and exact to it; JAC
-C               replaces the difference quotients of F (fewer F calls);
+C               with exact solutions (the particle at index 3 and 2):
+C               the results with JAC are those without it within the
+C               tolerance, and exact to it; JAC replaces the difference
+C               quotients of F (fewer F calls);
 C               RWORK(19) = 1 (check_jacobians) passes the right JAC
 C               and stops a wrong one with IDID = -116 and the entry
 C               (row, column) of PD named; INFO(5) = 1 in DREGDAE is
@@ -1009,7 +1010,8 @@ C     MAXORD outside 1 ... 5: refused
 C
 C     ---- JAC ---------------------------------------------------------
 C     KIND 1: DREGDAE(J) on the stiff circle of JF (N = 3, M = 1);
-C     KIND 2: DREGDAEM(J) on the damped particle of DF. MODE 0: no JAC
+C     KIND 2: DREGDAEM(J) on the damped particle of DF; KIND 3: the
+C     particle at index 2 (INFO(18) = 2). MODE 0: no JAC
 C     (DREGDAE, DREGDAEM); 1: the right JAC; 2: a wrong one (one entry
 C     of PD off: JJBAD, DJBAD). INFO(19) = 1 (IDA, whose Newton matrix
 C     JAC enters), RTOL = ATOL = 1E-7, to T = 2 in steps of 0.25.
@@ -1025,6 +1027,7 @@ C     the calls of F (FORCES).
       CHARACTER*(*) MSG
       CALL CLEAR(INFO, RWORK, IWORK)
       INFO(19) = 1
+      IF (KIND .EQ. 3) INFO(18) = 2
       IF (MODE .GT. 0) INFO(5) = 1
       RWORK(19) = RCHECK
       RPAR(1) = 1.0D4
@@ -1086,9 +1089,9 @@ C
      *     XC(3),
      *     XW(3), DIFF, RWORK(20), RPAR(2), T, X(3), Y(1), V(2)
       CHARACTER*300 MSG, MSGW
-      CHARACTER*12 ENTRY(2)
-      DATA ENTRY /'entry (2, 3)', 'entry (1, 4)'/
-      DO 10 KIND = 1, 2
+      CHARACTER*12 ENTRY(3)
+      DATA ENTRY /'entry (2, 3)', 'entry (1, 4)', 'entry (1, 4)'/
+      DO 10 KIND = 1, 3
          CALL JRUN(KIND, 0, 0.0D0, ERR0, X0, IDID0, NF0, MSG)
          CALL JRUN(KIND, 1, 0.0D0, ERR1, X1, IDID1, NF1, MSG)
          CALL JRUN(KIND, 1, 1.0D0, ERRC, XC, IDIDC, NFC, MSG)
@@ -1097,10 +1100,11 @@ C
          IF (KIND .EQ. 1) DIFF = MAX(DIFF, ABS(X1(3) - X0(3)))
 C        RTOL = ATOL = 1E-7 over T in [0, 2]: 1E-5 is 100 RTOL for the
 C        state (measured 1.5E-6 and 2.6E-6 without and with JAC on the
-C        stiff circle, 9.9E-8 both on the particle); the multiplier is
-C        not in the error test and carries the regularization's error
-C        (measured 7.0E-5 and 2.4E-5 on the circle, 7.6E-5 both on the
-C        particle): 1E-3
+C        stiff circle, 9.9E-8 both on the particle, 5.7E-8 and 2.2E-7
+C        at index 2); the multiplier is not in the error test and
+C        carries the regularization's error (measured 7.0E-5 and 2.4E-5
+C        on the circle, 7.6E-5 both on the particle, 3.6E-6 and 8.6E-6
+C        at index 2): 1E-3
          CALL CHECK(IDID0 .EQ. 3 .AND. IDID1 .EQ. 3 .AND. IDIDC .EQ. 3,
      *        'JAC: IDID 3 without JAC, with it, with the check', NCHK)
          CALL CHECK(ERR0(1) .LT. 1.0D-5 .AND. ERR1(1) .LT. 1.0D-5 .AND.
@@ -1110,7 +1114,8 @@ C        particle): 1E-3
      *        // ' within 100 RTOL', NCHK)
 C        JAC in place of the difference quotients of F: N - 1 (2N - 1)
 C        fewer calls of F per Jacobian (measured 1262 and 1073 calls on
-C        the circle, 1485 and 1212 on the particle)
+C        the circle, 1485 and 1212 on the particle, 693 and 567 at
+C        index 2)
          CALL CHECK(NF1 .LT. NF0, 'JAC: fewer calls of F', NCHK)
 C        the check at the start costs calls of F, nothing else changes
          CALL CHECK(XC(1) .EQ. X1(1) .AND. XC(2) .EQ. X1(2) .AND.
