@@ -42,7 +42,9 @@ C               quotients of F (fewer F calls);
 C               RWORK(19) = 1 (check_jacobians) passes the right JAC
 C               and stops a wrong one with IDID = -116 and the entry
 C               (row, column) of PD named; INFO(5) = 1 in DREGDAE is
-C               refused with a message that points to DREGDAEJ
+C               refused with a message that points to DREGDAEJ;
+C               DREGDAEJR and DREGDAEMJR (JAC and RT together) stop at
+C               the root of X1 = cos t within 100 RTOL, then go on
 C     NONNEG    INFO(10) = 1 on Robertson's kinetics (DREGDAE, M = 0)
 C               with ATOL = 1E-6, RTOL = 1E-3 to T = 4E10: without it
 C               components go negative and the run blows up; with it
@@ -1160,6 +1162,9 @@ C     RWORK(19) = 1 in DREGDAEM checks GX too: a wrong GX is named
       IF (IDID .NE. -116) WRITE (*, '(A, I5, 2A)') '    IDID ', IDID,
      *     ' ', MSG(1:LEN_TRIM(MSG))
       CALL DREGDAEFREE(IWORK, 22)
+C     JAC and RT together (DREGDAEJR, DREGDAEMJR): the root of X1 =
+C     cos t at pi/2 (decreasing), then on to T = 2
+      CALL JROOTS(NCHK)
 C     RWORK(19) neither 0 nor 1: refused
       CALL CLEAR(INFO, RWORK, IWORK)
       RWORK(19) = 2.0D0
@@ -1414,4 +1419,63 @@ C
       SUBROUTINE RGX(T, X, GM, IRES, RPAR, IPAR)
       INTEGER IRES, IPAR(*)
       DOUBLE PRECISION T, X(3), GM(*), RPAR(*)
+      END
+C
+C     DREGDAEJR on the stiff circle, DREGDAEMJR on the damped particle
+C     (INFO(5) = 1, INFO(19) = 1, RTOL = ATOL = 1E-7), RT = X1 (JRT):
+C     IDID = 5 at pi/2 with JROOT(1) = -1, then IDID = 3 at T = 2.
+      SUBROUTINE JROOTS(NCHK)
+      EXTERNAL JF, CB3, CG3, CGX3, JJ, MM, DF, DGX, DJ, JRT
+      INTEGER NCHK(2), KIND, INFO(20), IWORK(22), IPAR(2), IDID, K,
+     *     JROOT(1), IDIDS(3), JR
+      DOUBLE PRECISION RWORK(20), RPAR(2), T, X(3), Y(1), V(2), TROOT
+      DO 20 KIND = 1, 2
+         CALL CLEAR(INFO, RWORK, IWORK)
+         INFO(5) = 1
+         INFO(19) = 1
+         RPAR(1) = 1.0D4
+         RPAR(2) = 0.0D0
+         IPAR(1) = 0
+         IPAR(2) = 0
+         CALL JX0(T, X)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         TROOT = 0.0D0
+         JR = 0
+         DO 10 K = 1, 3
+            IF (KIND .EQ. 1) CALL DREGDAEJR(JF, CB3, CG3, CGX3, CGX3, 3,
+     *           1, T, X, Y, 2.0D0, INFO, 1.0D-7, 1.0D-7, IDIDS(K),
+     *           RWORK, 20, IWORK, 22, RPAR, IPAR, JJ, JRT, 1, JROOT)
+            IF (KIND .EQ. 2) CALL DREGDAEMJR(MM, DF, CG3, DGX, DGX, 2,
+     *           1, T, X, V, Y, 2.0D0, INFO, 1.0D-7, 1.0D-7, IDIDS(K),
+     *           RWORK, 20, IWORK, 22, RPAR, IPAR, DJ, JRT, 1, JROOT)
+            IF (IDIDS(K) .EQ. 5) THEN
+               TROOT = T
+               JR = JROOT(1)
+            END IF
+            IF (IDIDS(K) .NE. 5) GO TO 15
+   10    CONTINUE
+   15    IDID = IDIDS(MIN(K, 3))
+C        the root of X1 = cos t is as accurate as X1 (|X1'| = 1 there):
+C        100 RTOL as for the state in JACSUI (measured 2.2E-6 on the
+C        circle, 3.5E-8 on the particle)
+         CALL CHECK(IDIDS(1) .EQ. 5 .AND. JR .EQ. -1 .AND.
+     *        ABS(TROOT - 2.0D0 * ATAN(1.0D0)) .LT. 1.0D-5,
+     *        'JAC with RT: IDID 5 at pi/2, JROOT -1', NCHK)
+         CALL CHECK(IDID .EQ. 3 .AND. T .EQ. 2.0D0,
+     *        'JAC with RT: then IDID 3 at TOUT', NCHK)
+         IF (IDIDS(1) .NE. 5 .OR. IDID .NE. 3 .OR. JR .NE. -1 .OR.
+     *        ABS(TROOT - 2.0D0 * ATAN(1.0D0)) .GE. 1.0D-5)
+     *        WRITE (*, '(A, I2, 3I5, 1P, E12.4)')
+     *        '    kind, JROOT, IDIDs, root', KIND, JR, IDIDS(1), IDID,
+     *        TROOT - 2.0D0 * ATAN(1.0D0)
+         CALL DREGDAEFREE(IWORK, 22)
+   20 CONTINUE
+      END
+C
+C     RT of JROOTS: X1
+      SUBROUTINE JRT(N, T, X, V, NRT, RVAL, RPAR, IPAR)
+      INTEGER N, NRT, IPAR(*)
+      DOUBLE PRECISION T, X(N), V(N), RVAL(NRT), RPAR(*)
+      RVAL(1) = X(1)
       END
