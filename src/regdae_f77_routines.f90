@@ -221,14 +221,12 @@ contains
         n = size(x)
         self%t_lin = t
         self%x_lin = x
-        if (allocated(self%f_lin)) deallocate (self%f_lin, self%pd_lin)
+        if (.not. allocated(self%f_lin)) allocate (self%f_lin(n), self%pd_lin(n, merge(2*n, n, which == routine_forces)))
         if (which == routine_forces) then
             self%v_lin = v
-            allocate (self%f_lin(n), self%pd_lin(n, 2*n))
             call self%evaluate(routine_forces, t, x, self%f_lin, stat, v)
             if (stat == 0) call self%evaluate(routine_jac_forces, t, x, self%pd_lin, stat, v)
         else
-            allocate (self%f_lin(n), self%pd_lin(n, n))
             call self%evaluate(routine_f, t, x, self%f_lin, stat)
             if (stat == 0) call self%evaluate(routine_jac, t, x, self%pd_lin, stat)
         end if

@@ -1149,6 +1149,8 @@ C     INFO(5) = 1 in DREGDAE: refused, pointing to DREGDAEJ
 C     RWORK(19) = 1 in DREGDAEM checks GX too: a wrong GX is named
       CALL CLEAR(INFO, RWORK, IWORK)
       RWORK(19) = 1.0D0
+      RPAR(1) = 1.0D4
+      RPAR(2) = 0.0D0
       CALL CIRCLE0(T, X, IPAR)
       V(1) = 0.0D0
       V(2) = 1.0D0
