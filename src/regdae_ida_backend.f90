@@ -85,6 +85,7 @@ module regdae_ida_backend
         type(c_ptr) :: sunctx = c_null_ptr
         type(c_ptr) :: ida_mem = c_null_ptr
         type(N_Vector), pointer :: uu => null(), up => null(), idv => null()
+        type(N_Vector), pointer :: constraints => null()   ! IDASetConstraints: 1 for the unknowns kept >= 0
         type(SUNMatrix), pointer :: jmat => null()
         type(SUNLinearSolver), pointer :: ls => null()
         real(wp), allocatable :: u_pert(:), up_pert(:), r_pert(:)
@@ -228,6 +229,8 @@ contains
             msg = 'setting the tolerances failed: '//self%ida_message
             return
         end if
+        call set_nonnegative(self, msg)
+        if (len(msg) > 0) return
 
         ! The linear solver, with our own, weight-independent Jacobian.
         call create_linear_solver(self, msg)
@@ -251,6 +254,27 @@ contains
         stat = regdae_success
         msg = ''
     end subroutine backend_create
+
+    ! IDA's constraint option (IDASetConstraints, code 1: >= 0) for the unknowns the
+    ! system keeps nonnegative, if any; msg is empty on success.
+    subroutine set_nonnegative(self, msg)
+        type(ida_backend), intent(inout) :: self
+        character(len=:), allocatable, intent(out) :: msg
+        logical :: mask(self%neq)
+        real(c_double), pointer :: p(:)
+        msg = ''
+        mask = self%system%nonnegative_unknowns()
+        if (.not. any(mask)) return
+        self%constraints => FN_VNew_Serial(int(self%neq, c_long), self%sunctx)
+        if (.not. associated(self%constraints)) then
+            msg = 'FN_VNew_Serial failed'
+            return
+        end if
+        p => FN_VGetArrayPointer(self%constraints)
+        p = merge(1.0_wp, 0.0_wp, mask)
+        if (FIDASetConstraints(self%ida_mem, self%constraints) /= 0) &
+            msg = 'setting the nonnegativity constraints failed: '//self%ida_message
+    end subroutine set_nonnegative
 
     ! The groups of columns and the column pattern of a structured system.
     subroutine prepare_groups(self)
@@ -535,6 +559,7 @@ contains
         if (associated(self%ls)) ierr = FSUNLinSolFree(self%ls)
         if (associated(self%jmat)) call FSUNMatDestroy(self%jmat)
         if (associated(self%idv)) call FN_VDestroy(self%idv)
+        if (associated(self%constraints)) call FN_VDestroy(self%constraints)
         if (associated(self%up)) call FN_VDestroy(self%up)
         if (associated(self%uu)) call FN_VDestroy(self%uu)
         if (c_associated(self%sunctx)) ierr = FSUNContext_Free(self%sunctx)
@@ -543,6 +568,7 @@ contains
         self%ls => null()
         self%jmat => null()
         self%idv => null()
+        self%constraints => null()
         self%up => null()
         self%uu => null()
     end subroutine backend_free
@@ -568,12 +594,22 @@ contains
             recoverable = .true.
             self%system%message = 'NaN or Inf in the residual at t = '//format_real(t)
         end if
+        ierr = callback_failure(self, t, stat, recoverable)
+    end function evaluate_residual
+
+    ! A callback of the system failed at t (stat, recoverable, the system's message):
+    ! kept for failure_status, and IDA's flag (1: recoverable, -1: not).
+    integer(c_int) function callback_failure(self, t, stat, recoverable) result(ierr)
+        type(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: t
+        integer, intent(in) :: stat
+        logical, intent(in) :: recoverable
         self%pending_stat = stat
         self%pending_recoverable = recoverable
         self%pending_message = self%system%message
         if (recoverable) call note_recoverable_failure(self, t)
         ierr = merge(1_c_int, -1_c_int, self%pending_recoverable)
-    end function evaluate_residual
+    end function callback_failure
 
     ! A recoverable failure at the trial time t. IDA retries with a smaller step;
     ! when the failure sits at a point the solution cannot pass (f NaN for all
@@ -634,7 +670,8 @@ contains
         type(ida_backend), pointer :: self
         real(c_double), pointer :: u(:), up(:), res(:), jdata(:), jac(:, :)
         real(wp) :: delta, sqrt_unit
-        integer :: j, neq
+        integer :: j, neq, stat
+        logical :: recoverable
 
         call c_f_pointer(user_data, self)
         neq = self%neq
@@ -648,6 +685,13 @@ contains
         sqrt_unit = sqrt(epsilon(1.0_wp))
         self%u_pert = u(1:neq)
         self%up_pert = up(1:neq)
+        ! the system may take the user's Jacobian of f at u for the perturbed residuals
+        ierr = 0
+        call self%system%jacobian_phase(t, u(1:neq), .true., stat, recoverable)
+        if (stat /= regdae_success) then
+            ierr = callback_failure(self, t, stat, recoverable)
+            return
+        end if
         do j = 1, neq
             delta = sqrt_unit*max(abs(u(j)), 1.0_wp)
             self%u_pert(j) = u(j) + delta
@@ -655,12 +699,12 @@ contains
             self%up_pert(j) = up(j) + cj*delta
             ierr = evaluate_residual(self, t, self%u_pert, self%up_pert, self%r_pert)
             self%jac_res_evals = self%jac_res_evals + 1
-            if (ierr /= 0) return
+            if (ierr /= 0) exit
             jac(:, j) = (self%r_pert - res(1:neq))/delta
             self%u_pert(j) = u(j)
             self%up_pert(j) = up(j)
         end do
-        ierr = 0
+        call self%system%jacobian_phase(t, u(1:neq), .false., stat, recoverable)
     end function ida_jacobian
 
     ! The Jacobian dF/du + cj dF/du' of a structured system by grouped forward

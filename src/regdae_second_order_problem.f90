@@ -41,6 +41,11 @@ module regdae_second_order_problem
         !> An invariant I(x, v, t) of the motion (e.g. the energy of a conservative
         !! mechanism), checked when the option invariant_tol > 0; default: none (NaN).
         procedure :: invariant => default_invariant
+        !> As `linearize_rhs` of `dae_problem`, at (t, x, v): meanwhile f may come from
+        !! the user's df/dx and df/dv at (x0, v0). Default: nothing.
+        procedure :: linearize_rhs => default_linearize_second_order
+        !> The components of x (not of v) that IDA keeps >= 0; default: none.
+        procedure :: nonnegative => default_nonnegative_second_order
     end type second_order_problem
 
     abstract interface
@@ -174,6 +179,19 @@ contains
         integer, intent(inout) :: stat
         val = ieee_value(1.0_wp, ieee_quiet_nan)
     end subroutine default_invariant
+
+    subroutine default_linearize_second_order(self, t, x, v, on, stat)
+        class(second_order_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)   !! the point of the Jacobian
+        logical, intent(in) :: on               !! .true.: linearize at (t, x, v); .false.: evaluate f again
+        integer, intent(inout) :: stat          !! 0 on entry; > 0 recoverable, < 0 fatal failure
+    end subroutine default_linearize_second_order
+
+    function default_nonnegative_second_order(self) result(mask)
+        class(second_order_problem), intent(in) :: self
+        logical :: mask(self%n)   !! true: x_i must stay >= 0
+        mask = .false.
+    end function default_nonnegative_second_order
 
     subroutine default_constraint_curvature(self, t, x, v, val, stat)
         class(second_order_problem), intent(inout) :: self
