@@ -12,6 +12,7 @@ module regdae_explicit_rk
     use regdae_format, only: format_real
     use regdae_regularization, only: regularized_dae
     use regdae_monitor, only: solution_monitor, approach_factor
+    use regdae_taylor_layer, only: taylor_layer_watch
     use regdae_dopri_tableau
     implicit none
     private
@@ -34,6 +35,7 @@ module regdae_explicit_rk
         ! and the step's end is looked for (sample_step_end)
         real(wp) :: t_seen(2) = 0.0_wp, sigma_seen(2) = -1.0_wp
         character(len=:), allocatable :: message
+        type(taylor_layer_watch) :: layer   !! order >= 3: the growth in the layer of the Taylor weights
     contains
         !> Start at (t0, z0) with the slope at z0.
         procedure :: start => rk_start
@@ -222,6 +224,11 @@ contains
                     self%h = t_landing - self%t_old
                     self%dense_t = -huge(1.0_wp)
                     cycle
+                end if
+                if (self%layer%step(model%order, model%w, model%method, model%eps, monitor%sigma_last, &
+                                    self%t_old, self%t)) then
+                    monitor%unresolved_new = .true.   ! the front warns at tout (regdae_taylor_layer)
+                    monitor%unresolved_message = self%layer%message
                 end if
                 if (monitor%model_changed) then   ! eps or weights changed: the first stage of the next step anew
                     monitor%model_changed = .false.
