@@ -196,7 +196,7 @@ scale has its quarter points probed for a singular pass (\`regdae_explicit_rk\`,
 same speeds and R, the 4 near-singular th1 drawn log-uniform in [1e-8, 1e-1] and the 16 others
 uniform from seed 2026; run by hand, 3 minutes; not part of \`trust_grids.sh\`). At 253ffff: 1950
 cells, ok 1863, warned 68, silent 8, false alarm 4 (0.2%), failed 6, undecided 1. With the stable
-step after a restart (doc/methods.md; measured on the branch trust20): ok 1866, warned 68, silent 9,
+step after a restart (doc/methods.md; at 1643bba): ok 1866, warned 68, silent 9,
 false alarm 3 (0.15%), failed 2, undecided 2; on the starts of seed=31 (no rule was tuned there)
 silent 12 and false alarms 6 before and after (failed 8 -> 4, warned 132 both), on the standard
 crank grid (\`trust_grids.sh build crank\`) silent 4 before and after (the same four cells), false
