@@ -1,7 +1,9 @@
 !> The explicit Dormand-Prince 5(4) integrator (`regdae_explicit_rk`) behind the
 !! integrator interface (`regdae_integrator`): integrator=dopri5, and the
 !! nonstiff slot of integrator=auto. It integrates the eliminated formulation
-!! z' = F(z, t) of the core's model; its state is z itself. `advance` runs
+!! z' = F(z, t) of the core's model; its state is z itself. With the automatic
+!! weights (which follow the motion) the first steps after a restart stay within the
+!! stability of the constraint modes (`constraint_mode_step`). `advance` runs
 !! rk_integrator's advance (the monitor sampling every accepted step there) and
 !! reports the stiffness test's hand-over (with integrator=auto) and the end of
 !! a singular pass.
@@ -82,7 +84,7 @@ contains
             call self%rk%advance(core%model, tout, core%opts%rtol, core%atol_z, core%opts%h_max, &
                                  core%opts%max_steps, core%opts%stop_at_output, self%z, stat, &
                                  core%monitor, stop_when_stiff=core%switching, &
-                                 stop_at_pass_end=core%stop_at_pass_end)
+                                 stop_at_pass_end=core%stop_at_pass_end, stable_weights=core%follow_weights)
             t_stop = tout
             msg = ''
             outcome = outcome_reached

@@ -13,6 +13,7 @@ module regdae_solver_core
     use regdae_regularization, only: regularized_dae
     use regdae_integrator, only: integrator
     use regdae_monitor, only: solution_monitor
+    use regdae_taylor_layer, only: taylor_layer_watch
     implicit none
     private
 
@@ -33,6 +34,7 @@ module regdae_solver_core
         real(wp) :: t = 0.0_wp            !! the time reached
         logical :: started = .false.       !! the integration has gone beyond t0
         real(wp) :: sampled_t = -huge(1.0_wp)   !! IDA: the last time the monitor sampled
+        type(taylor_layer_watch) :: layer  !! order >= 3: the growth in the Taylor weights' layer (implicit steps)
         logical :: augmented = .false.     !! formulation=augmented: the state lives in IDA's vector, y too
         integer :: formulation = formulation_eliminated   !! resolved
         integer :: active = integrator_ida     !! the integrator now in charge: dopri5 (the nonstiff

@@ -76,7 +76,13 @@ contains
         u => core%stiff%state()
         up => core%stiff%slope()
         call core%model%evaluate(t, u(1:core%n), stat, recoverable)
-        if (stat == regdae_success) call core%monitor%sample(t, core%model, u(1:core%n), up(1:core%n))
+        if (stat /= regdae_success) return
+        call core%monitor%sample(t, core%model, u(1:core%n), up(1:core%n))
+        if (core%layer%step(core%model%order, core%model%w, core%model%method, core%model%eps, &
+                            core%monitor%sigma_last, core%sampled_t, t)) then
+            core%monitor%unresolved_new = .true.   ! the front warns at tout (regdae_taylor_layer)
+            core%monitor%unresolved_message = core%layer%message
+        end if
     end subroutine sample_step
 
     ! The monitor's sample of the augmented formulation at the implicit integrator's state.

@@ -9,6 +9,8 @@ module test_defaults
     use chain_problem, only: chain, new_chain, chain_start
     use slider_crank_problem, only: new_slider_crank
     use regdae_testing, only: checker, test_case, new_test
+    use regdae_auto_rules, only: constraint_mode_step, stable_radius
+    use regdae_taylor_layer, only: taylor_layer_watch, layer_efolds_max
     implicit none
     private
     public :: defaults_tests
@@ -52,8 +54,59 @@ contains
                  new_test('explicit_off_branch_fails', explicit_off_branch_fails), &
                  new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented), &
                  new_test('rate_continuous_at_rest', rate_continuous_at_rest), &
-                 new_test('eps_at_singular_start', eps_at_singular_start)]
+                 new_test('eps_at_singular_start', eps_at_singular_start), &
+                 new_test('constraint_mode_step', constraint_mode_step_values), &
+                 new_test('taylor_layer_growth', taylor_layer_growth)]
     end function defaults_tests
+
+    ! The stable step of dopri5 on the constraint modes: stable_radius/|s|, s the largest root
+    ! of s + gamma (order 1) and s^2 + gamma1 s + gamma0 (order 2; |s| = gamma1/sqrt(2) for the
+    ! automatic gamma0 = gamma1^2/2, |s| = (gamma1 + sqrt(gamma1^2 - 4 gamma0))/2 for real roots);
+    ! none for the Taylor weights (order 3).
+    subroutine constraint_mode_step_values(chk)
+        type(checker), intent(inout) :: chk
+        real(wp), parameter :: g1 = 20.0_wp
+        call chk%close(constraint_mode_step(1, [g1]), stable_radius/g1, 1.0e-14_wp, 'order 1')
+        call chk%close(constraint_mode_step(2, [0.5_wp*g1**2, g1]), stable_radius*sqrt(2.0_wp)/g1, &
+                             1.0e-14_wp, 'order 2, automatic gamma0 = gamma1^2/2')
+        call chk%close(constraint_mode_step(2, [64.0_wp, 20.0_wp]), stable_radius/16.0_wp, 1.0e-14_wp, &
+                             'order 2, roots -4 and -16')
+        call chk%true(constraint_mode_step(3, [6.0e6_wp, 6.0e4_wp, 300.0_wp]) == huge(1.0_wp), &
+                            'order 3: no stable step')
+    end subroutine constraint_mode_step_values
+
+    ! The growth bound in the layer of the Taylor weights (regdae_taylor_layer): at order 3 with
+    ! taylor_h = h and d = 0 (sigma_min(GB) = 0) it adds 0.2071 dt/h per step and warns once
+    ! past layer_efolds_max; a step with d >= 1/3 ends the stretch; order 2 never warns.
+    subroutine taylor_layer_growth(chk)
+        type(checker), intent(inout) :: chk
+        type(taylor_layer_watch) :: watch
+        real(wp), parameter :: h = 1.0e-5_wp, dt = 1.0e-6_wp, eps = 1.0e-10_wp
+        real(wp) :: w(3), t
+        integer :: k, warned_at, warnings
+        w = [6.0_wp/h**3, 6.0_wp/h**2, 3.0_wp/h]
+        warned_at = -1
+        warnings = 0
+        t = 0.0_wp
+        do k = 1, 1000
+            if (watch%step(3, w, method_trust_region, eps, 0.0_wp, t, t + dt)) then
+                warnings = warnings + 1
+                if (warned_at < 0) warned_at = k
+            end if
+            t = t + dt
+        end do
+        ! 18/(0.2071 * 0.1) = 869.1 steps
+        call chk%equal(warned_at, ceiling(layer_efolds_max/(0.2071_wp*dt/h)), 'the step that warns')
+        call chk%equal(warnings, 1, 'one warning per stretch')
+        call chk%true(index(watch%message, 'Taylor weights') > 0, 'the message names the layer')
+        call chk%true(.not. watch%step(3, w, method_trust_region, eps, 1.0_wp, t, t + dt), &
+                            'sigma = 1 (d ~ 1): out of the stretch')
+        call chk%true(watch%efolds == 0.0_wp, 'the stretch ended')
+        do k = 1, 2000
+            call chk%true(.not. watch%step(2, [200.0_wp, 20.0_wp], method_trust_region, eps, 0.0_wp, t, t + dt), &
+                                'order 2 is stable for every d')
+        end do
+    end subroutine taylor_layer_growth
 
     ! The automatic weights as the initial speed goes to zero (issue 19): the slider crank
     ! from th1 = 2 with w1 = 0, 1e-12, 1e-6, 1e-3 resolves gamma1 within a factor 2 of
