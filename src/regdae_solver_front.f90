@@ -356,7 +356,7 @@ contains
         character(len=:), allocatable :: msg
         logical :: recoverable, events, at_root, stop_user, held, driving, single
         integer :: nx, outcome, taken
-        real(wp) :: t_reached, t_stop, t_ask
+        real(wp) :: t_reached, t_stop, t_ask, t_before
 
         core => self%core
         if (.not. associated(core)) then
@@ -384,6 +384,7 @@ contains
             taken = 0
             if (events) then
                 self%ev%found = 0
+                self%ev%t_step_end = -huge(1.0_wp)   ! (a restart since may have moved the state)
                 if (.not. (self%ev%primed .and. core%started .and. associated(self%ev_core, core))) then
                     stepper => active_integrator(core)
                     call self%ev%prime(stepper, core%t, nx, core%second_order, stat, msg)
@@ -393,11 +394,13 @@ contains
                     end if
                     self%ev_core => core
                 end if
-                ! the rest of the integrator's last step, beyond the previous tout
+                ! the rest of the integrator's last step, beyond the previous tout, before it
+                ! steps on (an integrator that does not step to reach tout searches up to tout
+                ! after the advance, at the state it interpolated there)
                 outcome = outcome_reached
                 stepper => active_integrator(core)
                 t_stop = stepper%time()
-                if (t_stop > self%ev%t_lo .and. core%started) then
+                if (t_stop > self%ev%t_lo .and. core%started .and. (stepper%steps_singly() .or. tout > t_stop)) then
                     if (.not. search_roots()) return
                 end if
             end if
@@ -420,6 +423,7 @@ contains
                     end if
                 end if
                 held = .false.
+                t_before = stepper%time()
                 if (driving .and. .not. single .and. core%stop_at_pass_end .and. core%started .and. &
                     stepper%time() < tout) then
                     ! the step end passed over (an implicit integrator samples it now): a pass end
@@ -429,6 +433,8 @@ contains
                     if (outcome == outcome_reached .and. held) outcome = outcome_pass_end
                 end if
                 if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg, one_step=single)
+                if (events) call self%ev%state_after(outcome == outcome_reached, single .and. stepper%time() > t_before, &
+                                                     t_stop, stepper%time())
                 if (single .and. outcome == outcome_reached) t_ask = t_stop   ! the step's end, or tout
                 core%opts%stop_at_output = stop_user
                 if (driving) then
@@ -575,18 +581,20 @@ contains
         logical function search_roots() result(ok)
             logical :: stop_here
             real(wp) :: t_hi
+            character(len=:), allocatable :: scan_msg   ! (allocated on a failure only)
             ok = .true.
             select case (outcome)
             case (outcome_reached, outcome_pass_end, outcome_stiff, outcome_nonstiff)
                 t_hi = t_stop
                 if (outcome == outcome_reached) t_hi = min(stepper%time(), tout)
-                call self%ev%scan(stepper, t_hi, stop_here, stat, msg)
+                call self%ev%scan(stepper, t_hi, stop_here, stat, scan_msg)
                 if (len(self%ev%log) > 0) then
                     call log_event(core, self%ev%log(:len(self%ev%log) - 1))
                     self%ev%log = ''
                 end if
                 if (stat /= regdae_success) then
-                    call fail(stat, msg)
+                    if (.not. allocated(scan_msg)) scan_msg = ''
+                    call fail(stat, scan_msg)
                     ok = .false.
                 else if (stop_here) then
                     at_root = .true.
