@@ -16,6 +16,7 @@ module regdae_solver_sampling
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_augmented_rules, only: mass_diagonal, augmented_motion_scales
     use regdae_solver_core, only: solver_core
+    use regdae_mechanical_problem, only: mechanical_problem
     implicit none
     private
 
@@ -62,7 +63,11 @@ contains
     end subroutine start_monitor_augmented
 
     !> The monitor's sample at the end of an accepted step of the implicit integrator
-    !! (its state and slope there).
+    !! (its state and slope there): the full sample where a singular interval may be
+    !! near (the monitor's `full_sample_due`: the regularized model evaluated there,
+    !! sigma_min(GB) and every check), elsewhere only the work-energy balance's
+    !! energies at the step's end (its quadrature of the power needs every step; an
+    !! output time inside the step is not sampled there).
     subroutine sample_step(core, t)
         type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t
@@ -75,9 +80,39 @@ contains
         end if
         u => core%stiff%state()
         up => core%stiff%slope()
+        if (.not. core%monitor%full_sample_due(t)) then
+            if (t < core%stiff%time()) return   ! an output time inside the step: its end serves the balance
+            if (work_sampled(core, t, u(1:core%n))) return
+        end if
         call core%model%evaluate(t, u(1:core%n), stat, recoverable)
         if (stat == regdae_success) call core%monitor%sample(t, core%model, u(1:core%n), up(1:core%n))
     end subroutine sample_step
+
+    ! The work-energy balance's sample at (t, z) without the regularized model: T and P
+    ! of a mechanical problem of order 2 whose constraints do not move (g_t = 0 there,
+    ! so that the multiplier does no work); false where that does not hold (the full
+    ! sample then serves).
+    logical function work_sampled(core, t, z) result(done)
+        type(solver_core), intent(inout), target :: core
+        real(wp), intent(in) :: t, z(:)
+        real(wp) :: kinetic, power, sums(2), gt(core%m), y(core%m)
+        integer :: stat, nx
+        done = .not. (core%monitor%work_tol > 0.0_wp)   ! no balance: nothing to sample
+        if (done .or. .not. allocated(core%model%second)) return
+        nx = core%model%n
+        select type (p => core%model%second)
+        class is (mechanical_problem)
+            stat = 0
+            gt = 0.0_wp
+            if (p%m > 0) call p%constraint_dt(t, z(1:nx), gt, stat)
+            if (stat /= 0 .or. any(gt /= 0.0_wp)) return
+            y = 0.0_wp
+            call kinetic_energy_and_power(p, t, z(1:nx), z(nx + 1:2*nx), y, kinetic, power, stat, sums=sums)
+            call core%monitor%sample_work(t, kinetic, power, stat, core%monitor%energy_tolerance(sums, z(1:nx), &
+                                          z(nx + 1:min(size(z), 2*nx))))
+            done = .true.
+        end select
+    end function work_sampled
 
     ! The monitor's sample of the augmented formulation at the implicit integrator's state.
     subroutine sample_augmented(core, t)
