@@ -114,7 +114,9 @@ contains
         end select
     end function work_sampled
 
-    ! The monitor's sample of the augmented formulation at the implicit integrator's state.
+    ! The monitor's sample of the augmented formulation at the implicit integrator's state:
+    ! full where a singular interval may be near (as sample_step's), else the work-energy
+    ! balance's energies at a step's end (the multiplier is one of the unknowns).
     subroutine sample_augmented(core, t)
         type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t
@@ -126,24 +128,29 @@ contains
         u => core%stiff%state()
         up => core%stiff%slope()
         sys => core%stiff%augmented()
-        drift = 0.0_wp
-        invariant = 0.0_wp
-        sigma = huge(1.0_wp)
-        dstat = 0
-        istat = 0
-        if (associated(sys)) then
-            call sys%unpack(u, up, q=q, v=v, a=a)
-            drift = sys%drift(t, u, dstat)
-            if (dstat /= 0) drift = huge(1.0_wp)
-            sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
-            if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
-                call sys%diagonal_scales(gb, g)
-                if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
+        if (associated(sys) .and. .not. core%monitor%full_sample_due(t)) then
+            if (t < core%stiff%time()) return   ! an output time inside the step: its end serves the balance
+            call sys%unpack(u, up, q=q, v=v)
+        else
+            drift = 0.0_wp
+            invariant = 0.0_wp
+            sigma = huge(1.0_wp)
+            dstat = 0
+            istat = 0
+            if (associated(sys)) then
+                call sys%unpack(u, up, q=q, v=v, a=a)
+                drift = sys%drift(t, u, dstat)
+                if (dstat /= 0) drift = huge(1.0_wp)
+                sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
+                if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
+                    call sys%diagonal_scales(gb, g)
+                    if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
+                end if
+                if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
             end if
-            if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
+            call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
+            if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
         end if
-        call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
-        if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
         if (core%monitor%work_tol > 0.0_wp .and. associated(sys)) then   ! after sample_values: it knows
             call sys%unpack(u, up, y=y)                                    ! whether t is in a layer
             call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums)
