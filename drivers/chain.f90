@@ -16,11 +16,12 @@
 !! Output: '#' lines, the table 't x_end y_end energy max_abs_g sigma_min' at nout+1 equally spaced
 !! times (sigma_min: sigma_min(GB) there, NaN for the peer),
 !! and the last line
-!!   summary n_links=... slider=... engine=... status=ok|warning|failed t_end=... max_drift=... energy_change=...
+!!   summary n_links=... slider=... engine=... engine_end=... status=ok|warning|failed t_end=... max_drift=... energy_change=...
 !!           singular_passes=... sigma_min=... [max_err_th=... (N = 2 with slider, no springs: against the slider
 !!           crank's reduced ODE by CVODE at 1e-13)] steps=... res_evals=... jac_evals=...
 !!           err_test_fails=... conv_fails=... seconds=... output_seconds=... seconds_per_step=... peak_rss_kb=...
-!! (engine: formulation/linear solver, or peer/band; seconds: init and advances, not the output;
+!! (engine: formulation/linear solver at the start, or peer/band; engine_end: the same at the end of
+!! the run, after any switch of formulation; seconds: init and advances, not the output;
 !! peak_rss_kb: the process's peak resident memory (getrusage), set-up and output included;
 !! max_drift: max |g| at the outputs; energy_change: max |E - E(0)| at the outputs; status=warning:
 !! an advance returned a warning (x valid, the tolerance maybe not met; a '# warning:' line says
@@ -61,7 +62,7 @@ contains
         type(warning_log) :: warnings   ! the advances' warnings
         type(slider_crank_reduced) :: reduced
         character(len=:), allocatable :: events
-        character(len=:), allocatable :: key, value, status_text, engine, extra
+        character(len=:), allocatable :: key, value, status_text, engine, engine_end, extra
         integer :: i, k, nout, stat, n_links
         logical :: ok, slider, peer
         real(wp) :: tf, gravity, seconds, e, e0, energy_change, max_drift, drift, max_err, joint_mass, stiffness, damping
@@ -136,6 +137,7 @@ contains
                                ieee_value(1.0_wp, ieee_quiet_nan)]
             end do
             engine = 'peer/band'
+            engine_end = engine
             status_text = 'ok'
             if (stat /= 0) then
                 write (*, '(a)') '# error: '//peer_message
@@ -184,12 +186,14 @@ contains
                 if (k == 0) max_err = maxval(abs(angle1 - ref(1, :)))
                 extra = extra//' max_err_th='//num(max_err)
             end if
+            engine_end = formulation_name(solver%formulation())//'/'//linear_solver_name(solver%linear_solver())
             events = event_lines(solver)
             call solver%destroy()
         end if
         write (*, '(a)', advance='no') events
         write (*, '(a)') 'summary n_links='//format_int(n_links)//' slider='//trim(merge('yes', 'no ', slider))// &
-            ' engine='//engine//' status='//status_text//' t_end='//num(st%t)//' max_drift='//num(max_drift)// &
+            ' engine='//engine//' engine_end='//engine_end//' status='//status_text//' t_end='//num(st%t)// &
+            ' max_drift='//num(max_drift)// &
             ' energy_change='//num(energy_change)//extra//stats_fields(st, seconds, output_clock%seconds())// &
             ' seconds_per_step='//num(seconds/max(1.0_wp, real(st%steps, wp)))// &
             ' peak_rss_kb='//format_int(int(peak_rss_kb()))

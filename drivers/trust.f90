@@ -35,9 +35,17 @@
 !!   on the slider crank's reduced ODE (N = 2 with the slider), in those units.
 !! - fourbar: the parallelogram four-bar (drivers/problems/fourbar_problem.f90, r = 1, L = 2,
 !!   g = 9.81), 9 starts, index 3 and 2, tf = 5, 200 outputs; reference th1'' = -(g/r) cos th1 by
-!!   CVODE at 1e-13, reference method Dormand-Prince at R; th2_ref = 0, th3_ref = th1_ref.
+!!   CVODE at 1e-13, reference method Dormand-Prince at R; th2_ref = 0, th3_ref = th1_ref. With
+!!   seed=S: 3 slow swings near a fold (th1 = 0 or pi plus or minus 10^u, u uniform in [-6, -1];
+!!   w1 = plus or minus 10^u, u in [-6, 0]) and 6 starts uniform in th1 in (0, 2 pi), w1 in (-8, 8).
 !! - linear: theory_problems S1 and S2 on [-1, 1], 201 outputs (t = 0 among them), methods
 !!   trust_region, direct, baumgarte, R = 1e-3 ... 1e-10; the exact solution; no reference method.
+!!   With seed=S: 3 variants of each, the singular point t* uniform in (-0.9, 0.9) and C scaled by
+!!   c = 10^u, u uniform in [-2, 2] (theory_problems' singular_at and scale; GB = c^2 (t - t*)^2,
+!!   c^2 (t - t*)^4), t* added to the outputs; p1 = t*, p2 = c.
+!! (seed=S: the crank, fourbar and linear families' grids drawn from seed S, for checking the
+!! rules on starts they were not chosen on, e.g. `trust family=fourbar seed=2026`; no seed: the
+!! fixed grids.)
 !!
 !! Usage: trust [family=crank|chain|chain_long|fourbar|linear|all] [part=k/K] [rtol=R] [cell=I]
 !!              [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]
@@ -125,7 +133,7 @@ program trust_driver
     character(len=:), allocatable :: family, family_name
     real(wp) :: budget = -1.0_wp
     real(wp) :: start_th1 = -1.0_wp, start_w1 = 0.0_wp   ! th1= (w1=): the crank family at this start only
-    integer(int64) :: crank_seed = 0_int64   ! seed=S: the crank family's starts from seed S (0: the fixed grid)
+    integer(int64) :: grid_seed = 0_int64   ! seed=S: the crank, fourbar, linear grids from seed S (0: the fixed grids)
     type(solver_options) :: overrides        ! the defaults with the option.KEY=VALUE arguments applied
     character(len=:), allocatable :: override_text   ! those arguments, for the header
 
@@ -196,9 +204,30 @@ contains
     subroutine read_seed(value)
         character(len=*), intent(in) :: value
         integer :: ios
-        read (value, *, iostat=ios) crank_seed
-        if (ios /= 0 .or. crank_seed <= 0_int64) call die_usage(prog, 'seed must be a positive integer')
+        read (value, *, iostat=ios) grid_seed
+        if (ios /= 0 .or. grid_seed <= 0_int64) call die_usage(prog, 'seed must be a positive integer')
     end subroutine read_seed
+
+    ! The generator of the seeded grids: seed S, its first 16 draws dropped (a small seed's
+    ! first draws are small: let the bits mix).
+    function seeded_generator() result(gen)
+        type(xorshift64) :: gen
+        integer(int64) :: bits
+        integer :: i
+        gen = new_xorshift64(grid_seed)
+        do i = 1, 16
+            bits = gen%next_bits()
+        end do
+    end function seeded_generator
+
+    ! plus or minus 10^u, u uniform in [lo, hi], the sign drawn first.
+    real(wp) function signed_log_uniform(gen, lo, hi) result(x)
+        type(xorshift64), intent(inout) :: gen
+        real(wp), intent(in) :: lo, hi
+        real(wp) :: sgn
+        sgn = merge(1.0_wp, -1.0_wp, gen%next_uniform() < 0.5_wp)
+        x = sgn*10.0_wp**gen%next_between(lo, hi)
+    end function signed_log_uniform
 
     ! The wall budget of one regdae run: budget=S, else `default`.
     real(wp) function run_budget(default)
@@ -419,7 +448,7 @@ contains
             'th2 = pi - th1, w2 = -w1; tf = 10, 200 outputs; case thNN = the index of th1 (ascending)'
         write (*, '(a)') '#   reference: the reduced ODE by CVODE (Adams) at rtol = atol = 1e-13; reference method: '// &
             'Dormand-Prince on it at R; budget '//num(run_budget(30.0_wp))//' s per run'
-        if (crank_seed > 0_int64) write (*, '(a,i0)') '#   starts from seed=', crank_seed
+        if (grid_seed > 0_int64) write (*, '(a,i0)') '#   starts from seed=', grid_seed
         write (*, '(a)') '#   th1 values: '//list_text(angles)
         write (*, '(a)') '#   extra columns: ref_chk = the norm of (CVODE at 1e-12 - CVODE at 1e-13) at R; '// &
             'refm = the reference method: ok, diverged (err_ref over the outputs before a NaN/Inf), timeout '// &
@@ -455,11 +484,8 @@ contains
         integer :: i
         near = [1.0e-8_wp, 1.0e-6_wp, 1.0e-4_wp, 1.0e-2_wp]
         gen = new_xorshift64(20250101_int64)
-        if (crank_seed > 0_int64) then
-            gen = new_xorshift64(crank_seed)
-            do i = 1, 16   ! a small seed's first draws are small: let the bits mix
-                near(1) = gen%next_between(0.0_wp, 1.0_wp)
-            end do
+        if (grid_seed > 0_int64) then
+            gen = seeded_generator()
             do i = 1, size(near)
                 near(i) = 10.0_wp**gen%next_between(-8.0_wp, -1.0_wp)
             end do
@@ -541,6 +567,13 @@ contains
             num(run_budget(30.0_wp))//' s per run'
         write (*, '(a)') '#   extra columns: ref_chk = the norm of (CVODE at 1e-12 - CVODE at 1e-13) at R; '// &
             'refm = the reference method: ok, diverged, timeout, failed (as for the crank)'
+        if (grid_seed > 0_int64) then
+            write (*, '(a,i0,a)') '#   starts from seed=', grid_seed, ' (instead of the cases above): slowK = a '// &
+                'slow swing near a fold, th1 = 0 or pi +- 10^[-6,-1], w1 = +-10^[-6,0]; randK: th1 in (0, 2 pi), '// &
+                'w1 in (-8, 8) from this seed'
+            write (*, '(a)') '#   th1 values: '//list_text(th, exact=.true.)
+            write (*, '(a)') '#   w1 values: '//list_text(w, exact=.true.)
+        end if
         cell = 0
         do ix = 1, size(indices)
             do ir = 1, size(mech_rtols)
@@ -560,6 +593,10 @@ contains
         character(len=*), intent(out) :: labels(9)
         type(xorshift64) :: gen
         integer :: i
+        if (grid_seed > 0_int64) then
+            call seeded_fourbar_starts(th, w, labels)
+            return
+        end if
         gen = new_xorshift64(20250202_int64)
         th(1) = 0.02_wp
         w(1) = 0.0_wp
@@ -578,6 +615,28 @@ contains
         w(9) = 0.0_wp
         labels(9) = 'top'
     end subroutine fourbar_starts
+
+    ! seed=S: 3 slow swings near a fold (th1 = 0 or pi plus or minus 10^[-6,-1], w1 = plus or
+    ! minus 10^[-6,0]), then 6 starts in the fixed grid's ranges (th1 in (0, 2 pi), w1 in (-8, 8)).
+    subroutine seeded_fourbar_starts(th, w, labels)
+        real(wp), intent(out) :: th(9), w(9)
+        character(len=*), intent(out) :: labels(9)
+        type(xorshift64) :: gen
+        real(wp) :: fold
+        integer :: i
+        gen = seeded_generator()
+        do i = 1, 3
+            fold = merge(0.0_wp, pi, gen%next_uniform() < 0.5_wp)
+            th(i) = fold + signed_log_uniform(gen, -6.0_wp, -1.0_wp)
+            w(i) = signed_log_uniform(gen, -6.0_wp, 0.0_wp)
+            write (labels(i), '(a,i0)') 'slow', i
+        end do
+        do i = 4, 9
+            th(i) = gen%next_between(0.0_wp, 2*pi)
+            w(i) = gen%next_between(-8.0_wp, 8.0_wp)
+            write (labels(i), '(a,i0)') 'rand', i - 3
+        end do
+    end subroutine seeded_fourbar_starts
 
     subroutine fourbar_cell(counts, cell, label, th1, w1, index, rtol, times)
         type(tally), intent(inout) :: counts
@@ -634,42 +693,90 @@ contains
     subroutine linear_family()
         character(len=2), parameter :: cases(2) = ['S1', 'S2']
         character(len=12), parameter :: methods(3) = [character(len=12) :: 'trust_region', 'direct', 'baumgarte']
+        character(len=1), parameter :: letters(3) = ['a', 'b', 'c']
         type(tally) :: counts
-        real(wp) :: times(201)
-        integer :: ic, im, ir, k, cell
+        type(theory_problem) :: problem
+        real(wp) :: grid(201), singular_at(3, 2), scale(3, 2), p1, p2
+        real(wp), allocatable :: times(:)
+        integer :: ic, iv, im, ir, k, cell, variants
+        character(len=:), allocatable :: name
         family_name = 'linear'
-        times = [(real(k - 100, wp)/100.0_wp, k=0, 200)]
+        grid = [(real(k - 100, wp)/100.0_wp, k=0, 200)]
+        call linear_variants(singular_at, scale, variants)
         write (*, '(a)') '# family=linear: drivers/problems/theory_problems.f90 S1 (C = t e^T, GB ~ t^2) and S2 '// &
             '(C = t^2 e^T, GB ~ t^4), B = C^T, t in [-1, 1], 201 outputs (t = -1, -0.99, ..., 0, ..., 1), '// &
             'x(-1) = x*(-1); p1 = t0, p2 = tf'
         write (*, '(a)') '#   case = problem/method; reference: the exact x*; no reference method (err_ref = 0). '// &
             'direct needs GB PSD in the core''s convention: B = C^T gives GB = C C^T >= 0 (theory_problems maps '// &
             'y_core = -y); budget '//num(run_budget(30.0_wp))//' s per run'
+        if (grid_seed > 0_int64) then
+            write (*, '(a,i0,a)') '#   variants from seed=', grid_seed, ' (case S1a ... S2c): C = c (t - t*)^p e^T, '// &
+                't* uniform in (-0.9, 0.9), c = 10^[-2,2]; t* added to the outputs; p1 = t*, p2 = c'
+            write (*, '(a)') '#   t* of S1a-c, S2a-c: '//list_text(pack(singular_at, .true.), exact=.true.)
+            write (*, '(a)') '#   c of S1a-c, S2a-c: '//list_text(pack(scale, .true.), exact=.true.)
+        end if
         cell = 0
         do ic = 1, size(cases)
-            do im = 1, size(methods)
-                do ir = 1, size(linear_rtols)
-                    cell = cell + 1
-                    if (.not. filter%selected(cell, linear_rtols(ir))) cycle
-                    call linear_cell(counts, cell, cases(ic), trim(methods(im)), linear_rtols(ir), times)
+            do iv = 1, variants
+                problem = new_theory_problem(cases(ic))
+                name = cases(ic)
+                times = grid
+                p1 = grid(1)
+                p2 = grid(size(grid))
+                if (grid_seed > 0_int64) then
+                    problem%singular_at = singular_at(iv, ic)
+                    problem%scale = scale(iv, ic)
+                    name = cases(ic)//letters(iv)
+                    times = [grid, singular_at(iv, ic)]
+                    call sort(times)
+                    p1 = singular_at(iv, ic)
+                    p2 = scale(iv, ic)
+                end if
+                do im = 1, size(methods)
+                    do ir = 1, size(linear_rtols)
+                        cell = cell + 1
+                        if (.not. filter%selected(cell, linear_rtols(ir))) cycle
+                        call linear_cell(counts, cell, problem, name, p1, p2, trim(methods(im)), linear_rtols(ir), times)
+                    end do
                 end do
             end do
         end do
         write (*, '(a)') counts%summary('linear')
     end subroutine linear_family
 
-    subroutine linear_cell(counts, cell, name, method, rtol, times)
+    ! The linear family's variants of S1 and S2 (columns): one, unmoved, without a seed; with seed=S
+    ! three of each, the singular point t* uniform in (-0.9, 0.9) and the scale of C log-uniform in
+    ! [1e-2, 1e2].
+    subroutine linear_variants(singular_at, scale, variants)
+        real(wp), intent(out) :: singular_at(:, :), scale(:, :)
+        integer, intent(out) :: variants
+        type(xorshift64) :: gen
+        integer :: ic, iv
+        singular_at = 0.0_wp
+        scale = 1.0_wp
+        variants = 1
+        if (grid_seed == 0_int64) return
+        variants = size(singular_at, 1)
+        gen = seeded_generator()
+        do ic = 1, size(singular_at, 2)
+            do iv = 1, variants
+                singular_at(iv, ic) = gen%next_between(-0.9_wp, 0.9_wp)
+                scale(iv, ic) = 10.0_wp**gen%next_between(-2.0_wp, 2.0_wp)
+            end do
+        end do
+    end subroutine linear_variants
+
+    subroutine linear_cell(counts, cell, problem, name, p1, p2, method, rtol, times)
         type(tally), intent(inout) :: counts
         integer, intent(in) :: cell
+        type(theory_problem), intent(in) :: problem   !! S1 or S2, perhaps moved and scaled
         character(len=*), intent(in) :: name, method
-        real(wp), intent(in) :: rtol, times(:)
-        type(theory_problem) :: problem
+        real(wp), intent(in) :: p1, p2, rtol, times(:)
         type(run_record) :: rec, rerun
         type(solver_options) :: opts
         real(wp) :: xref(2, size(times)), err
         integer :: k, stat
         character(len=:), allocatable :: msg
-        problem = new_theory_problem(name)
         do k = 1, size(times)
             xref(:, k) = problem%x_exact(times(k))
         end do
@@ -678,7 +785,7 @@ contains
         call run_first_order(problem, times(1), problem%x_exact(times(1)), times, opts, run_budget(30.0_wp), rec)
         err = weighted_error(rec%x, xref, rtol, rec%good)
         ! First-order problems have no branch, drift or work check; the rerun stays unused.
-        call judge_and_print(counts, cell, name//'/'//method, times(1), times(size(times)), rtol, rec, err, 0.0_wp, &
+        call judge_and_print(counts, cell, name//'/'//method, p1, p2, rtol, rec, err, 0.0_wp, &
                              10.0_wp, 0.0_wp, rerun, '')
     end subroutine linear_cell
 
@@ -1300,13 +1407,23 @@ contains
         end do
     end subroutine sort
 
-    function list_text(a) result(s)
+    ! The values of `a` in es11.4e3, or (exact = .true., the seeded grids' draws, which may be
+    ! negative) with 17 significant digits.
+    function list_text(a, exact) result(s)
         real(wp), intent(in) :: a(:)
+        logical, intent(in), optional :: exact
         character(len=:), allocatable :: s
         integer :: i
+        logical :: digits17
+        digits17 = .false.
+        if (present(exact)) digits17 = exact
         s = ''
         do i = 1, size(a)
-            s = s//' '//etext(a(i))
+            if (digits17) then
+                s = s//' '//num_exact(a(i))
+            else
+                s = s//' '//etext(a(i))
+            end if
         end do
     end function list_text
 

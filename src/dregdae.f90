@@ -11,6 +11,10 @@
 !!     CALL DREGDAER (F, B, G, GX, GT, N, M, T, X, Y, TOUT, INFO, RTOL, ATOL,
 !!    *               IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR, RT, NRT, JROOT)
 !!     CALL DREGDAEMR (..., as DREGDAEM ..., RT, NRT, JROOT)   (events: IDID = 5 at a root)
+!!     CALL DREGDAEJ (..., as DREGDAE ..., JAC)    (INFO(5) = 1: JAC gives df/dx)
+!!     CALL DREGDAEMJ (..., as DREGDAEM ..., JAC)  (INFO(5) = 1: JAC gives df/dq, df/dq')
+!!     CALL DREGDAEJR (..., as DREGDAE ..., JAC, RT, NRT, JROOT)    (both, in DDASKR's order)
+!!     CALL DREGDAEMJR (..., as DREGDAEM ..., JAC, RT, NRT, JROOT)
 !!     CALL DREGDAEMSG (IWORK, LIW, MSG)
 !!     CALL DREGDAEFREE (IWORK, LIW)
 !!
@@ -26,6 +30,8 @@
 !!     SUBROUTINE GT(T, X, GTV, IRES, RPAR, IPAR)     GTV(M)    = dg/dt (INFO(17) = 1)
 !!     SUBROUTINE MASS(T, Q, AM, IRES, RPAR, IPAR)    AM(N, N)  = M(q, t)
 !!     SUBROUTINE FORCES(T, Q, V, FV, IRES, RPAR, IPAR)  FV(N)  = f(q, q', t)
+!!     SUBROUTINE JAC(T, X, PD, IRES, RPAR, IPAR)     PD(N, N)  = df/dx        (DREGDAEJ)
+!!     SUBROUTINE JAC(T, Q, V, PD, IRES, RPAR, IPAR)  PD(N, 2N) = [df/dq, df/dq'] (DREGDAEMJ)
 
 !> Integrate x' = f(x, t) - B(x, t) y, 0 = g(x, t) from T to TOUT.
 subroutine dregdae(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, rpar, ipar)
@@ -143,6 +149,119 @@ subroutine dregdaemr(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info,
     call dassl_mechanical(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
                           iwork, liw, rpar, ipar, rt, nrt, jroot)
 end subroutine dregdaemr
+
+!> DREGDAE with JAC after IPAR, as DASSL's: with INFO(5) = 1, PD = df/dx of F, the
+!! Jacobian of f(x, t) in x (not of regdae's regularized residual, which regdae forms:
+!! JAC takes the place of the difference quotients of F in it); INFO(5) = 0: JAC is
+!! not called. RWORK(19) = 1 checks PD against difference quotients at the start.
+subroutine dregdaej(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, rpar, ipar, &
+                    jac)
+    use regdae_kinds, only: wp
+    use regdae_dassl, only: dassl_first_order
+    use regdae_f77_routines, only: f77_point_routine
+    implicit none
+    procedure(f77_point_routine) :: f, b, g, gx, gt   !! as for DREGDAE
+    integer, intent(in) :: n, m
+    real(wp), intent(inout) :: t, x(*), y(*)
+    real(wp), intent(in) :: tout
+    integer, intent(inout) :: info(*)
+    real(wp), intent(in) :: rtol(*), atol(*)
+    integer, intent(out) :: idid                      !! as for DREGDAE; -116: JAC failed the check
+    real(wp), intent(inout) :: rwork(*)
+    integer, intent(in) :: lrw
+    integer, intent(inout) :: iwork(*)
+    integer, intent(in) :: liw
+    real(wp), intent(inout) :: rpar(*)
+    integer, intent(inout) :: ipar(*)
+    procedure(f77_point_routine) :: jac               !! JAC(T, X, PD, IRES, RPAR, IPAR), PD(N, N) = df/dx
+    call dassl_first_order(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, &
+                           rpar, ipar, jac=jac)
+end subroutine dregdaej
+
+!> DREGDAEM with JAC after IPAR: with INFO(5) = 1, PD(N, 2N) = [df/dq, df/dq'], the
+!! Jacobians of the forces f(q, q', t) (columns 1 to N: in q; N+1 to 2N: in q').
+subroutine dregdaemj(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
+                     iwork, liw, rpar, ipar, jac)
+    use regdae_kinds, only: wp
+    use regdae_dassl, only: dassl_mechanical
+    use regdae_f77_routines, only: f77_point_routine, f77_motion_routine
+    implicit none
+    procedure(f77_point_routine) :: mass, g, gx, gt   !! as for DREGDAEM
+    procedure(f77_motion_routine) :: forces
+    integer, intent(in) :: n, m
+    real(wp), intent(inout) :: t, q(*), v(*), lambda(*)
+    real(wp), intent(in) :: tout
+    integer, intent(inout) :: info(*)
+    real(wp), intent(in) :: rtol(*), atol(*)
+    integer, intent(out) :: idid                      !! as for DREGDAEM; -116: JAC failed the check
+    real(wp), intent(inout) :: rwork(*)
+    integer, intent(in) :: lrw
+    integer, intent(inout) :: iwork(*)
+    integer, intent(in) :: liw
+    real(wp), intent(inout) :: rpar(*)
+    integer, intent(inout) :: ipar(*)
+    procedure(f77_motion_routine) :: jac              !! JAC(T, Q, V, PD, IRES, RPAR, IPAR), PD(N, 2N)
+    call dassl_mechanical(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
+                          iwork, liw, rpar, ipar, jac=jac)
+end subroutine dregdaemj
+
+!> DREGDAEJ with root finding (JAC, then RT, NRT, JROOT as DDASKR orders them): JAC
+!! as for DREGDAEJ, RT, NRT and JROOT as for DREGDAER.
+subroutine dregdaejr(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, rpar, &
+                     ipar, jac, rt, nrt, jroot)
+    use regdae_kinds, only: wp
+    use regdae_dassl, only: dassl_first_order
+    use regdae_f77_routines, only: f77_point_routine, f77_root_routine
+    implicit none
+    procedure(f77_point_routine) :: f, b, g, gx, gt   !! as for DREGDAE
+    integer, intent(in) :: n, m
+    real(wp), intent(inout) :: t, x(*), y(*)
+    real(wp), intent(in) :: tout
+    integer, intent(inout) :: info(*)
+    real(wp), intent(in) :: rtol(*), atol(*)
+    integer, intent(out) :: idid                      !! as for DREGDAER and DREGDAEJ
+    real(wp), intent(inout) :: rwork(*)
+    integer, intent(in) :: lrw
+    integer, intent(inout) :: iwork(*)
+    integer, intent(in) :: liw
+    real(wp), intent(inout) :: rpar(*)
+    integer, intent(inout) :: ipar(*)
+    procedure(f77_point_routine) :: jac               !! as for DREGDAEJ
+    procedure(f77_root_routine) :: rt                 !! as for DREGDAER
+    integer, intent(in) :: nrt
+    integer, intent(out) :: jroot(*)
+    call dassl_first_order(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, iwork, liw, &
+                           rpar, ipar, rt, nrt, jroot, jac)
+end subroutine dregdaejr
+
+!> DREGDAEMJ with root finding: JAC as for DREGDAEMJ, RT, NRT, JROOT as for DREGDAEMR.
+subroutine dregdaemjr(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
+                      iwork, liw, rpar, ipar, jac, rt, nrt, jroot)
+    use regdae_kinds, only: wp
+    use regdae_dassl, only: dassl_mechanical
+    use regdae_f77_routines, only: f77_point_routine, f77_motion_routine, f77_root_routine
+    implicit none
+    procedure(f77_point_routine) :: mass, g, gx, gt   !! as for DREGDAEM
+    procedure(f77_motion_routine) :: forces
+    integer, intent(in) :: n, m
+    real(wp), intent(inout) :: t, q(*), v(*), lambda(*)
+    real(wp), intent(in) :: tout
+    integer, intent(inout) :: info(*)
+    real(wp), intent(in) :: rtol(*), atol(*)
+    integer, intent(out) :: idid                      !! as for DREGDAEMR and DREGDAEMJ
+    real(wp), intent(inout) :: rwork(*)
+    integer, intent(in) :: lrw
+    integer, intent(inout) :: iwork(*)
+    integer, intent(in) :: liw
+    real(wp), intent(inout) :: rpar(*)
+    integer, intent(inout) :: ipar(*)
+    procedure(f77_motion_routine) :: jac              !! as for DREGDAEMJ
+    procedure(f77_root_routine) :: rt                 !! as for DREGDAEMR
+    integer, intent(in) :: nrt
+    integer, intent(out) :: jroot(*)
+    call dassl_mechanical(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, rwork, lrw, &
+                          iwork, liw, rpar, ipar, rt, nrt, jroot, jac)
+end subroutine dregdaemjr
 
 !> The message of the last DREGDAE or DREGDAEM call on the problem of IWORK
 !! (blank after success), cut or blank-padded to the length of MSG.

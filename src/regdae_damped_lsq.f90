@@ -5,7 +5,8 @@
 !! $$ y = \arg\min_y \|A y - r\|_2^2 + \epsilon \|y\|_2^2
 !!      = (A^T A + \epsilon I)^{-1} A^T r, \qquad A = GB. $$
 !! Two ways are offered:
-!! - `lsq_normal`: the normal equations with `dposv` (Cholesky); cheap, but the
+!! - `lsq_normal`: the normal equations by Cholesky (plain loops up to 8 unknowns,
+!!   regdae_small_cholesky; `dposv` beyond); cheap, but the
 !!   condition number is squared, so the relative error grows like
 !!   u * (sigma_max^2 + eps) / (sigma_min^2 + eps);
 !! - `lsq_stacked`: the stacked system [A; sqrt(eps) I] y ~ [r; 0] with
@@ -29,10 +30,11 @@ module regdae_damped_lsq
     use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_singular, &
                              regdae_err_not_psd, regdae_err_lapack
     use regdae_lapack, only: dposv, dgelsd, dgesv, dgesvd
+    use regdae_small_cholesky, only: small_cholesky, small_cholesky_solve, small_cholesky_max
     implicit none
     private
 
-    integer, parameter, public :: lsq_normal = 1   !! normal equations, `dposv`
+    integer, parameter, public :: lsq_normal = 1   !! normal equations, Cholesky
     integer, parameter, public :: lsq_stacked = 2  !! stacked system, `dgelsd`
     integer, parameter, public :: lsq_checked = 3  !! normal equations, stacked where they are ill-conditioned
 
@@ -219,7 +221,7 @@ contains
                 ws%mat(i, i) = ws%mat(i, i) + eps
             end do
             y = matmul(r, a)
-            call dposv('L', q, 1, ws%mat, size(ws%mat, 1), y, q, info)
+            call spd_solve(ws%mat, q, y, info)
         end subroutine normal_solve
 
         subroutine stacked_solve()
@@ -290,10 +292,26 @@ contains
             ws%mat(i, i) = ws%mat(i, i) + eps
         end do
         y = r
-        call dposv('L', q, 1, ws%mat, size(ws%mat, 1), y, q, info)
+        call spd_solve(ws%mat, q, y, info)
         if (info > 0) stat = regdae_err_not_psd
         if (info < 0) stat = regdae_err_lapack
     end subroutine shifted_spd_solve
+
+    ! Solve with the SPD matrix in mat(1:q, 1:q) (lower triangle; overwritten by its Cholesky
+    ! factor) and the right-hand side y: plain loops up to small_cholesky_max unknowns, dposv
+    ! beyond; info as dposv's.
+    subroutine spd_solve(mat, q, y, info)
+        real(wp), intent(inout) :: mat(:, :), y(:)
+        integer, intent(in) :: q
+        integer, intent(out) :: info
+
+        if (q <= small_cholesky_max) then
+            call small_cholesky(q, mat, size(mat, 1), info)
+            if (info == 0) call small_cholesky_solve(q, mat, size(mat, 1), y)
+        else
+            call dposv('L', q, 1, mat, size(mat, 1), y, q, info)
+        end if
+    end subroutine spd_solve
 
     !> Solve A y = r by LU with partial pivoting (Baumgarte, eq. 2.7).
     !! A singular A (an exactly zero pivot) gives `regdae_err_singular`.

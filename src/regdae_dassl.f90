@@ -27,7 +27,8 @@ module regdae_dassl
                              regdae_root_found, regdae_err_bad_input, &
                              regdae_err_inconsistent_ic, regdae_err_user_callback, regdae_err_not_initialized
     use regdae_format, only: format_int, format_real
-    use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_radau
+    use regdae_options, only: solver_options, validate_options, method_trust_region, method_direct, integrator_radau, &
+                              integrator_auto, integrator_ida, integrator_dopri5
     use regdae_solver_trust, only: regdae_solver, solver_stats
     use regdae_foreign_problems, only: foreign_first_order, foreign_mechanical
     use regdae_f77_routines, only: f77_routines, f77_point_routine, f77_motion_routine, f77_root_routine, f77_events
@@ -39,9 +40,11 @@ module regdae_dassl
     integer, parameter :: info_vector_tol = 2    ! 1: ATOL a vector (RTOL too, with equal entries)
     integer, parameter :: info_intermediate = 3  ! 1: return after every step (IDID = 1)
     integer, parameter :: info_tstop = 4         ! 1: do not pass TSTOP = RWORK(1)
+    integer, parameter :: info_jac = 5           ! 1: JAC is given (DREGDAEJ, DREGDAEMJ)
     integer, parameter :: info_hmax = 7          ! 1: HMAX = RWORK(2)
     integer, parameter :: info_h0 = 8            ! 1: H0 = RWORK(3)
     integer, parameter :: info_max_order = 9     ! 1: MAXORD = IWORK(3), 1 ... 5 (IDA's largest order)
+    integer, parameter :: info_nonnegative = 10  ! 1: X (DREGDAEM: Q) kept >= 0 by IDA (IDASetConstraints)
     integer, parameter :: info_method = 16       ! 0 (trust_region), 1 baumgarte, 2 trust_region, 3 direct
     integer, parameter :: info_gt = 17           ! 1: GT is supplied
     integer, parameter :: info_index = 18        ! DREGDAEM: 0 (3), 2 or 3
@@ -57,6 +60,8 @@ module regdae_dassl
     ! pass_tol (0: the default; < 0: pass_check off), error_estimate (1: on); outputs: the
     ! error estimate (-1: none) and the largest pass error (solver_stats)
     integer, parameter :: rwork_pass_tol = 15, rwork_error_estimate = 16, rwork_estimate = 17, rwork_pass_error = 18
+    ! check_jacobians (1: on): JAC and GX against difference quotients at the start
+    integer, parameter :: rwork_check_jacobians = 19
     !> The smallest LRW.
     integer, parameter, public :: min_lrw = 20
 
@@ -103,7 +108,7 @@ contains
 
     !> DREGDAE: x' = f(x, t) - B(x, t) y, 0 = g(x, t), from T to TOUT.
     subroutine dassl_first_order(f, b, g, gx, gt, n, m, t, x, y, tout, info, rtol, atol, idid, rwork, lrw, &
-                                 iwork, liw, rpar, ipar, rt, nrt, jroot)
+                                 iwork, liw, rpar, ipar, rt, nrt, jroot, jac)
         procedure(f77_point_routine) :: f, b, g, gx, gt   !! the user's routines (GT used when INFO(17) = 1)
         integer, intent(in) :: n, m                       !! sizes of x and y
         real(wp), intent(inout) :: t                      !! in: T (first call: t0); out: the time reached
@@ -121,6 +126,7 @@ contains
         procedure(f77_root_routine), optional :: rt       !! DREGDAER: the event functions
         integer, intent(in), optional :: nrt              !! their number
         integer, intent(out), optional :: jroot(*)        !! IDID = 5: +1 / -1 / 0 per function
+        procedure(f77_point_routine), optional :: jac     !! DREGDAEJ: df/dx (used with INFO(5) = 1)
         type(dassl_session), pointer :: s
         type(foreign_first_order) :: problem
         type(solver_options) :: opts
@@ -128,7 +134,7 @@ contains
         logical :: init_failed   ! this call's start (INFO(1) = 0) failed in the solver's init
 
         if (.not. open_call(kind_first_order, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
-                            opts)) return
+                            opts, present(jac))) return
         call attach(s, g, gx, gt, rpar, ipar)
         call s%solver%return_each_step(info(info_intermediate) == 1)
         s%routines%f => f
@@ -136,6 +142,8 @@ contains
         stat = regdae_success
         init_failed = .false.
         if (info(info_start) == 0) then
+            if (info(info_jac) == 1) s%routines%jac => jac
+            if (.not. start_accepted(s, t, x, opts, info, iwork, idid)) return
             problem%n = n
             problem%m = m
             problem%routines => s%routines
@@ -149,7 +157,7 @@ contains
 
     !> DREGDAEM: M(q) q'' = f(q, q', t) + G^T lambda, 0 = g(q, t), from T to TOUT.
     subroutine dassl_mechanical(mass, forces, g, gx, gt, n, m, t, q, v, lambda, tout, info, rtol, atol, idid, &
-                                rwork, lrw, iwork, liw, rpar, ipar, rt, nrt, jroot)
+                                rwork, lrw, iwork, liw, rpar, ipar, rt, nrt, jroot, jac)
         procedure(f77_point_routine) :: mass, g, gx, gt    !! the user's routines (GT used when INFO(17) = 1)
         procedure(f77_motion_routine) :: forces
         integer, intent(in) :: n, m
@@ -169,6 +177,7 @@ contains
         procedure(f77_root_routine), optional :: rt       !! DREGDAEMR: the event functions
         integer, intent(in), optional :: nrt
         integer, intent(out), optional :: jroot(*)
+        procedure(f77_motion_routine), optional :: jac    !! DREGDAEMJ: [df/dq, df/dq'] (used with INFO(5) = 1)
         type(dassl_session), pointer :: s
         type(foreign_mechanical) :: problem
         type(solver_options) :: opts
@@ -176,7 +185,7 @@ contains
         logical :: init_failed   ! this call's start (INFO(1) = 0) failed in the solver's init
 
         if (.not. open_call(kind_mechanical, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, &
-                            opts)) return
+                            opts, present(jac))) return
         call attach(s, g, gx, gt, rpar, ipar)
         call s%solver%return_each_step(info(info_intermediate) == 1)
         s%routines%mass => mass
@@ -184,6 +193,8 @@ contains
         stat = regdae_success
         init_failed = .false.
         if (info(info_start) == 0) then
+            if (info(info_jac) == 1) s%routines%jac_forces => jac
+            if (.not. start_accepted(s, t, q, opts, info, iwork, idid, v)) return
             problem%n = n
             problem%m = m
             problem%routines => s%routines
@@ -245,8 +256,8 @@ contains
     ! The checks of a call, the session of IWORK (created by INFO(1) = 0, after the
     ! one IWORK held is freed) and, at the start, the options. False: IDID = -33 is
     ! set, the message kept for DREGDAEMSG and printed.
-    logical function open_call(kind, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, opts) &
-        result(ok)
+    logical function open_call(kind, n, m, t, tout, info, rtol, atol, rwork, lrw, iwork, liw, idid, s, opts, &
+                               with_jac) result(ok)
         integer, intent(in) :: kind, n, m, lrw, liw
         real(wp), intent(in) :: t, tout
         integer, intent(inout) :: info(info_length)
@@ -256,6 +267,7 @@ contains
         integer, intent(out) :: idid
         type(dassl_session), pointer, intent(out) :: s
         type(solver_options), intent(out) :: opts
+        logical, intent(in) :: with_jac   ! called as DREGDAEJ or DREGDAEMJ
         character(len=:), allocatable :: msg
         integer :: refusal
 
@@ -270,7 +282,8 @@ contains
             ! The input first (a refused start creates no solver), then the session: the
             ! one IWORK held (a restart without DREGDAEFREE) is freed first
             call check_call(t, tout, info, rwork, lrw, msg)
-            if (len(msg) == 0) call options_from(kind, n, m, info, rtol, atol, rwork, iwork(iwork_max_order), opts, msg)
+            if (len(msg) == 0) call options_from(kind, n, m, info, rtol, atol, rwork, iwork(iwork_max_order), &
+                                                 with_jac, opts, msg)
             call dassl_free(iwork, liw)
             call new_session(iwork, liw, s)
             s%kind = kind
@@ -279,6 +292,7 @@ contains
             if (len(msg) == 0) then
                 s%exact_stops = opts%stop_at_output
                 s%routines%gt_supplied = (info(info_gt) == 1)
+                s%routines%nonnegative = (info(info_nonnegative) == 1)
             end if
         else if (session_in(iwork, liw, s)) then
             ! A continuation, or a refused INFO(1): the session keeps this call's message
@@ -309,6 +323,41 @@ contains
         info(info_start) = -1
         call report(info, kind, msg)
     end function open_call
+
+    ! The checks of a start that read X (Q): with INFO(10) = 1 no component < 0 (IDID
+    ! = -33); with check_jacobians (RWORK(19) = 1) and JAC in use (INFO(5) = 1) PD
+    ! against central difference quotients of F (FORCES), before the solver is
+    ! created (IDID = -116, regdae_err_jacobian, naming the entry of PD; -11 when a
+    ! routine stopped the check). False: the start fails, the message kept and printed.
+    logical function start_accepted(s, t, x, opts, info, iwork, idid, v) result(ok)
+        type(dassl_session), intent(inout) :: s
+        real(wp), intent(in) :: t, x(:)
+        type(solver_options), intent(in) :: opts
+        integer, intent(inout) :: info(info_length)
+        integer, intent(inout) :: iwork(:)
+        integer, intent(out) :: idid
+        real(wp), intent(in), optional :: v(:)   ! DREGDAEMJ: the velocity
+        integer :: stat
+        character(len=:), allocatable :: msg
+        stat = regdae_success
+        if (s%routines%nonnegative .and. any(x < 0.0_wp)) then
+            stat = regdae_err_bad_input
+            msg = 'INFO(10) = 1 and '//trim(merge('X', 'Q', s%kind == kind_first_order))//'('// &
+                  format_int(minloc(x, 1))//') = '//format_real(minval(x))//' < 0 at the start: the '// &
+                  'nonnegative components must start >= 0'
+        else if (opts%check_jacobians .and. s%routines%has_jac()) then
+            call s%routines%check_jac(t, x, stat, msg, v)
+        end if
+        ok = (stat == regdae_success)
+        if (ok) return
+        idid = merge(idid_user_stop, stat, stat == regdae_err_user_callback)
+        if (stat == regdae_err_bad_input) idid = idid_bad_input
+        iwork(iwork_status) = stat
+        s%message = msg
+        info(info_start) = -1
+        call report(info, s%kind, msg)
+        call s%routines%forget_failure()
+    end function start_accepted
 
     ! The checks of every call that do not depend on the problem: LRW, TOUT, TSTOP.
     subroutine check_call(t, tout, info, rwork, lrw, msg)
@@ -438,9 +487,14 @@ contains
         type(f77_routines), intent(in) :: routines
         character(len=:), allocatable :: text
         character(len=*), parameter :: opening = 'user routine ', closing = ' reported failure (stat = '
+        character(len=*), parameter :: g_check = 'check_jacobians: constraint_jacobian disagrees with the '// &
+                                                 'difference quotient of the constraint'
         integer :: at, name_end, paren
         logical :: named
         text = message
+        at = index(text, g_check)   ! check_jacobians on GX (DREGDAEM)
+        if (at > 0) text = text(:at - 1)//'check_jacobians: GX disagrees with the difference quotient of G'// &
+                           text(at + len(g_check):)
         if (.not. allocated(routines%said)) return
         named = .false.
         do
@@ -458,11 +512,12 @@ contains
     end function in_dassl_words
 
     ! The options from INFO, RTOL, ATOL and RWORK; msg names the first bad entry.
-    subroutine options_from(kind, n, m, info, rtol, atol, rwork, maxord, opts, msg)
+    subroutine options_from(kind, n, m, info, rtol, atol, rwork, maxord, with_jac, opts, msg)
         integer, intent(in) :: kind, n, m
         integer, intent(in) :: info(info_length)
         real(wp), intent(in) :: rtol(*), atol(*), rwork(:)
         integer, intent(in) :: maxord   ! IWORK(3): the largest order with INFO(9) = 1
+        logical, intent(in) :: with_jac ! DREGDAEJ or DREGDAEMJ: INFO(5) = 1 may ask for JAC
         type(solver_options), intent(out) :: opts
         character(len=:), allocatable, intent(inout) :: msg
         integer :: i, stat, n_tol
@@ -474,8 +529,10 @@ contains
             ! ATOL per component (DREGDAE: N entries; DREGDAEM: 2N, q then q'); regdae's rtol
             ! is one number
             msg = 'INFO(2) = 1 with unequal RTOL(1:'//format_int(n_tol)//'): regdae has one relative tolerance '// &
-                  '(its integrators take a scalar rtol); give RTOL equal entries and set the scale of each '// &
-                  'component through ATOL, which may vary'
+                  '(dopri5 and radau form their error weights from a scalar rtol, and so do regdae''s own '// &
+                  'checks of the passes and the drift); give RTOL equal entries, e.g. all '// &
+                  format_real(minval(rtol(1:n_tol)))//' (the smallest, which meets every component''s), and '// &
+                  'set the scale of each component through ATOL, which may vary'
         end if
         do i = 2, 11
             if (len(msg) == 0 .and. info(i) /= 0 .and. info(i) /= 1) &
@@ -483,8 +540,8 @@ contains
         end do
         do i = 3, 15
             if (len(msg) > 0) exit
-            if (info(i) /= 0 .and. any(i == [5, 6, 10, 12, 13, 14, 15])) &
-                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i)
+            if (info(i) /= 0 .and. any(i == [5, 6, 12, 13, 14, 15]) .and. .not. (i == info_jac .and. with_jac)) &
+                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i, kind)
         end do
         if (len(msg) > 0) return
         if (info(info_method) < 0 .or. info(info_method) > method_direct) then
@@ -504,11 +561,18 @@ contains
             msg = 'INFO(8) = 1 and H0 = RWORK(3) = '//format_real(rwork(rwork_h0))//' is not > 0'
         else if (info(info_max_order) == 1 .and. (maxord < 1 .or. maxord > 5)) then
             msg = 'INFO(9) = 1 and MAXORD = IWORK(3) = '//format_int(maxord)//' is not 1 ... 5 (IDA''s orders)'
+        else if (info(info_nonnegative) == 1 .and. info(info_integrator) > integrator_ida) then
+            msg = 'INFO(10) = 1 (nonnegative solutions) with INFO(19) = '//format_int(info(info_integrator))// &
+                  trim(merge(' (dopri5)', ' (radau) ', info(info_integrator) == integrator_dopri5))// &
+                  ': nonnegativity is IDA''s constraint option (IDASetConstraints), which dopri5 and radau '// &
+                  'do not have: set INFO(19) = 0 or 1 (IDA), or INFO(10) = 0 and check the signs after each return'
         end if
         if (len(msg) > 0) return
         opts%method = merge(method_trust_region, info(info_method), info(info_method) == 0)
         if (info(info_index) /= 0) opts%index = info(info_index)
         opts%integrator = info(info_integrator)
+        ! INFO(10) = 1: IDA in charge throughout (auto would hand non-stiff stretches to dopri5)
+        if (info(info_nonnegative) == 1 .and. opts%integrator == integrator_auto) opts%integrator = integrator_ida
         opts%rtol = rtol(1)
         opts%atol = atol(1)   ! INFO(2) = 1: the vector goes to init
         opts%stop_at_output = (info(info_tstop) == 1)
@@ -523,12 +587,17 @@ contains
         if (rwork(rwork_pass_tol) < 0.0_wp) opts%pass_check = .false.
         opts%error_estimate = (rwork(rwork_error_estimate) == 1.0_wp)
         call validate_options(opts, stat, msg)
+        opts%check_jacobians = (rwork(rwork_check_jacobians) == 1.0_wp)
         if (stat == regdae_success .and. .not. (rwork(rwork_error_estimate) == 0.0_wp .or. &
                                                 rwork(rwork_error_estimate) == 1.0_wp)) then
             stat = regdae_err_bad_input
             msg = 'RWORK(16) (error estimate) must be 0 or 1, got '//format_real(rwork(rwork_error_estimate))
+        else if (stat == regdae_success .and. .not. (rwork(rwork_check_jacobians) == 0.0_wp .or. &
+                                                     rwork(rwork_check_jacobians) == 1.0_wp)) then
+            stat = regdae_err_bad_input
+            msg = 'RWORK(19) (check_jacobians) must be 0 or 1, got '//format_real(rwork(rwork_check_jacobians))
         end if
-        if (stat /= regdae_success) msg = 'RTOL, ATOL or RWORK(11..16): '//msg
+        if (stat /= regdae_success) msg = 'RTOL, ATOL or RWORK(11..19): '//msg
     end subroutine options_from
 
     ! ATOL for each of the k components of the state: ATOL(1:k) with INFO(2) = 1, else ATOL(1).
@@ -545,20 +614,22 @@ contains
 
     ! What DASSL's (and DDASPK's) INFO(i) asks for, why DREGDAE does not have it, and
     ! what to do instead.
-    pure function dassl_feature(i) result(text)
+    pure function dassl_feature(i, kind) result(text)
         integer, intent(in) :: i
+        integer, intent(in) :: kind   ! kind_first_order (DREGDAE) or kind_mechanical (DREGDAEM)
         character(len=:), allocatable :: text
         select case (i)
         case (5)
-            text = 'a JAC routine, which DREGDAE does not take (it forms the Jacobian of the regularized system '// &
-                   'itself from GX and difference quotients): set INFO(5) = 0'
+            text = 'a JAC routine, which '//trim(merge('DREGDAE ', 'DREGDAEM', kind == kind_first_order))// &
+                   ' does not take (its argument list has no place for it): call '// &
+                   trim(merge('DREGDAEJ ', 'DREGDAEMJ', kind == kind_first_order))//' (the same arguments '// &
+                   'and JAC after IPAR, as DASSL), or set INFO(5) = 0'
         case (6)
-            text = 'a banded matrix (IWORK(1), IWORK(2)), which DREGDAE does not take (its systems are dense; the '// &
-                   'band solver serves the declared structure of large mechanisms in the Fortran and C APIs, '// &
-                   'linear_solver=band): set INFO(6) = 0'
-        case (10)
-            text = 'nonnegative solutions, which DREGDAE does not enforce (it passes no constraints to IDA): set '// &
-                   'INFO(10) = 0 and check the signs after each return'
+            text = 'a banded matrix (IWORK(1), IWORK(2)), which DREGDAE does not take: the Newton matrix of its '// &
+                   'regularized system is not banded when df/dx is (the multiplier y(x) solves (GB) y = G f + ..., '// &
+                   'so every component that G f reads enters every row that B has), and the dense solver '// &
+                   'serves it; set INFO(6) = 0 (for a large mechanism declare its structure in the Fortran or C '// &
+                   'API: the augmented formulation takes linear_solver=band or sparse)'
         case (12, 13, 15)
             text = 'DDASPK''s Krylov method (INFO(12), (13), (15)), which DREGDAE does not have (its Newton '// &
                    'systems are solved directly): set INFO(12), INFO(13) and INFO(15) to 0'

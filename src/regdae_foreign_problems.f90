@@ -44,11 +44,17 @@ module regdae_foreign_problems
     type, abstract, public :: foreign_routines
         !> The last routine that reported failure, in the door's words (for messages).
         character(len=:), allocatable :: failure
+        !> Every component of x (q) must stay >= 0 (FORTRAN 77: INFO(10) = 1).
+        logical :: nonnegative = .false.
     contains
         !> Whether routine `which` was given.
         procedure(has_routine), deferred :: has
         !> Evaluate routine `which` at (t, x), or (t, x, v) when v is present.
         procedure(evaluate_routine), deferred :: evaluate
+        !> From on = .true. to .false.: routine `which` (f or the forces) near (t, x, v)
+        !! from the user's Jacobian of it there, if the door has one (`linearize_rhs`
+        !! of the problems); default: nothing.
+        procedure :: linearize => no_linearization
     end type foreign_routines
 
     abstract interface
@@ -79,6 +85,8 @@ module regdae_foreign_problems
         procedure :: constraint => first_g
         procedure :: constraint_jacobian => first_gx
         procedure :: constraint_dt => first_gt
+        procedure :: linearize_rhs => first_linearize
+        procedure :: nonnegative => first_nonnegative
     end type foreign_first_order
 
     !> A second-order problem x'' = f(x, x', t) - B(x, x', t) y, 0 = g(x, t) with foreign routines.
@@ -112,6 +120,8 @@ module regdae_foreign_problems
         procedure :: structure => mechanical_structure_declared
         procedure :: mass_values => mechanical_mass_values
         procedure :: constraint_jacobian_values => mechanical_gx_values
+        procedure :: linearize_rhs => mechanical_linearize
+        procedure :: nonnegative => mechanical_nonnegative
     end type foreign_mechanical
 
     public :: routine_name
@@ -138,6 +148,29 @@ contains
         integer, intent(inout) :: stat
         call self%routines%evaluate(routine_f, t, x, v, stat)
     end subroutine first_f
+
+    subroutine no_linearization(self, which, t, x, on, stat, v)
+        class(foreign_routines), intent(inout) :: self
+        integer, intent(in) :: which           !! routine_f or routine_forces
+        real(wp), intent(in) :: t, x(:)        !! the point of the Jacobian
+        logical, intent(in) :: on              !! .true.: linearize there; .false.: evaluate again
+        integer, intent(inout) :: stat         !! 0 on entry; > 0 recoverable, < 0 fatal failure
+        real(wp), intent(in), optional :: v(:) !! the velocity (routine_forces)
+    end subroutine no_linearization
+
+    subroutine first_linearize(self, t, x, on, stat)
+        class(foreign_first_order), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        logical, intent(in) :: on
+        integer, intent(inout) :: stat
+        call self%routines%linearize(routine_f, t, x, on, stat)
+    end subroutine first_linearize
+
+    function first_nonnegative(self) result(mask)
+        class(foreign_first_order), intent(in) :: self
+        logical :: mask(self%n)
+        mask = self%routines%nonnegative
+    end function first_nonnegative
 
     subroutine first_b(self, t, x, a, stat)
         class(foreign_first_order), intent(inout) :: self
@@ -252,6 +285,20 @@ contains
         integer, intent(inout) :: stat
         call self%routines%evaluate(routine_forces, t, q, f, stat, qd)
     end subroutine mechanical_forces
+
+    subroutine mechanical_linearize(self, t, x, v, on, stat)
+        class(foreign_mechanical), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)
+        logical, intent(in) :: on
+        integer, intent(inout) :: stat
+        call self%routines%linearize(routine_forces, t, x, on, stat, v)
+    end subroutine mechanical_linearize
+
+    function mechanical_nonnegative(self) result(mask)
+        class(foreign_mechanical), intent(in) :: self
+        logical :: mask(self%n)
+        mask = self%routines%nonnegative
+    end function mechanical_nonnegative
 
     subroutine mechanical_g(self, t, x, val, stat)
         class(foreign_mechanical), intent(inout) :: self

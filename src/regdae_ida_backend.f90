@@ -42,7 +42,7 @@ module regdae_ida_backend
     use regdae_options, only: solver_options, exclusion_weights, exclusion_suppress, excluded_vy, linear_solver_dense, &
                               linear_solver_band, linear_solver_sparse, linear_solver_name
     use regdae_implicit_system, only: implicit_system
-    use regdae_sparsity, only: sparsity_pattern, color_columns, permuted_bandwidths
+    use regdae_sparsity, only: sparsity_pattern, column_groups, permuted_bandwidths
     use regdae_solver_stats, only: solver_stats
     use regdae_c_strings, only: c_string
     implicit none
@@ -85,6 +85,7 @@ module regdae_ida_backend
         type(c_ptr) :: sunctx = c_null_ptr
         type(c_ptr) :: ida_mem = c_null_ptr
         type(N_Vector), pointer :: uu => null(), up => null(), idv => null()
+        type(N_Vector), pointer :: constraints => null()   ! IDASetConstraints: 1 for the unknowns kept >= 0
         type(SUNMatrix), pointer :: jmat => null()
         type(SUNLinearSolver), pointer :: ls => null()
         real(wp), allocatable :: u_pert(:), up_pert(:), r_pert(:)
@@ -236,6 +237,8 @@ contains
             msg = 'setting the tolerances failed: '//self%ida_message
             return
         end if
+        call set_nonnegative(self, msg)
+        if (len(msg) > 0) return
 
         ! The linear solver, with our own, weight-independent Jacobian.
         call create_linear_solver(self, msg)
@@ -260,31 +263,37 @@ contains
         msg = ''
     end subroutine backend_create
 
+    ! IDA's constraint option (IDASetConstraints, code 1: >= 0) for the unknowns the
+    ! system keeps nonnegative, if any; msg is empty on success.
+    subroutine set_nonnegative(self, msg)
+        type(ida_backend), intent(inout) :: self
+        character(len=:), allocatable, intent(out) :: msg
+        logical :: mask(self%neq)
+        real(c_double), pointer :: p(:)
+        msg = ''
+        mask = self%system%nonnegative_unknowns()
+        if (.not. any(mask)) return
+        self%constraints => FN_VNew_Serial(int(self%neq, c_long), self%sunctx)
+        if (.not. associated(self%constraints)) then
+            msg = 'FN_VNew_Serial failed'
+            return
+        end if
+        p => FN_VGetArrayPointer(self%constraints)
+        p = merge(1.0_wp, 0.0_wp, mask)
+        if (FIDASetConstraints(self%ida_mem, self%constraints) /= 0) &
+            msg = 'setting the nonnegativity constraints failed: '//self%ida_message
+    end subroutine set_nonnegative
+
     ! The groups of columns and the column pattern of a structured system.
     subroutine prepare_groups(self)
         type(ida_backend), intent(inout) :: self
         type(sparsity_pattern) :: columns
-        integer, allocatable :: color(:), fill(:)
-        integer :: j, c
+        integer :: j
         associate (p => self%system%jac_pattern)
             columns = p%transposed()
             self%csc_start = columns%row_start
             self%csc_rows = columns%cols
-            call color_columns(p, color, self%ngroups)
-            allocate (self%group_start(self%ngroups + 1), self%group_cols(p%ncols), fill(self%ngroups))
-            self%group_start = 0
-            do j = 1, p%ncols
-                self%group_start(color(j) + 1) = self%group_start(color(j) + 1) + 1
-            end do
-            self%group_start(1) = 1
-            do c = 1, self%ngroups
-                self%group_start(c + 1) = self%group_start(c + 1) + self%group_start(c)
-            end do
-            fill = self%group_start(1:self%ngroups)
-            do j = 1, p%ncols
-                self%group_cols(fill(color(j))) = j
-                fill(color(j)) = fill(color(j)) + 1
-            end do
+            call column_groups(p, self%ngroups, self%group_start, self%group_cols)
             call permuted_bandwidths(p, [(j, j=1, p%ncols)], self%band_lower, self%band_upper)
         end associate
         allocate (self%delta(self%neq))
@@ -574,6 +583,7 @@ contains
         if (associated(self%ls)) ierr = FSUNLinSolFree(self%ls)
         if (associated(self%jmat)) call FSUNMatDestroy(self%jmat)
         if (associated(self%idv)) call FN_VDestroy(self%idv)
+        if (associated(self%constraints)) call FN_VDestroy(self%constraints)
         if (associated(self%up)) call FN_VDestroy(self%up)
         if (associated(self%uu)) call FN_VDestroy(self%uu)
         if (c_associated(self%sunctx)) ierr = FSUNContext_Free(self%sunctx)
@@ -582,6 +592,7 @@ contains
         self%ls => null()
         self%jmat => null()
         self%idv => null()
+        self%constraints => null()
         self%up => null()
         self%uu => null()
     end subroutine backend_free
@@ -607,12 +618,22 @@ contains
             recoverable = .true.
             self%system%message = 'NaN or Inf in the residual at t = '//format_real(t)
         end if
+        ierr = callback_failure(self, t, stat, recoverable)
+    end function evaluate_residual
+
+    ! A callback of the system failed at t (stat, recoverable, the system's message):
+    ! kept for failure_status, and IDA's flag (1: recoverable, -1: not).
+    integer(c_int) function callback_failure(self, t, stat, recoverable) result(ierr)
+        type(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: t
+        integer, intent(in) :: stat
+        logical, intent(in) :: recoverable
         self%pending_stat = stat
         self%pending_recoverable = recoverable
         self%pending_message = self%system%message
         if (recoverable) call note_recoverable_failure(self, t)
         ierr = merge(1_c_int, -1_c_int, self%pending_recoverable)
-    end function evaluate_residual
+    end function callback_failure
 
     ! A recoverable failure at the trial time t. IDA retries with a smaller step;
     ! when the failure sits at a point the solution cannot pass (f NaN for all
@@ -673,7 +694,8 @@ contains
         type(ida_backend), pointer :: self
         real(c_double), pointer :: u(:), up(:), res(:), jdata(:), jac(:, :)
         real(wp) :: delta, sqrt_unit
-        integer :: j, neq
+        integer :: j, neq, stat
+        logical :: recoverable
 
         call c_f_pointer(user_data, self)
         neq = self%neq
@@ -687,6 +709,13 @@ contains
         sqrt_unit = sqrt(epsilon(1.0_wp))
         self%u_pert = u(1:neq)
         self%up_pert = up(1:neq)
+        ! the system may take the user's Jacobian of f at u for the perturbed residuals
+        ierr = 0
+        call self%system%jacobian_phase(t, u(1:neq), .true., stat, recoverable)
+        if (stat /= regdae_success) then
+            ierr = callback_failure(self, t, stat, recoverable)
+            return
+        end if
         do j = 1, neq
             delta = sqrt_unit*max(abs(u(j)), 1.0_wp)
             self%u_pert(j) = u(j) + delta
@@ -694,12 +723,12 @@ contains
             self%up_pert(j) = up(j) + cj*delta
             ierr = evaluate_residual(self, t, self%u_pert, self%up_pert, self%r_pert)
             self%jac_res_evals = self%jac_res_evals + 1
-            if (ierr /= 0) return
+            if (ierr /= 0) exit
             jac(:, j) = (self%r_pert - res(1:neq))/delta
             self%u_pert(j) = u(j)
             self%up_pert(j) = up(j)
         end do
-        ierr = 0
+        call self%system%jacobian_phase(t, u(1:neq), .false., stat, recoverable)
     end function ida_jacobian
 
     ! The Jacobian dF/du + cj dF/du' of a structured system by grouped forward

@@ -19,6 +19,12 @@ module regdae_implicit_system
     contains
         !> res = F(t, u, u'); stat = regdae status, `recoverable`: may a smaller step help?
         procedure(residual_interface), deferred :: residual
+        !> Around a difference-quotient Jacobian at (t, u): `on` before its perturbed
+        !! residuals, then off. A system may take parts of those residuals from the
+        !! user's Jacobians meanwhile (`linearize_rhs` of the problem); default: nothing.
+        procedure :: jacobian_phase => no_jacobian_phase
+        !> The unknowns that must stay >= 0 (IDA's constraint option); default: none.
+        procedure :: nonnegative_unknowns => no_nonnegative_unknowns
     end type implicit_system
 
     abstract interface
@@ -31,5 +37,23 @@ module regdae_implicit_system
             logical, intent(out) :: recoverable
         end subroutine residual_interface
     end interface
+
+contains
+
+    subroutine no_jacobian_phase(self, t, u, on, stat, recoverable)
+        class(implicit_system), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:)       !! the point of the Jacobian
+        logical, intent(in) :: on             !! .true.: the perturbed residuals follow; .false.: done
+        integer, intent(out) :: stat          !! regdae status (a failure of the user's Jacobian routine)
+        logical, intent(out) :: recoverable   !! may a smaller step help?
+        stat = 0
+        recoverable = .true.
+    end subroutine no_jacobian_phase
+
+    function no_nonnegative_unknowns(self) result(mask)
+        class(implicit_system), intent(in) :: self
+        logical :: mask(self%neq)   !! true: the unknown must stay >= 0
+        mask = .false.
+    end function no_nonnegative_unknowns
 
 end module regdae_implicit_system

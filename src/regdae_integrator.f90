@@ -11,8 +11,8 @@
 !! pointer to the solver's core record (`regdae_solver_core`), which holds two
 !! slots: `nonstiff` (the explicit Dormand-Prince, `regdae_dopri5_integrator`)
 !! and `stiff` (SUNDIALS IDA on the eliminated, multiplier or augmented
-!! formulation, `regdae_ida_integrator`, or Radau IIA on the eliminated one,
-!! `regdae_radau_integrator`). A new integrator is one new module: its type,
+!! formulation, `regdae_ida_integrator`, or Radau IIA on the eliminated or the
+!! augmented one, `regdae_radau_integrator`). A new integrator is one new module: its type,
 !! extending this one, allocated in a slot by the front's init (and by the
 !! switching policy for `auto`).
 !!

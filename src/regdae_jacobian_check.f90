@@ -22,7 +22,7 @@ module regdae_jacobian_check
     implicit none
     private
 
-    public :: check_second_order_jacobian, check_structured_jacobian
+    public :: check_second_order_jacobian, check_structured_jacobian, compare_jacobian
 
 contains
 
@@ -258,15 +258,20 @@ contains
         end do
     end subroutine constraint_difference_quotient
 
-    ! |analytic - dq| <= 1e-6 max(1, max |dq|) entry by entry (central differences
-    ! are accurate to about u^(2/3) ~ 4e-11 relative); else regdae_err_jacobian.
-    subroutine compare_jacobian(name, analytic, dq, stat, msg)
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: analytic(:, :), dq(:, :)
+    !> |analytic - dq| <= 1e-6 max(1, max |dq|) entry by entry (central differences
+    !! are accurate to about u^(2/3) ~ 4e-11 relative); else regdae_err_jacobian with
+    !! the worst entry (row, column) named.
+    subroutine compare_jacobian(name, analytic, dq, stat, msg, of)
+        character(len=*), intent(in) :: name               !! the user's routine that gave `analytic`
+        real(wp), intent(in) :: analytic(:, :), dq(:, :)    !! the user's matrix, the difference quotients
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
+        character(len=*), intent(in), optional :: of        !! what dq differentiates (default: the constraint)
         integer :: worst(2)
         real(wp) :: scale
+        character(len=:), allocatable :: quotient_of
+        quotient_of = 'the constraint'
+        if (present(of)) quotient_of = of
         stat = regdae_success
         msg = ''
         if (size(dq) == 0) return
@@ -274,7 +279,7 @@ contains
         worst = maxloc(abs(analytic - dq))
         if (abs(analytic(worst(1), worst(2)) - dq(worst(1), worst(2))) <= 1.0e-6_wp*scale) return
         stat = regdae_err_jacobian
-        msg = 'check_jacobians: '//name//' disagrees with the difference quotient of the constraint at entry ('// &
+        msg = 'check_jacobians: '//name//' disagrees with the difference quotient of '//quotient_of//' at entry ('// &
               format_int(worst(1))//', '//format_int(worst(2))//'): '//format_real(analytic(worst(1), worst(2)))// &
               ' against '//format_real(dq(worst(1), worst(2)))
     end subroutine compare_jacobian

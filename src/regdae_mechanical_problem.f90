@@ -25,14 +25,11 @@ module regdae_mechanical_problem
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_err_mass_matrix, regdae_err_structure, regdae_err_memory
     use regdae_lapack, only: dpotrf, dpotrs
+    use regdae_small_cholesky, only: small_cholesky, small_cholesky_solve, small_n => small_cholesky_max
     use regdae_sparsity, only: sparsity_pattern, sparse_times, empty_pattern
     use regdae_second_order_problem, only: second_order_problem
     implicit none
     private
-
-    ! Up to this size M is factored by the loops below instead of LAPACK, whose
-    ! call overhead dominates for a handful of coordinates.
-    integer, parameter :: small_n = 8
 
     !> Which entries of a mechanical problem's matrices may be nonzero. Nothing
     !! declared (the default) means dense.
@@ -244,7 +241,7 @@ contains
             end if
         end if
         if (n <= small_n) then
-            call small_cholesky(n, self%factor, info)
+            call small_cholesky(n, self%factor, n, info)
         else
             call dpotrf('L', n, self%factor, n, info)
         end if
@@ -281,7 +278,7 @@ contains
         if (stat /= 0) return
         if (self%mass_damping > 0.0_wp) val = matmul(val, self%mass)   ! M^T f
         if (self%n <= small_n) then
-            call small_cholesky_solve(self%n, self%factor, val)
+            call small_cholesky_solve(self%n, self%factor, self%n, val)
         else
             call dpotrs('L', self%n, 1, self%factor, self%n, val, self%n, info)
         end if
@@ -312,7 +309,7 @@ contains
             ! B = M^-1 G^T column by column, directly in a.
             do j = 1, self%m
                 a(:, j) = gx(j, :)
-                call small_cholesky_solve(self%n, self%factor, a(:, j))
+                call small_cholesky_solve(self%n, self%factor, self%n, a(:, j))
             end do
             return
         end if
@@ -323,7 +320,7 @@ contains
             if (self%mass_damping > 0.0_wp) bt = matmul(transpose(self%mass), bt)   ! M^T G^T
             if (self%n <= small_n) then
                 do j = 1, self%m
-                    call small_cholesky_solve(self%n, self%factor, bt(:, j))
+                    call small_cholesky_solve(self%n, self%factor, self%n, bt(:, j))
                 end do
             else
                 call dpotrs('L', self%n, self%m, self%factor, self%n, bt, self%n, info)
@@ -352,79 +349,5 @@ contains
         end do
         ok = (asym <= tol*amax)
     end subroutine copy_if_symmetric
-
-    ! In-place Cholesky factor L (lower triangle) of a small SPD matrix; info > 0
-    ! if it is not positive definite.
-    pure subroutine small_cholesky(n, a, info)
-        integer, intent(in) :: n
-        real(wp), intent(inout) :: a(n, n)
-        integer, intent(out) :: info
-        integer :: i, j, k
-        real(wp) :: s
-        info = 0
-        if (n == 2) then   ! the loops below, unrolled (same operations, same rounding)
-            if (.not. (a(1, 1) > 0.0_wp)) then
-                info = 1
-                return
-            end if
-            a(1, 1) = sqrt(a(1, 1))
-            a(2, 1) = a(2, 1)/a(1, 1)
-            s = a(2, 2) - a(2, 1)**2
-            if (.not. (s > 0.0_wp)) then
-                info = 2
-                return
-            end if
-            a(2, 2) = sqrt(s)
-            return
-        end if
-        do j = 1, n
-            s = a(j, j)
-            do k = 1, j - 1
-                s = s - a(j, k)**2
-            end do
-            if (.not. (s > 0.0_wp)) then
-                info = j
-                return
-            end if
-            a(j, j) = sqrt(s)
-            do i = j + 1, n
-                s = a(i, j)
-                do k = 1, j - 1
-                    s = s - a(i, k)*a(j, k)
-                end do
-                a(i, j) = s/a(j, j)
-            end do
-        end do
-    end subroutine small_cholesky
-
-    ! Solve L L^T x = b in place with the factor of `small_cholesky`.
-    pure subroutine small_cholesky_solve(n, l, b)
-        integer, intent(in) :: n
-        real(wp), intent(in) :: l(n, n)
-        real(wp), intent(inout) :: b(n)
-        integer :: j, k
-        real(wp) :: s
-        if (n == 2) then   ! the loops below, unrolled (same operations, same rounding)
-            b(1) = b(1)/l(1, 1)
-            b(2) = (b(2) - l(2, 1)*b(1))/l(2, 2)
-            b(2) = b(2)/l(2, 2)
-            b(1) = (b(1) - l(2, 1)*b(2))/l(1, 1)
-            return
-        end if
-        do j = 1, n
-            s = b(j)
-            do k = 1, j - 1
-                s = s - l(j, k)*b(k)
-            end do
-            b(j) = s/l(j, j)
-        end do
-        do j = n, 1, -1
-            s = b(j)
-            do k = j + 1, n
-                s = s - l(k, j)*b(k)
-            end do
-            b(j) = s/l(j, j)
-        end do
-    end subroutine small_cholesky_solve
 
 end module regdae_mechanical_problem

@@ -28,8 +28,8 @@
 !! | work_tol       | >= 0 or auto (mechanical: alarm when the work-energy defect exceeds this fraction of the energy scale, 0: off; auto: 0.05 (rtol/1e-3)^(1/5) within [0.02, 0.05]) | auto |
 !! | taylor_h       | > 0 (order >= 3: h of the weights m!/(k! h^(m-k))) | 1e-2 |
 !! | mass_damping   | >= 0 (mechanical: mu of (M^T M + mu I), 0: Cholesky of M) | 0 |
-!! | integrator     | auto, ida, dopri5 (explicit, eliminated formulation only; auto: dopri5 while not stiff), radau (Radau IIA order 5, eliminated formulation only) | auto |
-!! | linear_solver  | auto, dense, band, sparse (IDA's Newton matrix; band and sparse: augmented) | auto |
+!! | integrator     | auto, ida, dopri5 (explicit, eliminated formulation only; auto: dopri5 while not stiff), radau (Radau IIA order 5, dense LU; the eliminated formulation as an ODE, the augmented one as an index-1 DAE) | auto |
+!! | linear_solver  | auto, dense, band, sparse (IDA's Newton matrix; band and sparse: augmented, integrator=ida) | auto |
 !! | check_jacobians | yes, no (at init: G against difference quotients of g; augmented: the grouped Newton matrix against the full one) | no |
 !! | pass_check     | yes, no (order 1 and 2: each singular pass re-integrated at rtol/10 (and /100, /1000 while they disagree) and held against pass_tol; warning regdae_warn_unresolved if no level agrees) | yes |
 !! | pass_tol       | > 0 (the largest difference of two levels over a pass, in units of the error weights rtol abs(z) + atol, that counts as agreement) | 3 |
@@ -121,7 +121,7 @@ module regdae_options
                                                        !! warns (regdae_warn_unresolved); 0: off
         real(wp) :: taylor_h = 1.0e-2_wp               !! order >= 3: h of the Taylor weights (eq. 4.16)
         real(wp) :: mass_damping = 0.0_wp              !! mechanical: mu of (4.11); 0: M must be SPD
-        integer :: integrator = integrator_auto        !! auto, ida, dopri5 (explicit) or radau (eliminated formulation)
+        integer :: integrator = integrator_auto        !! auto, ida, dopri5 (explicit) or radau (eliminated or augmented)
         integer :: linear_solver = linear_solver_auto  !! IDA's linear solver
         logical :: check_jacobians = .false.           !! compare the user's G (and the grouped Newton matrix) with
                                                        !! difference quotients at init (regdae_err_jacobian)
@@ -282,11 +282,17 @@ contains
             return
         else if (opts%integrator < integrator_auto .or. opts%integrator > integrator_radau) then
             msg = 'integrator must be auto, ida, dopri5 or radau'
-        else if ((opts%integrator == integrator_dopri5 .or. opts%integrator == integrator_radau) .and. &
+        else if (opts%integrator == integrator_dopri5 .and. &
                  opts%formulation /= formulation_eliminated .and. opts%formulation /= formulation_auto) then
-            msg = 'integrator='//integrator_name(opts%integrator)//' needs formulation=eliminated'
+            msg = 'integrator=dopri5 needs formulation=eliminated'
+        else if (opts%integrator == integrator_radau .and. opts%formulation == formulation_multiplier) then
+            msg = 'integrator=radau needs formulation=eliminated or augmented (or auto)'
         else if (opts%linear_solver < linear_solver_auto .or. opts%linear_solver > linear_solver_sparse) then
             msg = 'linear_solver must be auto, dense, band or sparse'
+        else if (opts%integrator == integrator_radau .and. (opts%linear_solver == linear_solver_band .or. &
+                                                             opts%linear_solver == linear_solver_sparse)) then
+            msg = 'linear_solver='//linear_solver_name(opts%linear_solver)//' is for integrator=ida: integrator=radau '// &
+                  'factors its Newton matrices dense (linear_solver=dense or auto)'
         else if ((opts%linear_solver == linear_solver_band .or. opts%linear_solver == linear_solver_sparse) .and. &
                  (opts%formulation == formulation_eliminated .or. opts%formulation == formulation_multiplier)) then
             msg = 'linear_solver='//linear_solver_name(opts%linear_solver)//' needs formulation=augmented (or auto): '// &

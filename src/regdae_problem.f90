@@ -33,6 +33,14 @@ module regdae_problem
         procedure(matrix_field), deferred :: constraint_jacobian
         !> dg/dt (x, t), length m; default: central difference quotient in t.
         procedure :: constraint_dt => default_constraint_dt
+        !> Called by the solver around the difference-quotient Jacobian of IDA's dense
+        !! Newton matrix at (t, x): on = .true. before its perturbed evaluations, then
+        !! .false.; meanwhile `rhs` may return f(x0) + J (x - x0), J = df/dx at x0 from
+        !! a Jacobian the user supplied (the FORTRAN 77 door's JAC). Default: nothing.
+        procedure :: linearize_rhs => default_linearize_rhs
+        !> The components of x that IDA keeps >= 0 (its constraint option; the FORTRAN 77
+        !! door's INFO(10)); default: none.
+        procedure :: nonnegative => default_nonnegative
     end type dae_problem
 
     public :: constraint_dt_difference
@@ -69,6 +77,20 @@ contains
         integer, intent(inout) :: stat
         call constraint_dt_difference(self, t, x, v, stat)
     end subroutine default_constraint_dt
+
+    subroutine default_linearize_rhs(self, t, x, on, stat)
+        class(dae_problem), intent(inout) :: self
+        real(wp), intent(in) :: t        !! time
+        real(wp), intent(in) :: x(:)     !! the point of the Jacobian, length n
+        logical, intent(in) :: on        !! .true.: linearize at (t, x); .false.: evaluate f again
+        integer, intent(inout) :: stat   !! 0 on entry; > 0 recoverable, < 0 fatal failure
+    end subroutine default_linearize_rhs
+
+    function default_nonnegative(self) result(mask)
+        class(dae_problem), intent(in) :: self
+        logical :: mask(self%n)   !! true: x_i must stay >= 0
+        mask = .false.
+    end function default_nonnegative
 
     !> g_t by the central difference (g(x, t+d) - g(x, t-d)) / (2 d),
     !! d = u^(1/3) max(|t|, 1): truncation and rounding errors both ~ u^(2/3).

@@ -4,14 +4,17 @@
 !! integrates the eliminated formulation as an ODE z' = F(t, z) (the model's
 !! slope_eliminated, as dopri5 does), with dense LU and difference-quotient
 !! Jacobians; the error test leaves out what the IDA path leaves out (core%excluded).
+!! With formulation=augmented it integrates the augmented system as the index-1
+!! DAE of `regdae_radau_augmented` (the accelerations a = v' as algebraic unknowns,
+!! mass diag(1 on q and v, 0 elsewhere)), dense LU and grouped difference
+!! quotients; the error test leaves out what IDA's does on that system (u, y, s,
+!! and v with excluded=vy) and a, which IDA's vector does not hold (a stays in
+!! with exclusion=off). Its state() and slope() are then the augmented vector and
+!! its derivative in IDA's order (v' = a), and `augmented()` the system.
 !! Its `advance` is `regdae_implicit_steps`'s loop over Radau's single steps, the
 !! monitor sampling every accepted step's end and the output time, in time order,
 !! like the IDA integrator; with integrator=auto the loop asks the switching
 !! policy every 20 steps whether the explicit method would do.
-!!
-!! The augmented formulation is not run here: its residual is not M u' - F(t, u)
-!! with a constant diagonal M (the v rows are M(q) v', and the trust region's s
-!! rows hold G(q) v'), which is the form the Radau IIA code takes.
 module regdae_radau_integrator
     use, intrinsic :: iso_c_binding, only: c_double
     use regdae_kinds, only: wp
@@ -21,6 +24,8 @@ module regdae_radau_integrator
     use regdae_regularization, only: regularized_dae
     use regdae_radau_system, only: radau_system, radau_options, radau_stats
     use regdae_radau_iia, only: radau_integrator
+    use regdae_radau_augmented, only: augmented_dae
+    use regdae_augmented_system, only: augmented_system
     use regdae_solver_core, only: solver_core
     use regdae_switching_policy, only: spectral_radius
     use regdae_implicit_steps, only: implicit_stepper
@@ -41,7 +46,10 @@ module regdae_radau_integrator
     !> Radau IIA on the core's model (see the module documentation).
     type, extends(implicit_stepper), public :: radau_adapter
         type(radau_integrator) :: radau                !! the method's state
-        type(eliminated_ode) :: ode                    !! the system it integrates
+        type(eliminated_ode) :: ode                    !! the system it integrates (eliminated formulation)
+        type(augmented_dae) :: dae                     !! the system it integrates (augmented formulation)
+        logical :: on_augmented = .false.              !! dae, not ode (set by take_augmented)
+        real(wp), allocatable :: uu(:), uup(:)         !! dae: the unknowns U = (x, a) and U'
         type(radau_stats) :: before                    !! the counters of the earlier starts
         real(wp), allocatable :: z(:), zp(:)           !! the state and slope at the time reached (or interpolated)
         logical :: started = .false.                   !! radau holds a started state
@@ -59,6 +67,9 @@ module regdae_radau_integrator
         procedure :: stiffness => radau_stiffness
         procedure :: ready => radau_ready
         procedure :: free => radau_free
+        procedure :: augmented => radau_augmented
+        !> Integrate the augmented system sys (set up, parameters resolved) from now on.
+        procedure :: take_augmented => radau_take_augmented
     end type radau_adapter
 
 contains
@@ -89,6 +100,7 @@ contains
 
     !> Start (again) at (t, z): the core's tolerances (rtol, the state's atol), the
     !! error test without the excluded components, the first step h0 when given (> 0).
+    !! On the augmented system z is (q, v) and the algebraic unknowns are computed.
     subroutine radau_start(self, t, z, stat, msg, h0, zp, y)
         class(radau_adapter), intent(inout), target :: self
         real(wp), intent(in) :: t, z(:)
@@ -98,26 +110,38 @@ contains
         type(radau_options) :: ro
         associate (core => self%core)
             if (self%started) self%before = add_stats(self%before, self%radau%statistics())
-            self%ode%model => core%model
-            self%ode%failure = ''
-            if (.not. allocated(self%ode%y)) allocate (self%ode%y(core%m))
             ro%rtol = core%opts%rtol
-            ro%atol_vector = core%atol_z(1:core%n)
             ro%max_steps = huge(1)   ! the budget is counted per advance (max_steps), here
             ro%h_max = core%opts%h_max
             if (present(h0)) ro%h0 = max(0.0_wp, h0)
-            ro%error_test = .not. core%excluded(1:core%n)
-            if (.not. any(ro%error_test)) deallocate (ro%error_test)
-            call self%radau%start(self%ode, t, z, ro, stat)
+            if (self%on_augmented) then
+                ro%atol_vector = self%dae%tolerances(self%dae%sys%tolerance_vector(core%atol_z(1:core%nx), &
+                                                     core%atol_z(core%nx + 1:core%n), core%opts%atol), core%opts%atol)
+                ro%error_test = [.not. core%excluded(1:core%neq), spread(.not. any(core%excluded), 1, core%nx)]
+                ro%mass = self%dae%mass
+                self%dae%failure = ''
+                if (.not. allocated(self%uu)) allocate (self%uu(core%neq + core%nx), self%uup(core%neq + core%nx))
+                call self%dae%consistent(t, z(1:core%nx), z(core%nx + 1:core%n), self%uu, stat, msg)
+                if (stat /= regdae_success) return
+                call self%radau%start(self%dae, t, self%uu, ro, stat)
+            else
+                self%ode%model => core%model
+                self%ode%failure = ''
+                if (.not. allocated(self%ode%y)) allocate (self%ode%y(core%m))
+                self%z = z
+                if (.not. allocated(self%zp)) allocate (self%zp(core%n))
+                ro%atol_vector = core%atol_z(1:core%n)
+                ro%error_test = .not. core%excluded(1:core%n)
+                if (.not. any(ro%error_test)) deallocate (ro%error_test)
+                call self%radau%start(self%ode, t, z, ro, stat)
+            end if
             self%started = .true.
-            self%z = z
-            if (.not. allocated(self%zp)) allocate (self%zp(core%n))
             msg = ''
             if (stat /= regdae_success) then
                 msg = self%radau%message()
                 return
             end if
-            call self%radau%slope(self%zp)
+            call self%to_step_end()
         end associate
     end subroutine radau_start
 
@@ -129,23 +153,41 @@ contains
         real(wp), intent(out) :: t_now
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(inout) :: msg
-        if (self%core%opts%stop_at_output) then
-            call self%radau%step(self%ode, stat, tout)
+        character(len=:), allocatable :: failure
+        if (self%on_augmented) then
+            call step_on(self%dae)
+            failure = self%dae%failure
         else
-            call self%radau%step(self%ode, stat)
+            call step_on(self%ode)
+            failure = self%ode%failure
         end if
         t_now = self%radau%time()
         call self%to_step_end()
         if (stat == regdae_success) return
         msg = 'Radau failed at t = '//format_real(t_now)//': '//self%radau%message()
-        if (len(self%ode%failure) > 0) msg = msg//' | last failure of F: '//self%ode%failure
+        if (len(failure) > 0) msg = msg//' | last failure of F: '//failure
+    contains
+        subroutine step_on(sys)
+            class(radau_system), intent(inout) :: sys
+            if (self%core%opts%stop_at_output) then
+                call self%radau%step(sys, stat, tout)
+            else
+                call self%radau%step(sys, stat)
+            end if
+        end subroutine step_on
     end subroutine radau_step_towards
 
     !> The state and slope at the end of the last step.
     subroutine radau_to_step_end(self)
         class(radau_adapter), intent(inout), target :: self
-        call self%radau%state(self%z)
-        call self%radau%slope(self%zp)
+        if (self%on_augmented) then
+            call self%radau%state(self%uu)
+            call self%radau%slope(self%uup)
+            call self%dae%augmented_pair(self%uu, self%uup, self%z, self%zp)
+        else
+            call self%radau%state(self%z)
+            call self%radau%slope(self%zp)
+        end if
     end subroutine radau_to_step_end
 
     function radau_name(self) result(who)
@@ -171,6 +213,12 @@ contains
         class(radau_adapter), intent(inout), target :: self
         real(wp), intent(in) :: t
         integer, intent(out) :: stat
+        if (self%on_augmented) then
+            call self%radau%solution_at(t, self%uu, stat)
+            if (stat == regdae_success) call self%radau%slope_at(t, self%uup, stat)
+            if (stat == regdae_success) call self%dae%augmented_pair(self%uu, self%uup, self%z, self%zp)
+            return
+        end if
         call self%radau%solution_at(t, self%z, stat)
         if (stat == regdae_success) call self%radau%slope_at(t, self%zp, stat)
     end subroutine radau_interpolate
@@ -198,7 +246,12 @@ contains
         if (self%started) own = add_stats(own, self%radau%statistics())
         st%steps = st%steps + own%accepted
         st%res_evals = st%res_evals + own%rhs_evals
-        st%jac_res_evals = st%jac_res_evals + own%jacobians*self%core%n
+        if (self%on_augmented) then   ! the grouped Jacobians' evaluations are not Radau's own
+            st%res_evals = st%res_evals + self%dae%jacobian_evals
+            st%jac_res_evals = st%jac_res_evals + self%dae%jacobian_evals
+        else
+            st%jac_res_evals = st%jac_res_evals + own%jacobians*self%core%n
+        end if
         st%jac_evals = st%jac_evals + own%jacobians
         st%lin_setups = st%lin_setups + own%lu_decompositions
         st%nonlin_iters = st%nonlin_iters + own%newton_iterations
@@ -219,11 +272,13 @@ contains
         c%newton_failures = a%newton_failures + b%newton_failures
     end function add_stats
 
-    !> The spectral radius of the eliminated formulation's Jacobian at the state.
+    !> The spectral radius of the eliminated formulation's Jacobian at the state
+    !! (0 on the augmented system: integrator=auto does not switch there).
     real(wp) function radau_stiffness(self, t) result(rho)
         class(radau_adapter), intent(inout), target :: self
         real(wp), intent(in) :: t
-        rho = spectral_radius(self%core, t, self%z)
+        rho = 0.0_wp
+        if (.not. self%on_augmented) rho = spectral_radius(self%core, t, self%z)
     end function radau_stiffness
 
     logical function radau_ready(self)
@@ -236,5 +291,20 @@ contains
         if (self%started) self%before = add_stats(self%before, self%radau%statistics())
         self%started = .false.
     end subroutine radau_free
+
+    function radau_augmented(self) result(sys)
+        class(radau_adapter), intent(in), target :: self
+        type(augmented_system), pointer :: sys
+        sys => null()
+        if (self%on_augmented) sys => self%dae%sys
+    end function radau_augmented
+
+    subroutine radau_take_augmented(self, sys)
+        class(radau_adapter), intent(inout), target :: self
+        type(augmented_system), intent(in) :: sys   !! set up, its eps and weights resolved
+        call self%dae%setup(sys)
+        self%on_augmented = .true.
+        if (.not. allocated(self%z)) allocate (self%z(sys%neq), self%zp(sys%neq))
+    end subroutine radau_take_augmented
 
 end module regdae_radau_integrator

@@ -96,6 +96,13 @@ module regdae_regularization
         !> sigma_min(GB) at the last evaluated point with G replaced by a given
         !! position Jacobian (B from it, as the problem builds B from G).
         procedure :: conditioning_with
+        !> From on = .true. to .false.: the problem's f at points near z (the perturbed
+        !! points of a difference-quotient Jacobian) from the user's Jacobian of f at
+        !! (t, z), where the problem has one (`linearize_rhs` of the problem).
+        procedure :: linearize_rhs
+        !> The components of the state z that must stay >= 0 (`nonnegative` of the
+        !! problem: x, none of v = x'); length order * n.
+        procedure :: nonnegative_state
         !> Residual of the eliminated formulation, unknowns z.
         procedure :: residual_eliminated
         !> The eliminated formulation's right-hand side F (z' = F(z, t)).
@@ -329,6 +336,33 @@ contains
             return
         end if
     end subroutine evaluate
+
+    subroutine linearize_rhs(self, t, z, on, stat, recoverable)
+        class(regularized_dae), intent(inout) :: self
+        real(wp), intent(in) :: t       !! time
+        real(wp), intent(in) :: z(:)    !! state: x (order 1) or (x, v) (order 2)
+        logical, intent(in) :: on       !! .true.: linearize at (t, z); .false.: evaluate f again
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        integer :: ustat
+        stat = regdae_success
+        recoverable = .true.
+        ustat = 0
+        if (self%order == 1) then
+            call self%first%linearize_rhs(t, z, on, ustat)
+        else if (self%order == 2) then
+            call self%second%linearize_rhs(t, z(1:self%n), z(self%n + 1:2*self%n), on, ustat)
+        end if
+        if (ustat /= 0) call report_failure(self, 'rhs_jacobian', t, ustat, stat, recoverable)
+    end subroutine linearize_rhs
+
+    function nonnegative_state(self) result(mask)
+        class(regularized_dae), intent(in) :: self
+        logical :: mask(self%order*self%n)
+        mask = .false.
+        if (self%order == 1) mask = self%first%nonnegative()
+        if (self%order == 2) mask(1:self%n) = self%second%nonnegative()
+    end function nonnegative_state
 
     ! A user routine of `evaluate` returned ustat /= 0: stat, recoverable and the message.
     subroutine report_failure(self, name, t, ustat, stat, recoverable)

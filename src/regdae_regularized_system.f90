@@ -15,6 +15,8 @@ module regdae_regularized_system
         real(wp), allocatable :: y_work(:)                  !! eliminated: the multiplier of the last residual
     contains
         procedure :: residual => regularized_residual
+        procedure :: jacobian_phase => regularized_jacobian_phase
+        procedure :: nonnegative_unknowns => regularized_nonnegative
     end type regularized_system
 
     public :: new_regularized_system
@@ -49,5 +51,24 @@ contains
         end if
         if (stat /= 0) self%message = self%model%message
     end subroutine regularized_residual
+
+    ! The state z (u without the multiplier) linearizes the problem's f there.
+    subroutine regularized_jacobian_phase(self, t, u, on, stat, recoverable)
+        class(regularized_system), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:)
+        logical, intent(in) :: on
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        call self%model%linearize_rhs(t, u(1:self%n), on, stat, recoverable)
+        if (stat /= 0) self%message = self%model%message
+    end subroutine regularized_jacobian_phase
+
+    ! The components of the state z the problem keeps >= 0 (none of the multiplier).
+    function regularized_nonnegative(self) result(mask)
+        class(regularized_system), intent(in) :: self
+        logical :: mask(self%neq)
+        mask = .false.
+        mask(1:self%n) = self%model%nonnegative_state()
+    end function regularized_nonnegative
 
 end module regdae_regularized_system

@@ -41,6 +41,11 @@ module regdae_second_order_problem
         !> An invariant I(x, v, t) of the motion (e.g. the energy of a conservative
         !! mechanism), checked when the option invariant_tol > 0; default: none (NaN).
         procedure :: invariant => default_invariant
+        !> As `linearize_rhs` of `dae_problem`, at (t, x, v): meanwhile f may come from
+        !! the user's df/dx and df/dv at (x0, v0). Default: nothing.
+        procedure :: linearize_rhs => default_linearize_second_order
+        !> The components of x (not of v) that IDA keeps >= 0; default: none.
+        procedure :: nonnegative => default_nonnegative_second_order
     end type second_order_problem
 
     abstract interface
@@ -83,6 +88,9 @@ module regdae_second_order_problem
 
     public :: velocity_constraint, curvature_difference, second_order_constraint_dt_difference
 
+    !> Constraint Jacobians with at most this many entries are formed in a local buffer.
+    integer, parameter :: small_jacobian_entries = 256
+
 contains
 
     subroutine default_matrix_b_from_jacobian(self, t, x, v, gx, a, stat)
@@ -116,25 +124,52 @@ contains
     end subroutine second_order_constraint_dt_difference
 
     !> The velocity constraint dg/dt = G(x, t) v + g_t(x, t), length m.
+    !! G goes into a local buffer when it has at most `small_jacobian_entries` entries (no heap
+    !! allocation on the slope's hot path: malloc and free were 18% of the slider crank's
+    !! instructions), else into an allocated one.
     subroutine velocity_constraint(problem, t, x, v, val, stat)
         class(second_order_problem), intent(inout) :: problem
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: val(:)
         integer, intent(inout) :: stat
-        real(wp), allocatable :: gx(:, :)
+        real(wp) :: small(small_jacobian_entries)
+        real(wp), allocatable :: large(:)
         integer :: astat
 
-        allocate (gx(problem%m, problem%n), stat=astat)
+        if (problem%m*problem%n <= small_jacobian_entries) then
+            call jacobian_times_velocity(problem, t, x, v, small, val, stat)
+            return
+        end if
+        allocate (large(problem%m*problem%n), stat=astat)
         if (astat /= 0) then
             stat = regdae_err_memory
             return
         end if
+        call jacobian_times_velocity(problem, t, x, v, large, val, stat)
+    end subroutine velocity_constraint
+
+    ! G v + g_t with G formed in gx (the caller's buffer of at least m n entries).
+    subroutine jacobian_times_velocity(problem, t, x, v, gx, val, stat)
+        class(second_order_problem), intent(inout) :: problem
+        real(wp), intent(in) :: t, x(:), v(:)
+        real(wp), intent(out) :: gx(problem%m, problem%n)
+        real(wp), intent(out) :: val(:)
+        integer, intent(inout) :: stat
+        real(wp) :: row_sum
+        integer :: i, j
+
         call problem%constraint_jacobian(t, x, gx, stat)
         if (stat /= 0) return
         call problem%constraint_dt(t, x, val, stat)
         if (stat /= 0) return
-        val = val + matmul(gx, v)
-    end subroutine velocity_constraint
+        do i = 1, problem%m
+            row_sum = 0.0_wp
+            do j = 1, problem%n
+                row_sum = row_sum + gx(i, j)*v(j)
+            end do
+            val(i) = val(i) + row_sum
+        end do
+    end subroutine jacobian_times_velocity
 
     subroutine default_invariant(self, t, x, v, val, stat)
         use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -144,6 +179,19 @@ contains
         integer, intent(inout) :: stat
         val = ieee_value(1.0_wp, ieee_quiet_nan)
     end subroutine default_invariant
+
+    subroutine default_linearize_second_order(self, t, x, v, on, stat)
+        class(second_order_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:), v(:)   !! the point of the Jacobian
+        logical, intent(in) :: on               !! .true.: linearize at (t, x, v); .false.: evaluate f again
+        integer, intent(inout) :: stat          !! 0 on entry; > 0 recoverable, < 0 fatal failure
+    end subroutine default_linearize_second_order
+
+    function default_nonnegative_second_order(self) result(mask)
+        class(second_order_problem), intent(in) :: self
+        logical :: mask(self%n)   !! true: x_i must stay >= 0
+        mask = .false.
+    end function default_nonnegative_second_order
 
     subroutine default_constraint_curvature(self, t, x, v, val, stat)
         class(second_order_problem), intent(inout) :: self
@@ -161,14 +209,36 @@ contains
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: val(:)
         integer, intent(inout) :: stat
-        real(wp) :: d, minus(size(val))
+        real(wp) :: small(small_jacobian_entries)
+        real(wp), allocatable :: large(:)
+        integer :: n, astat
 
-        d = central_difference_step(max(maxval(abs(x)), abs(t)))/max(1.0_wp, maxval(abs(v)))
-        call velocity_constraint(self, t + d, x + d*v, v, val, stat)
-        if (stat /= 0) return
-        call velocity_constraint(self, t - d, x - d*v, v, minus, stat)
-        if (stat /= 0) return
-        val = (val - minus)/(2.0_wp*d)
+        n = size(x)
+        if (n + size(val) <= small_jacobian_entries) then
+            call curvature_in(small(:n), small(n + 1:n + size(val)))
+            return
+        end if
+        allocate (large(n + size(val)), stat=astat)
+        if (astat /= 0) then
+            stat = regdae_err_memory
+            return
+        end if
+        call curvature_in(large(:n), large(n + 1:))
+    contains
+        ! The difference with the shifted positions and the backward value in the given buffers.
+        subroutine curvature_in(shifted, minus)
+            real(wp), intent(out) :: shifted(:), minus(:)
+            real(wp) :: d
+
+            d = central_difference_step(max(maxval(abs(x)), abs(t)))/max(1.0_wp, maxval(abs(v)))
+            shifted = x + d*v
+            call velocity_constraint(self, t + d, shifted, v, val, stat)
+            if (stat /= 0) return
+            shifted = x - d*v
+            call velocity_constraint(self, t - d, shifted, v, minus, stat)
+            if (stat /= 0) return
+            val = (val - minus)/(2.0_wp*d)
+        end subroutine curvature_in
     end subroutine curvature_difference
 
 end module regdae_second_order_problem

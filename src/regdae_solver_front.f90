@@ -1,7 +1,8 @@
 !> The regdae solver front: a regularized index-2 or index-3 DAE integrated by
 !! the integrators behind one interface (`regdae_integrator`): the explicit
-!! Dormand-Prince (`regdae_dopri5_integrator`) and SUNDIALS IDA on the
-!! eliminated, multiplier or augmented formulation (`regdae_ida_integrator`),
+!! Dormand-Prince (`regdae_dopri5_integrator`), SUNDIALS IDA on the
+!! eliminated, multiplier or augmented formulation (`regdae_ida_integrator`) and
+!! Radau IIA on the eliminated or augmented one (`regdae_radau_integrator`),
 !! with integrator=auto switching between them (`regdae_integrator_switching`,
 !! its policy in `regdae_switching_policy`). The front is what a user calls:
 !! init (submodule `regdae_solver_init`: the input checked, consistent initial
@@ -348,7 +349,7 @@ contains
         real(wp), intent(out), optional :: v(:)   !! second-order problems: v(tout), length n
         real(wp), intent(out), optional :: a(:)   !! second-order problems: the acceleration x''(tout), length
                                           !! n: f - B y from the regularized equation at the state
-                                          !! (augmented formulation: IDA's interpolated v')
+                                          !! (augmented formulation: the implicit integrator's interpolated v')
         type(solver_core), pointer :: core
         class(integrator), pointer :: stepper
         type(augmented_system), pointer :: sys

@@ -2,8 +2,8 @@
 !! checked, the consistent initial values, the automatic parameters resolved
 !! (`regdae_auto_parameters`), the monitor started and the first integrator
 !! created in the core's slot: dopri5, Radau IIA or IDA on the eliminated or
-!! multiplier formulation (solver_start), IDA on the augmented formulation of a mechanical
-!! problem that declares its structure (solver_start_augmented).
+!! multiplier formulation (solver_start), IDA or Radau IIA on the augmented formulation of a
+!! mechanical problem (solver_start_augmented).
 submodule (regdae_solver_front) regdae_solver_init
     use regdae_second_order_problem, only: velocity_constraint
     use regdae_mechanical_problem, only: mechanical_structure, structured_velocity_constraint
@@ -250,19 +250,24 @@ contains
 
     ! The augmented formulation (regdae_augmented_system): the sparse residual on
     ! IDA with a dense, band or sparse linear solver, consistent initial values by
-    ! IDACalcIC, the diagnostics from IDA's state.
+    ! IDACalcIC, the diagnostics from IDA's state; with integrator=radau, Radau IIA
+    ! on the same system as an index-1 DAE (regdae_radau_augmented), dense LU,
+    ! consistent initial values by its own Newton steps on the algebraic rows.
     module procedure solver_start_augmented
         type(solver_core), pointer :: core
         type(augmented_system) :: sys
         type(ida_integrator), pointer :: ida
+        type(radau_adapter), pointer :: radau
         real(wp), allocatable :: u0(:), up0(:), id(:)
         character(len=:), allocatable :: msg
+        logical :: on_radau
 
         core => self%core
         core%opts = opts
         core%augmented = .true.
         core%formulation = formulation_augmented
-        core%active = integrator_ida
+        on_radau = (opts%integrator == integrator_radau)
+        core%active = merge(integrator_radau, integrator_ida, on_radau)
         core%events = ''
         core%n = 2*problem%n
         core%m = problem%m
@@ -287,27 +292,42 @@ contains
         ! KLU on the grouped Newton matrix was the fastest per step at every chain size
         ! measured (N = 2 ... 1024: 1.1-2.4x faster than band and dense, doc/performance.md)
         if (core%linear_solver == linear_solver_auto) core%linear_solver = linear_solver_sparse
+        if (on_radau) core%linear_solver = linear_solver_dense   ! (validate_options refuses band and sparse)
         allocate (u0(sys%neq), up0(sys%neq), id(sys%neq), core%y_work(core%m))
         call sys%initial_guess(q0, v0, u0, up0, id)
         call augmented_eps(core, sys, t0, u0)
         core%excluded = sys%excluded_unknowns(opts%excluded)
         if (opts%exclusion == exclusion_off) core%excluded = .false.
-        ida => ida_in_slot(core)
-        call ida%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
-                            sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
-        if (stat /= regdae_success) then
-            stat = start_failed(self, stat, msg)
-            return
-        end if
-        call ida%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
-        if (stat /= regdae_success) then
-            stat = start_failed(self, stat, 'at the initial point: '//msg)
-            return
+        if (on_radau) then
+            radau => radau_in_slot(core)
+            call radau%take_augmented(sys)
+            call radau%start(t0, [q0, v0], stat, msg, h0=opts%h_init)
+            if (stat /= regdae_success) then
+                stat = start_failed(self, stat, 'at the initial point: '//msg)
+                return
+            end if
+        else
+            ida => ida_in_slot(core)
+            call ida%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
+                                sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
+            if (stat /= regdae_success) then
+                stat = start_failed(self, stat, msg)
+                return
+            end if
+            call ida%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
+            if (stat /= regdae_success) then
+                stat = start_failed(self, stat, 'at the initial point: '//msg)
+                return
+            end if
         end if
         if (opts%check_jacobians) then
-            ! the user's patterns first, by (row, column) of M, G and the force Jacobians
+            ! the user's patterns first, by (row, column) of M, G and the force Jacobians; then
+            ! (IDA) the grouped Newton matrix against the full one
             call check_structured_jacobian(problem, sys, t0, q0, v0, stat, msg)
-            if (stat == regdae_success) call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
+            if (stat == regdae_success .and. .not. on_radau) then
+                ida => ida_in_slot(core)
+                call ida%ida%check_grouped_jacobian(t0, 1.0e3_wp/max(1.0_wp, abs(t0)), stat, msg)
+            end if
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, msg)
                 return

@@ -29,7 +29,7 @@ module regdae_sparsity
     end type sparsity_pattern
 
     public :: dense_pattern, empty_pattern, diagonal_pattern, band_pattern, pattern_from_entries, pattern_union
-    public :: color_columns, reverse_cuthill_mckee, permuted_bandwidths, sparse_times
+    public :: color_columns, column_groups, reverse_cuthill_mckee, permuted_bandwidths, sparse_times
 
 contains
 
@@ -248,6 +248,32 @@ contains
             ncolors = max(ncolors, c)
         end do
     end subroutine color_columns
+
+    !> The groups of `color_columns` as lists: the columns of group c are
+    !! group_cols(group_start(c):group_start(c+1)-1), in increasing order.
+    subroutine column_groups(p, ngroups, group_start, group_cols)
+        type(sparsity_pattern), intent(in) :: p
+        integer, intent(out) :: ngroups
+        integer, allocatable, intent(out) :: group_start(:)   !! ngroups + 1
+        integer, allocatable, intent(out) :: group_cols(:)    !! ncols
+        integer, allocatable :: color(:), fill(:)
+        integer :: j, c
+        call color_columns(p, color, ngroups)
+        allocate (group_start(ngroups + 1), group_cols(p%ncols), fill(ngroups))
+        group_start = 0
+        do j = 1, p%ncols
+            group_start(color(j) + 1) = group_start(color(j) + 1) + 1
+        end do
+        group_start(1) = 1
+        do c = 1, ngroups
+            group_start(c + 1) = group_start(c + 1) + group_start(c)
+        end do
+        fill = group_start(1:ngroups)
+        do j = 1, p%ncols
+            group_cols(fill(color(j))) = j
+            fill(color(j)) = fill(color(j)) + 1
+        end do
+    end subroutine column_groups
 
     !> A reverse Cuthill-McKee ordering of the graph of a square pattern
     !! (symmetrized): perm(k) is the old index of the k-th unknown. Each

@@ -21,6 +21,8 @@ module regdae_velocity_index2
         procedure :: matrix_b => vi2_b
         procedure :: constraint => vi2_g
         procedure :: constraint_jacobian => vi2_gx
+        procedure :: linearize_rhs => vi2_linearize
+        procedure :: nonnegative => vi2_nonnegative
     end type velocity_index2_problem
 
     public :: new_velocity_index2
@@ -46,6 +48,21 @@ contains
         v(1:n) = x(n + 1:)
         call self%second%rhs(t, x(1:n), x(n + 1:), v(n + 1:), stat)
     end subroutine vi2_rhs
+
+    subroutine vi2_linearize(self, t, x, on, stat)
+        class(velocity_index2_problem), intent(inout) :: self
+        real(wp), intent(in) :: t, x(:)
+        logical, intent(in) :: on
+        integer, intent(inout) :: stat
+        call self%second%linearize_rhs(t, x(1:self%second%n), x(self%second%n + 1:), on, stat)
+    end subroutine vi2_linearize
+
+    function vi2_nonnegative(self) result(mask)
+        class(velocity_index2_problem), intent(in) :: self
+        logical :: mask(self%n)
+        mask = .false.
+        mask(1:self%second%n) = self%second%nonnegative()
+    end function vi2_nonnegative
 
     subroutine vi2_b(self, t, x, a, stat)
         class(velocity_index2_problem), intent(inout) :: self

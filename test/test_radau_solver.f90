@@ -1,7 +1,8 @@
 !> Tests of integrator=radau through the solver (regdae_radau_integrator): its
 !! results against independent references and against integrator=ida and
-!! integrator=dopri5 on the slider crank, the pendulum and the chain; the option's
-!! parsing and refusals; its statistics.
+!! integrator=dopri5 on the slider crank, the pendulum and the chain; the augmented
+!! formulation under Radau against the eliminated one and the references; the
+!! option's parsing and refusals; its statistics.
 module test_radau_solver
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use regdae
@@ -17,6 +18,7 @@ module test_radau_solver
 
     real(wp), parameter :: pi = acos(-1.0_wp)
     integer, parameter :: integrators(3) = [integrator_radau, integrator_ida, integrator_dopri5]
+    integer, parameter :: formulations(2) = [formulation_augmented, formulation_eliminated]
 
 contains
 
@@ -27,6 +29,10 @@ contains
                  new_test('radau_pendulum', radau_pendulum), &
                  new_test('radau_chain', radau_chain), &
                  new_test('radau_car_axis', radau_car_axis), &
+                 new_test('radau_augmented_option', radau_augmented_option), &
+                 new_test('radau_augmented_slider_crank', radau_augmented_slider_crank), &
+                 new_test('radau_augmented_pendulum', radau_augmented_pendulum), &
+                 new_test('radau_augmented_chain', radau_augmented_chain), &
                  new_test('auto_picks_radau_when_small', auto_picks_radau_when_small)]
     end function radau_solver_tests
 
@@ -45,7 +51,8 @@ contains
         opts%formulation = formulation_multiplier
         call validate_options(opts, stat, msg)
         call chk%equal(stat, regdae_err_bad_input, 'integrator=radau with formulation=multiplier refused')
-        call chk%true(index(msg, 'integrator=radau needs formulation=eliminated') > 0, 'with a message that says why')
+        call chk%true(index(msg, 'integrator=radau needs formulation=eliminated or augmented') > 0, &
+                      'with a message that says why')
         opts%formulation = formulation_auto
         call set_option(opts, 'integrator', 'radau5', stat, msg)
         call chk%equal(stat, regdae_err_bad_input, 'integrator=radau5 refused')
@@ -142,20 +149,175 @@ contains
         write (*, '(a,2es10.2)') '    chain of 4, radau against ida and dopri5: ', diff
     end subroutine radau_chain
 
+    ! integrator=radau takes formulation=augmented (and auto, eliminated), refuses
+    ! multiplier and the band and sparse linear solvers (IDA's), each with a message.
+    subroutine radau_augmented_option(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        character(len=:), allocatable :: msg
+        integer :: stat
+        opts%integrator = integrator_radau
+        opts%formulation = formulation_augmented
+        call validate_options(opts, stat, msg)
+        call chk%equal(stat, regdae_success, 'integrator=radau formulation=augmented valid')
+        opts%linear_solver = linear_solver_dense
+        call validate_options(opts, stat, msg)
+        call chk%equal(stat, regdae_success, 'with linear_solver=dense')
+        opts%linear_solver = linear_solver_sparse
+        call validate_options(opts, stat, msg)
+        call chk%equal(stat, regdae_err_bad_input, 'with linear_solver=sparse refused')
+        call chk%true(index(msg, 'integrator=radau factors its Newton matrices dense') > 0, 'sparse: the message says why')
+        opts%linear_solver = linear_solver_band
+        call validate_options(opts, stat, msg)
+        call chk%equal(stat, regdae_err_bad_input, 'with linear_solver=band refused')
+    end subroutine radau_augmented_option
+
+    ! The slider crank of radau_slider_crank (index 3, the paper's start, 20 outputs on
+    ! [0, 5] through 3 singular passes, rtol = atol = 1e-8) with integrator=radau on the
+    ! augmented formulation (the multiplier and the damped least squares as algebraic
+    ! unknowns, regdae_radau_augmented): th1 against the reduced ODE, and against
+    ! Radau on the eliminated formulation. Measured: errors 6.5e-10 (augmented) and
+    ! 4.0e-9 (eliminated), difference 4.5e-9; bounds as radau_slider_crank's (1e-6 =
+    ! 100 rtol against the reference, 2e-6 between two solutions each within it).
+    subroutine radau_augmented_slider_crank(chk)
+        type(checker), intent(inout) :: chk
+        type(slider_crank_reduced) :: reduced
+        type(solver_stats) :: st
+        real(wp) :: times(20), ref(2, 20), th(2, 20, 2), err(2)
+        integer :: k, i, rstat
+        times = [(0.25_wp*k, k=1, 20)]
+        call integrate_reference(reduced, 0.0_wp, [pi/2, 0.0_wp], times, ref, 1.0e-13_wp, 1.0e-13_wp, rstat)
+        call chk%equal(rstat, 0, 'reference')
+        call run_both_formulations(chk, 'slider crank', new_slider_crank(9.8_wp), [pi/2, pi/2], times, th, st)
+        call chk%true(st%steps > 0 .and. st%jac_evals > 0 .and. st%lin_setups > 0 .and. st%jac_res_evals > 0 .and. &
+                      st%res_evals > st%jac_res_evals .and. st%singular_passes == 3, &
+                      'radau augmented: statistics, 3 singular passes')
+        do i = 1, 2
+            err(i) = maxval(abs(th(1, :, i) - ref(1, :)))
+            call chk%true(err(i) <= 1.0e-6_wp, 'slider crank, radau '//formulation_name(formulations(i))// &
+                          ': th1 error <= 1e-6')
+        end do
+        write (*, '(a,3es10.2)') '    slider crank th1 error (radau augmented, eliminated; difference): ', err, &
+            maxval(abs(th(:, :, 1) - th(:, :, 2)))
+    end subroutine radau_augmented_slider_crank
+
+    ! The pendulum of radau_pendulum as a mechanical problem with a declared structure
+    ! (the chain of one unit link and unit mass, from the horizontal at rest: x = (sin
+    ! phi, -cos phi) with phi'' = -g sin phi), 21 outputs on [0, 2], rtol = atol = 1e-8:
+    ! integrator=radau on the augmented and the eliminated formulation against the
+    ! angle ODE by CVODE at 1e-13 and against each other. Measured: 4.8e-10 and 9.2e-10,
+    ! difference 1.3e-9; bounds as radau_pendulum's.
+    subroutine radau_augmented_pendulum(chk)
+        type(checker), intent(inout) :: chk
+        type(pendulum_angle) :: angle
+        type(solver_stats) :: st
+        real(wp) :: times(21), ref(2, 21), x(2, 21, 2), err(2)
+        integer :: k, i, rstat
+        times = [(0.1_wp*k, k=0, 20)]
+        call integrate_reference(angle, 0.0_wp, [pi/2, 0.0_wp], times, ref, 1.0e-13_wp, 1.0e-13_wp, rstat)
+        call chk%equal(rstat, 0, 'reference')
+        call run_both_formulations(chk, 'pendulum', new_chain(1, .false., 9.81_wp), [1.0_wp, 0.0_wp], times, x, st)
+        do i = 1, 2
+            err(i) = 0.0_wp
+            do k = 1, size(times)
+                err(i) = max(err(i), maxval(abs(x(:, k, i) - [sin(ref(1, k)), -cos(ref(1, k))])))
+            end do
+            call chk%true(err(i) <= 1.0e-6_wp, 'pendulum, radau '//formulation_name(formulations(i))// &
+                          ': position error <= 1e-6')
+        end do
+        write (*, '(a,3es10.2)') '    pendulum position error (radau augmented, eliminated; difference): ', err, &
+            maxval(abs(x(:, :, 1) - x(:, :, 2)))
+    end subroutine radau_augmented_pendulum
+
+    ! integrator=radau on the augmented (x(:, :, 1)) and the eliminated formulation
+    ! (x(:, :, 2)) of the problem from (x0, 0), run_outputs' outputs: each reaches the
+    ! last time, the first runs on dense LU, and they agree within 2e-6 (each within
+    ! 1e-6 of the reference, the callers' bound). st: the augmented run's statistics.
+    subroutine run_both_formulations(chk, name, problem, x0, times, x, st)
+        type(checker), intent(inout) :: chk
+        character(len=*), intent(in) :: name
+        class(mechanical_problem), intent(in) :: problem
+        real(wp), intent(in) :: x0(:), times(:)
+        real(wp), intent(out) :: x(:, :, :)
+        type(solver_stats), intent(out) :: st
+        type(regdae_solver) :: solver
+        integer :: stat, i
+        do i = 1, 2
+            call run_outputs(solver, problem, x0, integrator_radau, times, x(:, :, i), stat, formulations(i))
+            call chk%true(stat >= 0, name//', radau '//formulation_name(formulations(i))//': reaches the last output')
+            if (i == 1) then
+                call chk%true(solver%formulation() == formulation_augmented .and. &
+                              solver%linear_solver() == linear_solver_dense, name//': radau, augmented, dense LU')
+                st = solver%statistics()
+            end if
+            call solver%destroy()
+        end do
+        call chk%true(maxval(abs(x(:, :, 1) - x(:, :, 2))) <= 2.0e-6_wp, &
+                      name//': radau augmented = radau eliminated within 2e-6')
+    end subroutine run_both_formulations
+
+    ! The chain of 4 links of radau_chain to t = 0.5 at rtol = atol = 1e-8, and the stiff
+    ! chain of 4 (mass 1e-2, stiffness 1e4, damping 10) to t = 0.05: integrator=radau on
+    ! the augmented formulation against the eliminated one (no closed form; radau_chain
+    ! holds the eliminated one against ida and dopri5), positions, velocities and the
+    ! multiplier lambda. Measured: q 3.9e-10, v 6.4e-9, lambda 5.6e-9 (chain); 4.5e-15,
+    ! 5.7e-12, 3.9e-11 (stiff chain, settled on its springs: lambda ~ 1e-12). Bounds 1e-6
+    ! on positions and velocities, and 1e-5 on lambda (an algebraic unknown, outside
+    ! the error test) relative to max(|lambda|, one joint's weight m g).
+    subroutine radau_augmented_chain(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts
+        type(chain) :: p
+        real(wp) :: q0(8), v0(8), q(8, 2), v(8, 2), lam(4, 2), diff(3)
+        integer :: stat, i, run
+        character(len=*), parameter :: names(2) = [character(len=11) :: 'chain', 'stiff chain']
+        do run = 1, 2
+            p = new_chain(4, .false., 9.81_wp)
+            if (run == 2) then
+                p%joint_mass = 1.0e-2_wp
+                p%stiffness = 1.0e4_wp
+                p%damping = 10.0_wp
+            end if
+            call chain_start(p, q0, v0)
+            do i = 1, 2
+                opts = solver_options()
+                opts%rtol = 1.0e-8_wp
+                opts%atol = 1.0e-8_wp
+                opts%integrator = integrator_radau
+                opts%formulation = merge(formulation_augmented, formulation_eliminated, i == 1)
+                call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+                if (stat >= 0) call solver%advance(merge(0.5_wp, 0.05_wp, run == 1), q(:, i), lam(:, i), stat, v(:, i))
+                call chk%equal(stat, regdae_success, trim(names(run))//' of 4, radau '// &
+                               formulation_name(opts%formulation))
+                call solver%destroy()
+            end do
+            diff = [maxval(abs(q(:, 1) - q(:, 2))), maxval(abs(v(:, 1) - v(:, 2))), &
+                    maxval(abs(lam(:, 1) - lam(:, 2)))/max(maxval(abs(lam(:, 2))), p%joint_mass*p%gravity)]
+            call chk%true(diff(1) <= 1.0e-6_wp, trim(names(run))//': positions, augmented = eliminated within 1e-6')
+            call chk%true(diff(2) <= 1.0e-6_wp, trim(names(run))//': velocities, augmented = eliminated within 1e-6')
+            call chk%true(diff(3) <= 1.0e-5_wp, trim(names(run))//': lambda, augmented = eliminated within 1e-5 relative')
+            write (*, '(a,3es10.2)') '    '//trim(names(run))//' of 4, radau augmented against eliminated (q, v, lambda): ', &
+                diff
+        end do
+    end subroutine radau_augmented_chain
+
     ! The problem from (x0, 0) at rest with `which` at rtol = atol = 1e-8: x at the
     ! times (NaN after a failure); the solver left initialized (its statistics).
-    subroutine run_outputs(solver, problem, x0, which, times, x, stat)
+    subroutine run_outputs(solver, problem, x0, which, times, x, stat, formulation)
         type(regdae_solver), intent(inout) :: solver
         class(second_order_problem), intent(in) :: problem
         real(wp), intent(in) :: x0(:), times(:)
         integer, intent(in) :: which
         real(wp), intent(out) :: x(:, :)
         integer, intent(out) :: stat
+        integer, intent(in), optional :: formulation   !! default: auto
         type(solver_options) :: opts
         integer :: k
         opts%rtol = 1.0e-8_wp
         opts%atol = 1.0e-8_wp
         opts%integrator = which
+        if (present(formulation)) opts%formulation = formulation
         x = ieee_value(1.0_wp, ieee_quiet_nan)
         call solver%init(problem, 0.0_wp, x0, 0.0_wp*x0, opts, stat)
         do k = 1, size(times)

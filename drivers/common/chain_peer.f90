@@ -194,11 +194,15 @@ contains
                 do i = 1, n_links
                     q_out(2*i - 1, k) = u(position(data, i, off_x))
                     q_out(2*i, k) = u(position(data, i, off_y))
-                    if (present(v_out)) then
+                end do
+                ! A loop of its own: with the test inside the loop gfortran -O3 branched on the
+                ! absent v_out's descriptor (valgrind: uninitialised value).
+                if (present(v_out)) then
+                    do i = 1, n_links
                         v_out(2*i - 1, k) = u(position(data, i, off_vx))
                         v_out(2*i, k) = u(position(data, i, off_vy))
-                    end if
-                end do
+                    end do
+                end if
                 drift = max(drift, constraint_drift(data, u))
             end do
             if (present(max_drift)) max_drift = drift

@@ -16,6 +16,10 @@
 !! In all 2-D cases B y* = s e, r = -C x*, and q = x*' - A x* - B y*, so (x*, y*)
 !! solves the DAE (x* is unique; y* is the minimum-norm multiplier in R1).
 !! EX51 is Example 5.1: x' = 2 + t y, 0 = t x - t(t+1), x* = t + 1.
+!! The S cases can be moved and scaled (drivers/trust, family linear with seed=S): with
+!! `singular_at` = t* and `scale` = c, C = c (t - t*)^p e^T (p = 1, 2), the singular point at t*
+!! and GB = c^2 (t - t*)^(2p) for S1, S2 (y* = s / (c (t - t*)^p)); x*, B y* and q are unchanged.
+!! The defaults t* = 0, c = 1 give the table's cases bit for bit.
 module theory_problems
     use regdae, only: wp, linear_dae_problem
     implicit none
@@ -28,6 +32,8 @@ module theory_problems
         character(len=4) :: name = 'R1'
         integer :: power = 1          !! C vanishes like t^power (S cases)
         logical :: b_is_ct = .true.   !! B = C^T
+        real(wp) :: singular_at = 0.0_wp   !! t*, where C vanishes (S cases)
+        real(wp) :: scale = 1.0_wp         !! c, the factor of C (S cases)
     contains
         procedure :: coefficient_a => tp_a
         procedure :: coefficient_b => tp_b
@@ -145,7 +151,7 @@ contains
         case ('EX51')
             a(1, 1) = t
         case default
-            a(1, :) = t**self%power*e(t)
+            a(1, :) = self%scale*(t - self%singular_at)**self%power*e(t)
         end select
     end subroutine tp_c
 
@@ -160,7 +166,8 @@ contains
         case ('EX51')
             a(1, 1) = 1.0_wp
         case default
-            a(1, :) = self%power*t**(self%power - 1)*e(t) + t**self%power*ed(t)
+            a(1, :) = self%scale*(self%power*(t - self%singular_at)**(self%power - 1)*e(t) + &
+                                  (t - self%singular_at)**self%power*ed(t))
         end select
     end subroutine tp_cd
 

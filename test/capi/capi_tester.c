@@ -466,6 +466,12 @@ static void problems(void)
     regdae_get_options(s, &opts);
     regdae_get_statistics(s, &st);
     CHECK(opts.integrator == REGDAE_INTEGRATOR_RADAU && st.steps > 0 && st.jac_evals > 0 && st.switches == 0);
+    /* and Radau IIA on the augmented formulation (the multiplier one of its unknowns) */
+    CHECK(regdae_set_formulation(s, REGDAE_FORMULATION_AUGMENTED) == REGDAE_SUCCESS);
+    CHECK(circle_run(s, 1, -0.5) < CIRCLE_BOUND);
+    regdae_get_options(s, &opts);
+    CHECK(opts.integrator == REGDAE_INTEGRATOR_RADAU && opts.formulation == REGDAE_FORMULATION_AUGMENTED);
+    regdae_set_formulation(s, REGDAE_FORMULATION_AUTO);
     regdae_set_integrator(s, REGDAE_INTEGRATOR_AUTO);
 
     /* K particles: dense (eliminated), then structured (augmented, from the dense

@@ -33,6 +33,24 @@ C     STEPS     INFO(3) = 1: IDID = 1 after every step (T the step's
 C               end, X there on the circle, IWORK(11) one more step
 C               each time), then IDID = 3 at TOUT; the same X at TOUT
 C               as INFO(3) = 0 to 1E-7
+C     JAC       DREGDAEJ and DREGDAEMJ (INFO(5) = 1, JAC the Jacobian
+C               of F, of FORCES in Q and V) on stiff nonlinear problems
+C               with exact solutions (the particle at index 3 and 2):
+C               the results with JAC are those without it within the
+C               tolerance, and exact to it; JAC replaces the difference
+C               quotients of F (fewer F calls);
+C               RWORK(19) = 1 (check_jacobians) passes the right JAC
+C               and stops a wrong one with IDID = -116 and the entry
+C               (row, column) of PD named; INFO(5) = 1 in DREGDAE is
+C               refused with a message that points to DREGDAEJ;
+C               DREGDAEJR and DREGDAEMJR (JAC and RT together) stop at
+C               the root of X1 = cos t within 100 RTOL, then go on
+C     NONNEG    INFO(10) = 1 on Robertson's kinetics (DREGDAE, M = 0)
+C               with ATOL = 1E-6, RTOL = 1E-3 to T = 4E10: without it
+C               components go negative and the run blows up; with it
+C               every step end (INFO(3) = 1) is >= 0 and the end state
+C               is the reference's to 10 ATOL; INFO(19) = 2 and a
+C               negative X at the start are refused with IDID = -33
 C     RESTART   INFO(1) = 0 again on the same IWORK without DREGDAEFREE
 C               (after a success, a refused start, an inconsistent x0)
 C               gives a fresh run, bit for bit, and frees the old solver
@@ -57,11 +75,13 @@ C               corrupted for a call and restored
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'MAXORD') CALL MAXORD(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'ROOTS') CALL ROOTS(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'STEPS') CALL STEPS(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'JAC') CALL JACSUI(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'NONNEG') CALL NONNEG(NCHK)
       IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
          WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
      *        SUITE(1:LEN_TRIM(SUITE)),
      *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN, RESTART, ',
-     *        'MAXORD, ROOTS, STEPS)'
+     *        'MAXORD, ROOTS, STEPS, JAC, NONNEG)'
          STOP 2
       END IF
       WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
@@ -140,17 +160,19 @@ C     RWORK too small
       CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'LRW = 19') .GT. 0
      *     .AND. INDEX(MSG, 'LRW >= 20') .GT. 0, 'LRW 19', NCHK)
       CALL DREGDAEFREE(IWORK, 22)
-C     INFO entries: INFO(3) not 0/1, JAC, DDASPK's, a method
-C     that is none, an index for DREGDAE, not 0/1 (INFO(2): VECTOR)
+C     INFO entries: INFO(3) not 0/1, JAC without DREGDAEJ, DDASPK's,
+C     a method that is none, an index for DREGDAE, not 0/1 (INFO(2):
+C     VECTOR)
 C     (each message says why, and what to set instead)
       CALL ONEBAD(3, 2, 'INFO(3) = 2 must be 0 or 1', NCHK)
       CALL ONEBAD(5, 1, 'a JAC routine', NCHK)
+      CALL ONEBAD(5, 1, 'call DREGDAEJ', NCHK)
       CALL ONEBAD(5, 1, 'set INFO(5) = 0', NCHK)
       CALL ONEBAD(6, 1, 'a banded matrix', NCHK)
       CALL ONEBAD(6, 1, 'set INFO(6) = 0', NCHK)
+      CALL ONEBAD(6, 1, 'not banded when df/dx is', NCHK)
       CALL ONEBAD(9, 1, 'MAXORD = IWORK(3) = 0 is not 1 ... 5', NCHK)
-      CALL ONEBAD(10, 1, 'nonnegative solutions', NCHK)
-      CALL ONEBAD(10, 1, 'set INFO(10) = 0', NCHK)
+      CALL ONEBAD(10, 2, 'INFO(10) = 2 must be 0 or 1', NCHK)
       CALL ONEBAD(12, 1, 'Krylov method', NCHK)
       CALL ONEBAD(13, 1, 'set INFO(12), INFO(13)', NCHK)
       CALL ONEBAD(14, 1, 'set INFO(14) = 0', NCHK)
@@ -230,7 +252,7 @@ C     message that contains PART.
       INTEGER N, M, INFO(20), NCHK(2), IWORK(22), IDID, I, INF(20)
       DOUBLE PRECISION TOUT, RTOL, ATOL, RWORK(20)
       CHARACTER*(*) PART
-      CHARACTER*300 MSG
+      CHARACTER*600 MSG
 C     a copy: DREGDAE sets INFO(1) = -1
       DO 10 I = 1, 20
          INF(I) = INFO(I)
@@ -723,7 +745,7 @@ C
       SUBROUTINE VECTOR(NCHK)
       INTEGER NCHK(2), IDID
       DOUBLE PRECISION RT(2), AT(2), XS(2), XV(2), XL(2)
-      CHARACTER*300 MSG
+      CHARACTER*600 MSG
       RT(1) = 1.0D-6
       RT(2) = 1.0D-6
       AT(1) = 1.0D-6
@@ -741,6 +763,7 @@ C
       CALL TRYVEC(1, 0, RT, AT, XL, IDID, MSG)
       CALL CHECK(IDID .EQ. -33 .AND.
      *     INDEX(MSG, 'one relative tolerance') .GT. 0 .AND.
+     *     INDEX(MSG, 'e.g. all 1.000000E-06') .GT. 0 .AND.
      *     INDEX(MSG, 'through ATOL') .GT. 0,
      *     'unequal RTOL(i) refused, saying what to do', NCHK)
 C     INFO(19) = 3: Radau IIA (integrator radau) on the circle, x(1) =
@@ -985,4 +1008,476 @@ C     MAXORD outside 1 ... 5: refused
      *        .GT. 0, 'MAXORD 0 and 6 refused', NCHK)
          CALL DREGDAEFREE(IWORK, 22)
    20 CONTINUE
+      END
+C
+C     ---- JAC ---------------------------------------------------------
+C     KIND 1: DREGDAE(J) on the stiff circle of JF (N = 3, M = 1);
+C     KIND 2: DREGDAEM(J) on the damped particle of DF; KIND 3: the
+C     particle at index 2 (INFO(18) = 2). MODE 0: no JAC
+C     (DREGDAE, DREGDAEM); 1: the right JAC; 2: a wrong one (one entry
+C     of PD off: JJBAD, DJBAD). INFO(19) = 1 (IDA, whose Newton matrix
+C     JAC enters), RTOL = ATOL = 1E-7, to T = 2 in steps of 0.25.
+C     ERR(1), ERR(2): the largest errors of the state (X; Q, V) and of
+C     the multiplier against the exact solution; X the end state; NF
+C     the calls of F (FORCES).
+      SUBROUTINE JRUN(KIND, MODE, RCHECK, ERR, X, IDID, NF, MSG)
+      EXTERNAL JF, CB3, CG3, CGX3, JJ, JJBAD, MM, DF, DGX, DJ,
+     *     DJBAD
+      INTEGER KIND, MODE, IDID, NF, INFO(20), IWORK(22), IPAR(2), K
+      DOUBLE PRECISION RCHECK, ERR(2), X(3), RWORK(20), RPAR(2), T,
+     *     Y(1), V(2), TOUT
+      CHARACTER*(*) MSG
+      CALL CLEAR(INFO, RWORK, IWORK)
+      INFO(19) = 1
+      IF (KIND .EQ. 3) INFO(18) = 2
+      IF (MODE .GT. 0) INFO(5) = 1
+      RWORK(19) = RCHECK
+      RPAR(1) = 1.0D4
+      RPAR(2) = 0.0D0
+      IPAR(1) = 0
+      IPAR(2) = 0
+      CALL JX0(T, X)
+      V(1) = 0.0D0
+      V(2) = 1.0D0
+      ERR(1) = 0.0D0
+      ERR(2) = 0.0D0
+      MSG = ' '
+      DO 10 K = 1, 8
+         TOUT = 0.25D0 * K
+         IF (KIND .EQ. 1 .AND. MODE .EQ. 0) THEN
+            CALL DREGDAE(JF, CB3, CG3, CGX3, CGX3, 3, 1, T, X, Y, TOUT,
+     *           INFO, 1.0D-7, 1.0D-7, IDID, RWORK, 20, IWORK, 22, RPAR,
+     *           IPAR)
+         ELSE IF (KIND .EQ. 1) THEN
+            IF (MODE .EQ. 1) CALL DREGDAEJ(JF, CB3, CG3, CGX3, CGX3, 3,
+     *           1, T, X, Y, TOUT, INFO, 1.0D-7, 1.0D-7, IDID, RWORK,
+     *           20, IWORK, 22, RPAR, IPAR, JJ)
+            IF (MODE .EQ. 2) CALL DREGDAEJ(JF, CB3, CG3, CGX3, CGX3, 3,
+     *           1, T, X, Y, TOUT, INFO, 1.0D-7, 1.0D-7, IDID, RWORK,
+     *           20, IWORK, 22, RPAR, IPAR, JJBAD)
+         ELSE IF (MODE .EQ. 0) THEN
+            CALL DREGDAEM(MM, DF, CG3, DGX, DGX, 2, 1, T, X, V, Y, TOUT,
+     *           INFO, 1.0D-7, 1.0D-7, IDID, RWORK, 20, IWORK, 22, RPAR,
+     *           IPAR)
+         ELSE
+            IF (MODE .EQ. 1) CALL DREGDAEMJ(MM, DF, CG3, DGX, DGX, 2, 1,
+     *           T, X, V, Y, TOUT, INFO, 1.0D-7, 1.0D-7, IDID, RWORK,
+     *           20, IWORK, 22, RPAR, IPAR, DJ)
+            IF (MODE .EQ. 2) CALL DREGDAEMJ(MM, DF, CG3, DGX, DGX, 2, 1,
+     *           T, X, V, Y, TOUT, INFO, 1.0D-7, 1.0D-7, IDID, RWORK,
+     *           20, IWORK, 22, RPAR, IPAR, DJBAD)
+         END IF
+         IF (IDID .LT. 0) GO TO 20
+         ERR(1) = MAX(ERR(1), ABS(X(1) - COS(T)), ABS(X(2) - SIN(T)))
+         IF (KIND .EQ. 1) THEN
+            ERR(1) = MAX(ERR(1), ABS(X(3) - SIN(T)))
+            ERR(2) = MAX(ERR(2), ABS(Y(1) - 0.5D0 * SIN(T)**2))
+         ELSE
+            ERR(1) = MAX(ERR(1), ABS(V(1) + SIN(T)),
+     *           ABS(V(2) - COS(T)))
+            ERR(2) = MAX(ERR(2), ABS(Y(1) + 0.5D0))
+         END IF
+   10 CONTINUE
+   20 CALL DREGDAEMSG(IWORK, 22, MSG)
+      NF = IPAR(1)
+      CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+      SUBROUTINE JACSUI(NCHK)
+      EXTERNAL JF, CB3, CG3, CGX3, JJ, MM, DF, DGXBAD
+      INTEGER NCHK(2), KIND, IDID0, IDID1, IDIDC, IDIDW, NF0, NF1, NFC,
+     *     NFW, INFO(20), IWORK(22), IPAR(2), IDID
+      DOUBLE PRECISION ERR0(2), ERR1(2), ERRC(2), ERRW(2), X0(3), X1(3),
+     *     XC(3),
+     *     XW(3), DIFF, RWORK(20), RPAR(2), T, X(3), Y(1), V(2)
+      CHARACTER*300 MSG, MSGW
+      CHARACTER*12 ENTRY(3)
+      DATA ENTRY /'entry (2, 3)', 'entry (1, 4)', 'entry (1, 4)'/
+      DO 10 KIND = 1, 3
+         CALL JRUN(KIND, 0, 0.0D0, ERR0, X0, IDID0, NF0, MSG)
+         CALL JRUN(KIND, 1, 0.0D0, ERR1, X1, IDID1, NF1, MSG)
+         CALL JRUN(KIND, 1, 1.0D0, ERRC, XC, IDIDC, NFC, MSG)
+         CALL JRUN(KIND, 2, 1.0D0, ERRW, XW, IDIDW, NFW, MSGW)
+         DIFF = MAX(ABS(X1(1) - X0(1)), ABS(X1(2) - X0(2)))
+         IF (KIND .EQ. 1) DIFF = MAX(DIFF, ABS(X1(3) - X0(3)))
+C        RTOL = ATOL = 1E-7 over T in [0, 2]: 1E-5 is 100 RTOL for the
+C        state (measured 1.5E-6 and 2.6E-6 without and with JAC on the
+C        stiff circle, 9.9E-8 both on the particle, 5.7E-8 and 2.2E-7
+C        at index 2); the multiplier is not in the error test and
+C        carries the regularization's error (measured 7.0E-5 and 2.4E-5
+C        on the circle, 7.6E-5 both on the particle, 3.6E-6 and 8.6E-6
+C        at index 2): 1E-3
+         CALL CHECK(IDID0 .EQ. 3 .AND. IDID1 .EQ. 3 .AND. IDIDC .EQ. 3,
+     *        'JAC: IDID 3 without JAC, with it, with the check', NCHK)
+         CALL CHECK(ERR0(1) .LT. 1.0D-5 .AND. ERR1(1) .LT. 1.0D-5 .AND.
+     *        ERR0(2) .LT. 1.0D-3 .AND. ERR1(2) .LT. 1.0D-3,
+     *        'JAC: exact to the tolerance with and without JAC', NCHK)
+         CALL CHECK(DIFF .LT. 1.0D-5, 'JAC: the same X as without JAC'
+     *        // ' within 100 RTOL', NCHK)
+C        JAC in place of the difference quotients of F: N - 1 (2N - 1)
+C        fewer calls of F per Jacobian (measured 1262 and 1073 calls on
+C        the circle, 1485 and 1212 on the particle, 693 and 567 at
+C        index 2)
+         CALL CHECK(NF1 .LT. NF0, 'JAC: fewer calls of F', NCHK)
+C        the check at the start costs calls of F, nothing else changes
+         CALL CHECK(XC(1) .EQ. X1(1) .AND. XC(2) .EQ. X1(2) .AND.
+     *        XC(3) .EQ. X1(3), 'JAC: the checked run is the run', NCHK)
+         CALL CHECK(IDIDW .EQ. -116 .AND. INDEX(MSGW, 'check_jacobians'
+     *        // ': JAC disagrees with the difference quotient of')
+     *        .GT. 0 .AND. INDEX(MSGW, ENTRY(KIND)) .GT. 0,
+     *        'JAC: a wrong JAC caught by check_jacobians, its entry '
+     *        // 'named', NCHK)
+         IF (ERR0(1) .GE. 1.0D-5 .OR. ERR1(1) .GE. 1.0D-5 .OR.
+     *        ERR0(2) .GE. 1.0D-3 .OR. ERR1(2) .GE. 1.0D-3 .OR.
+     *        DIFF .GE. 1.0D-5 .OR. NF1 .GE. NF0)
+     *        WRITE (*, '(A, I2, 1P, 5E10.2, 2I8)')
+     *        '    JAC kind, errors 0, 1, diff, F calls 0, 1', KIND,
+     *        ERR0, ERR1, DIFF, NF0, NF1
+         IF (IDIDW .NE. -116) WRITE (*, '(A, I5, 2A)') '    IDID ',
+     *        IDIDW, ' ', MSGW(1:LEN_TRIM(MSGW))
+   10 CONTINUE
+C     INFO(5) = 1 in DREGDAE: refused, pointing to DREGDAEJ
+      CALL CLEAR(INFO, RWORK, IWORK)
+      INFO(5) = 1
+      CALL JX0(T, X)
+      CALL DREGDAE(JF, CB3, CG3, CGX3, CGX3, 3, 1, T, X, Y, 1.0D0,
+     *     INFO, 1.0D-7, 1.0D-7, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'call DREGDAEJ') .GT. 0,
+     *     'INFO(5) = 1 in DREGDAE: use DREGDAEJ', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+C     RWORK(19) = 1 in DREGDAEM checks GX too: a wrong GX is named
+      CALL CLEAR(INFO, RWORK, IWORK)
+      RWORK(19) = 1.0D0
+      RPAR(1) = 1.0D4
+      RPAR(2) = 0.0D0
+      CALL CIRCLE0(T, X, IPAR)
+      V(1) = 0.0D0
+      V(2) = 1.0D0
+      CALL DREGDAEM(MM, DF, CG3, DGXBAD, DGXBAD, 2, 1, T, X, V, Y,
+     *     1.0D0, INFO, 1.0D-7, 1.0D-7, IDID, RWORK, 20, IWORK, 22,
+     *     RPAR, IPAR)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -116 .AND. INDEX(MSG, 'GX disagrees with '
+     *     // 'the difference quotient of G at entry (1, 1)') .GT. 0,
+     *     'DREGDAEM: a wrong GX caught by check_jacobians', NCHK)
+      IF (IDID .NE. -116) WRITE (*, '(A, I5, 2A)') '    IDID ', IDID,
+     *     ' ', MSG(1:LEN_TRIM(MSG))
+      CALL DREGDAEFREE(IWORK, 22)
+C     JAC and RT together (DREGDAEJR, DREGDAEMJR): the root of X1 =
+C     cos t at pi/2 (decreasing), then on to T = 2
+      CALL JROOTS(NCHK)
+C     RWORK(19) neither 0 nor 1: refused
+      CALL CLEAR(INFO, RWORK, IWORK)
+      RWORK(19) = 2.0D0
+      CALL JX0(T, X)
+      CALL DREGDAEJ(JF, CB3, CG3, CGX3, CGX3, 3, 1, T, X, Y, 1.0D0,
+     *     INFO, 1.0D-7, 1.0D-7, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR,
+     *     JJ)
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'RWORK(19)') .GT. 0,
+     *     'RWORK(19) = 2 refused', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+C     The start of the stiff circle: T = 0, X = (1, 0, 0).
+      SUBROUTINE JX0(T, X)
+      DOUBLE PRECISION T, X(3)
+      T = 0.0D0
+      X(1) = 1.0D0
+      X(2) = 0.0D0
+      X(3) = 0.0D0
+      END
+C
+C     The stiff circle: N = 3, M = 1, K = RPAR(1),
+C        x1' = -x2 + x1 x3^2 - 2 x1 y,  x2' = x1 + x2 x3^2 - 2 x2 y,
+C        x3' = cos t - K (x3 - sin t) - K (x3 - sin t)^3,
+C        0 = x1^2 + x2^2 - 1;
+C     exact: x = (cos t, sin t, sin t), y = sin(t)^2 / 2. JF counts
+C     its calls in IPAR(1).
+      SUBROUTINE JF(T, X, FX, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), FX(3), RPAR(*), E
+      E = X(3) - SIN(T)
+      FX(1) = -X(2) + X(1) * X(3)**2
+      FX(2) = X(1) + X(2) * X(3)**2
+      FX(3) = COS(T) - RPAR(1) * (E + E**3)
+      IPAR(1) = IPAR(1) + 1
+      END
+C
+C     df/dx of JF
+      SUBROUTINE JJ(T, X, PD, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), PD(3, 3), RPAR(*)
+      PD(1, 1) = X(3)**2
+      PD(1, 2) = -1.0D0
+      PD(1, 3) = 2.0D0 * X(1) * X(3)
+      PD(2, 1) = 1.0D0
+      PD(2, 2) = X(3)**2
+      PD(2, 3) = 2.0D0 * X(2) * X(3)
+      PD(3, 1) = 0.0D0
+      PD(3, 2) = 0.0D0
+      PD(3, 3) = -RPAR(1) * (1.0D0 + 3.0D0 * (X(3) - SIN(T))**2)
+      END
+C
+C     JJ with PD(2, 3) wrong (the factor 2 forgotten, and off by 1)
+      SUBROUTINE JJBAD(T, X, PD, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), PD(3, 3), RPAR(*)
+      CALL JJ(T, X, PD, IRES, RPAR, IPAR)
+      PD(2, 3) = X(2) * X(3) + 1.0D0
+      END
+C
+      SUBROUTINE CB3(T, X, BX, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), BX(3, 1), RPAR(*)
+      BX(1, 1) = 2.0D0 * X(1)
+      BX(2, 1) = 2.0D0 * X(2)
+      BX(3, 1) = 0.0D0
+      END
+C
+C     g = x1^2 + x2^2 - 1 (N = 2 or 3)
+      SUBROUTINE CG3(T, X, GV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(*), GV(1), RPAR(*)
+      GV(1) = X(1)**2 + X(2)**2 - 1.0D0
+      END
+C
+      SUBROUTINE CGX3(T, X, GM, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), GM(1, 3), RPAR(*)
+      GM(1, 1) = 2.0D0 * X(1)
+      GM(1, 2) = 2.0D0 * X(2)
+      GM(1, 3) = 0.0D0
+      END
+C
+C     The damped particle on the unit circle: M = I, the forces
+C     f = -D w (1 + |w|^2), w = v - (-q2, q1), D = RPAR(1) / 10, which
+C     vanish on the exact motion q = (cos t, sin t) (lambda = -1/2)
+C     and damp any other; DF counts its calls in IPAR(1). M: MM; g:
+C     CG3 (which reads Q(1), Q(2)).
+      SUBROUTINE DGX(T, Q, GM, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, Q(2), GM(1, 2), RPAR(*)
+      GM(1, 1) = 2.0D0 * Q(1)
+      GM(1, 2) = 2.0D0 * Q(2)
+      END
+C
+C     DGX with dg/dq1 off by 1 (G v0 = 0 still: the start is
+C     consistent)
+      SUBROUTINE DGXBAD(T, Q, GM, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, Q(2), GM(1, 2), RPAR(*)
+      GM(1, 1) = 2.0D0 * Q(1) + 1.0D0
+      GM(1, 2) = 2.0D0 * Q(2)
+      END
+C
+      SUBROUTINE DF(T, Q, V, FV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, Q(2), V(2), FV(2), RPAR(*), W1, W2, S
+      W1 = V(1) + Q(2)
+      W2 = V(2) - Q(1)
+      S = 1.0D0 + W1**2 + W2**2
+      FV(1) = -0.1D0 * RPAR(1) * W1 * S
+      FV(2) = -0.1D0 * RPAR(1) * W2 * S
+      IPAR(1) = IPAR(1) + 1
+      END
+C
+C     PD = [df/dq, df/dv] of DF: -D ((1 + |w|^2) I + 2 w w^T) times
+C     dw/dq = [0 1; -1 0] and dw/dv = I
+      SUBROUTINE DJ(T, Q, V, PD, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, Q(2), V(2), PD(2, 4), RPAR(*), W1, W2, S, D,
+     *     A(2, 2)
+      W1 = V(1) + Q(2)
+      W2 = V(2) - Q(1)
+      S = 1.0D0 + W1**2 + W2**2
+      D = 0.1D0 * RPAR(1)
+      A(1, 1) = -D * (S + 2.0D0 * W1 * W1)
+      A(1, 2) = -D * 2.0D0 * W1 * W2
+      A(2, 1) = A(1, 2)
+      A(2, 2) = -D * (S + 2.0D0 * W2 * W2)
+C     df/dq = A [0 1; -1 0]: column 1 is -A(:, 2), column 2 is A(:, 1)
+      PD(1, 1) = -A(1, 2)
+      PD(2, 1) = -A(2, 2)
+      PD(1, 2) = A(1, 1)
+      PD(2, 2) = A(2, 1)
+C     df/dv = A
+      PD(1, 3) = A(1, 1)
+      PD(2, 3) = A(2, 1)
+      PD(1, 4) = A(1, 2)
+      PD(2, 4) = A(2, 2)
+      END
+C
+C     DJ with df1/dv2 = PD(1, 4) wrong (its sign)
+      SUBROUTINE DJBAD(T, Q, V, PD, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, Q(2), V(2), PD(2, 4), RPAR(*)
+      CALL DJ(T, Q, V, PD, IRES, RPAR, IPAR)
+      PD(1, 4) = -PD(1, 4) + 1.0D0
+      END
+C
+C     ---- NONNEG ------------------------------------------------------
+C     Robertson's kinetics as DREGDAE with M = 0 (RF, and RB, RG, RGX
+C     of size 0) from (1, 0, 0) to T = 4E10 with INFO(3) = 1 (a return
+C     at every step end), RTOL = 1E-3, ATOL = 1E-6, INFO(10) = NONNEG,
+C     INFO(19) = INTEG: XMIN the smallest value of any component at the
+C     step ends, X the end state, IDID and the message.
+      SUBROUTINE RROB(NONNG, INTEG, X, XMIN, IDID, MSG)
+      EXTERNAL RF, RB, RG, RGX
+      INTEGER NONNG, INTEG, IDID, INFO(20), IWORK(22), IPAR(1), K
+      DOUBLE PRECISION X(3), XMIN, RWORK(20), RPAR(1), T, Y(1)
+      CHARACTER*(*) MSG
+      CALL CLEAR(INFO, RWORK, IWORK)
+      INFO(3) = 1
+      INFO(10) = NONNG
+      INFO(19) = INTEG
+      T = 0.0D0
+      X(1) = 1.0D0
+      X(2) = 0.0D0
+      X(3) = 0.0D0
+      IF (NONNG .EQ. 2) X(2) = -1.0D-9
+      IF (NONNG .EQ. 2) INFO(10) = 1
+      XMIN = 0.0D0
+      IDID = 1
+      DO WHILE (IDID .EQ. 1)
+         CALL DREGDAE(RF, RB, RG, RGX, RGX, 3, 0, T, X, Y, 4.0D10,
+     *        INFO, 1.0D-3, 1.0D-6, IDID, RWORK, 20, IWORK, 22, RPAR,
+     *        IPAR)
+         DO 10 K = 1, 3
+            IF (IDID .GT. 0) XMIN = MIN(XMIN, X(K))
+   10    CONTINUE
+      END DO
+      CALL DREGDAEMSG(IWORK, 22, MSG)
+      CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+      SUBROUTINE NONNEG(NCHK)
+      INTEGER NCHK(2), IDID0, IDID1, IDID, K
+      DOUBLE PRECISION X0(3), X1(3), XMIN0, XMIN1, XREF(3), ERR, SUM
+      CHARACTER*300 MSG
+C     Robertson at T = 4E10 (the reference of SUNDIALS' cvRoberts_dns)
+      DATA XREF /5.2083D-8, 2.0833D-13, 0.99999995D0/
+      CALL RROB(0, 1, X0, XMIN0, IDID0, MSG)
+      CALL RROB(1, 1, X1, XMIN1, IDID1, MSG)
+      ERR = 0.0D0
+      SUM = X1(1) + X1(2) + X1(3)
+      DO 10 K = 1, 3
+         ERR = MAX(ERR, ABS(X1(K) - XREF(K)))
+   10 CONTINUE
+C     where it matters: without INFO(10) a component goes negative and
+C     the run blows up (measured: X1 down to -1.9E7 at step ends)
+      CALL CHECK(XMIN0 .LT. 0.0D0, 'NONNEG: negative without INFO(10)',
+     *     NCHK)
+      CALL CHECK(IDID1 .EQ. 3 .AND. XMIN1 .GE. 0.0D0,
+     *     'NONNEG: INFO(10) = 1 keeps every step end >= 0', NCHK)
+C     ATOL = 1E-6: the end state within 10 ATOL of the reference
+C     (measured 5.2E-8), and X1 + X2 + X3 = 1 kept to 10 ATOL
+      CALL CHECK(ERR .LT. 1.0D-5 .AND. ABS(SUM - 1.0D0) .LT. 1.0D-5,
+     *     'NONNEG: the end state is the reference''s', NCHK)
+      IF (XMIN1 .LT. 0.0D0 .OR. ERR .GE. 1.0D-5 .OR. IDID1 .NE. 3)
+     *     WRITE (*, '(A, 2I5, 1P, 4E11.3)')
+     *     '    IDID, min 0, 1, end error', IDID0, IDID1, XMIN0, XMIN1,
+     *     ERR
+C     INFO(19) = 0 (auto) runs IDA throughout: the same run as 1
+      CALL RROB(1, 0, X0, XMIN0, IDID0, MSG)
+      CALL CHECK(IDID0 .EQ. 3 .AND. X0(1) .EQ. X1(1) .AND. X0(2) .EQ.
+     *     X1(2) .AND. X0(3) .EQ. X1(3),
+     *     'NONNEG: INFO(19) = 0 is IDA', NCHK)
+C     dopri5 has no constraint option: refused, saying what to set
+      CALL RROB(1, 2, X0, XMIN0, IDID, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'IDASetConstraints')
+     *     .GT. 0 .AND. INDEX(MSG, 'set INFO(19) = 0 or 1') .GT. 0,
+     *     'NONNEG: INFO(19) = 2 refused', NCHK)
+C     a negative component at the start: refused
+      CALL RROB(2, 1, X0, XMIN0, IDID, MSG)
+      CALL CHECK(IDID .EQ. -33 .AND. INDEX(MSG, 'X(2) = -1.000000E-09')
+     *     .GT. 0, 'NONNEG: X(2) < 0 at the start refused', NCHK)
+      IF (IDID .NE. -33) WRITE (*, '(A, I5, 2A)') '    IDID ', IDID,
+     *     ' ', MSG(1:LEN_TRIM(MSG))
+      END
+C
+C     Robertson's kinetics: x1' = -0.04 x1 + 1E4 x2 x3, x3' = 3E7 x2^2,
+C     x2' = -x1' - x3'.
+      SUBROUTINE RF(T, X, FX, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), FX(3), RPAR(*)
+      FX(1) = -0.04D0 * X(1) + 1.0D4 * X(2) * X(3)
+      FX(3) = 3.0D7 * X(2)**2
+      FX(2) = -FX(1) - FX(3)
+      END
+C
+C     B, G and GX of size 0 (M = 0): nothing to set
+      SUBROUTINE RB(T, X, BX, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), BX(*), RPAR(*)
+      END
+C
+      SUBROUTINE RG(T, X, GV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), GV(*), RPAR(*)
+      END
+C
+      SUBROUTINE RGX(T, X, GM, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(3), GM(*), RPAR(*)
+      END
+C
+C     DREGDAEJR on the stiff circle, DREGDAEMJR on the damped particle
+C     (INFO(5) = 1, INFO(19) = 1, RTOL = ATOL = 1E-7), RT = X1 (JRT):
+C     IDID = 5 at pi/2 with JROOT(1) = -1, then IDID = 3 at T = 2.
+      SUBROUTINE JROOTS(NCHK)
+      EXTERNAL JF, CB3, CG3, CGX3, JJ, MM, DF, DGX, DJ, JRT
+      INTEGER NCHK(2), KIND, INFO(20), IWORK(22), IPAR(2), IDID, K,
+     *     JROOT(1), IDIDS(3), JR
+      DOUBLE PRECISION RWORK(20), RPAR(2), T, X(3), Y(1), V(2), TROOT
+      DO 20 KIND = 1, 2
+         CALL CLEAR(INFO, RWORK, IWORK)
+         INFO(5) = 1
+         INFO(19) = 1
+         RPAR(1) = 1.0D4
+         RPAR(2) = 0.0D0
+         IPAR(1) = 0
+         IPAR(2) = 0
+         CALL JX0(T, X)
+         V(1) = 0.0D0
+         V(2) = 1.0D0
+         TROOT = 0.0D0
+         JR = 0
+         DO 10 K = 1, 3
+            IF (KIND .EQ. 1) CALL DREGDAEJR(JF, CB3, CG3, CGX3, CGX3, 3,
+     *           1, T, X, Y, 2.0D0, INFO, 1.0D-7, 1.0D-7, IDIDS(K),
+     *           RWORK, 20, IWORK, 22, RPAR, IPAR, JJ, JRT, 1, JROOT)
+            IF (KIND .EQ. 2) CALL DREGDAEMJR(MM, DF, CG3, DGX, DGX, 2,
+     *           1, T, X, V, Y, 2.0D0, INFO, 1.0D-7, 1.0D-7, IDIDS(K),
+     *           RWORK, 20, IWORK, 22, RPAR, IPAR, DJ, JRT, 1, JROOT)
+            IF (IDIDS(K) .EQ. 5) THEN
+               TROOT = T
+               JR = JROOT(1)
+            END IF
+            IF (IDIDS(K) .NE. 5) GO TO 15
+   10    CONTINUE
+   15    IDID = IDIDS(MIN(K, 3))
+C        the root of X1 = cos t is as accurate as X1 (|X1'| = 1 there):
+C        100 RTOL as for the state in JACSUI (measured 2.2E-6 on the
+C        circle, 3.5E-8 on the particle)
+         CALL CHECK(IDIDS(1) .EQ. 5 .AND. JR .EQ. -1 .AND.
+     *        ABS(TROOT - 2.0D0 * ATAN(1.0D0)) .LT. 1.0D-5,
+     *        'JAC with RT: IDID 5 at pi/2, JROOT -1', NCHK)
+         CALL CHECK(IDID .EQ. 3 .AND. T .EQ. 2.0D0,
+     *        'JAC with RT: then IDID 3 at TOUT', NCHK)
+         IF (IDIDS(1) .NE. 5 .OR. IDID .NE. 3 .OR. JR .NE. -1 .OR.
+     *        ABS(TROOT - 2.0D0 * ATAN(1.0D0)) .GE. 1.0D-5)
+     *        WRITE (*, '(A, I2, 3I5, 1P, E12.4)')
+     *        '    kind, JROOT, IDIDs, root', KIND, JR, IDIDS(1), IDID,
+     *        TROOT - 2.0D0 * ATAN(1.0D0)
+         CALL DREGDAEFREE(IWORK, 22)
+   20 CONTINUE
+      END
+C
+C     RT of JROOTS: X1
+      SUBROUTINE JRT(N, T, X, V, NRT, RVAL, RPAR, IPAR)
+      INTEGER N, NRT, IPAR(*)
+      DOUBLE PRECISION T, X(N), V(N), RVAL(NRT), RPAR(*)
+      RVAL(1) = X(1)
       END
