@@ -81,8 +81,9 @@ module regdae_events
         real(wp) :: t_lo = 0.0_wp               !! searched up to here
         real(wp), allocatable :: e_lo(:), e_hi(:), e_mid(:), e_b(:)
         integer, allocatable :: sgn(:)          !! sign of the last nonzero value (0: none yet)
-        real(wp), allocatable :: x(:), v(:)     !! x and v at an evaluation
-        real(wp), allocatable :: u_lo(:)        !! the integrator's state at t_lo
+        real(wp), allocatable :: x(:), v(:)     !! x and v at an evaluation (the augmented formulation's)
+        real(wp), allocatable :: u_lo(:)        !! the integrator's state at t_u_lo: t_lo where that is the end
+        real(wp) :: t_u_lo = -huge(1.0_wp)      !! of a step (the secant needs it only after more than one step)
         real(wp) :: t_state = -huge(1.0_wp)     !! the time of the integrator's state and slope (the last
                                                 !! interpolation; -huge: not known)
         real(wp) :: t_step_end = -huge(1.0_wp)  !! the integrator's state (not necessarily its slope) is the
@@ -186,6 +187,7 @@ contains
         self%t_lo = t
         u => stepper%state()
         self%u_lo = u
+        self%t_u_lo = t
         self%found = 0
         self%primed = .true.
     end subroutine locator_prime
@@ -242,12 +244,13 @@ contains
         logical, intent(out) :: stop
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: t_b, h, t_end
+        real(wp) :: t_b, h, t_end, t_step
         stop = .false.
         stat = regdae_success
         if (.not. (t_hi > self%t_lo)) return
         h = abs(stepper%last_step())
-        t_b = stepper%time() - h
+        t_step = stepper%time()
+        t_b = t_step - h
         if (t_b > self%t_lo .and. t_b < t_hi) then
             ! no continuous extension covers (t_lo, t_b]: the secant there
             call evaluate(self, stepper, t_b, self%e_b, stat, msg)
@@ -258,7 +261,7 @@ contains
         call evaluate(self, stepper, t_hi, self%e_hi, stat, msg)
         if (stat /= regdae_success) return
         if (.not. any_reported(self%sgn, self%e_hi)) then   ! no crossing (most steps): on to t_hi
-            call accept(self, stepper, t_hi, self%e_hi, stat)
+            call accept(self, stepper, t_hi, self%e_hi, t_step, stat)
             return
         end if
         self%e_b(:) = self%e_hi
@@ -285,7 +288,7 @@ contains
                 end if
                 if (.not. (t_end > self%t_lo)) exit
             end do
-            call accept(self, stepper, t_end, self%e_b, stat)
+            call accept(self, stepper, t_end, self%e_b, t_step, stat)
         end subroutine search
     end subroutine locator_scan
 
@@ -333,7 +336,8 @@ contains
                 self%e_hi = self%e_mid + (tm - ta)/(tb - ta)*(self%e_hi - self%e_mid)
                 call stepper%interpolate(tb, stat)
                 u => stepper%state()
-                u = self%u_lo + (tm - ta)/(tb - ta)*(u - self%u_lo)
+                ! (the state at ta is kept where ta ended a step, as it does here: else the state at tb)
+                if (self%t_u_lo == ta) u = self%u_lo + (tm - ta)/(tb - ta)*(u - self%u_lo)
                 call stepper%state_written()
                 self%t_state = tm
                 self%t_step_end = -huge(1.0_wp)
@@ -438,27 +442,33 @@ contains
         end do
         self%e_lo = e
         self%t_lo = t
-        call keep_state(self, stepper)   ! the state is at t
+        call keep_state(self, stepper, t, stepper%time())   ! the state is at t
     end subroutine move_lo
 
-    ! u_lo: the integrator's state (at t_lo), in place where the size is the same.
-    subroutine keep_state(self, stepper)
+    ! u_lo: the integrator's state at t (t_lo), where t ends its step: the search covers the
+    ! rest of a step before the integrator steps on, so only a step's end can start a
+    ! stretch of more than one step (the secant's); in place where the size is the same.
+    subroutine keep_state(self, stepper, t, t_step)
         type(event_locator), intent(inout) :: self
         class(integrator), intent(inout), target :: stepper
+        real(wp), intent(in) :: t, t_step   !! t_step: the end of the integrator's last step
         real(c_double), pointer :: u(:)
+        if (t < t_step) return
         u => stepper%state()
         if (size(self%u_lo) == size(u)) then
             self%u_lo(:) = u
         else
             self%u_lo = u
         end if
+        self%t_u_lo = t
     end subroutine keep_state
 
     ! No reported root in (t_lo, t], the values e at t: the search moves there.
-    subroutine accept(self, stepper, t, e, stat)
+    subroutine accept(self, stepper, t, e, t_step, stat)
         type(event_locator), intent(inout) :: self
         class(integrator), intent(inout), target :: stepper
         real(wp), intent(in) :: t, e(:)
+        real(wp), intent(in) :: t_step   ! the end of the integrator's last step
         integer, intent(out) :: stat
         integer :: i
         stat = regdae_success
@@ -473,7 +483,7 @@ contains
             self%t_state = t
             self%t_step_end = -huge(1.0_wp)
         end if
-        call keep_state(self, stepper)
+        call keep_state(self, stepper, t, t_step)
     end subroutine accept
 
     ! A root at t_lo with found(): counted and logged.
@@ -514,19 +524,22 @@ contains
             msg = 'events: the integrator could not interpolate at t = '//format_real(t, 16)
             return
         end if
-        call unpack_state(self, stepper)
         stat = 0
-        call self%fn%values(t, self%x, self%v, e, stat)
+        call unpack_values(self, stepper, t, e, stat)
         if (stat /= 0) then
             stat = regdae_err_user_callback
             msg = 'the event functions reported failure at t = '//format_real(t, 16)
         end if
     end subroutine evaluate
 
-    ! x (and v) from the integrator's state (the augmented formulation's unpacked).
-    subroutine unpack_state(self, stepper)
+    ! The event functions at t of the integrator's state: x and v its own parts (the
+    ! augmented formulation's unpacked into x, v).
+    subroutine unpack_values(self, stepper, t, e, stat)
         type(event_locator), intent(inout) :: self
         class(integrator), intent(inout), target :: stepper
+        real(wp), intent(in) :: t
+        real(wp), intent(out) :: e(:)
+        integer, intent(inout) :: stat
         real(c_double), pointer :: u(:)
         type(augmented_system), pointer :: sys
         integer :: nx
@@ -536,10 +549,10 @@ contains
         if (associated(sys)) then
             call sys%unpack(u, u, q=self%x)
             if (size(self%v) > 0) call sys%unpack(u, u, v=self%v)
-            return
+            call self%fn%values(t, self%x, self%v, e, stat)
+        else
+            call self%fn%values(t, u(1:nx), u(nx + 1:nx + size(self%v)), e, stat)
         end if
-        self%x(:) = u(1:nx)
-        if (size(self%v) > 0) self%v(:) = u(nx + 1:2*nx)
-    end subroutine unpack_state
+    end subroutine unpack_values
 
 end module regdae_events

@@ -355,9 +355,9 @@ contains
         type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
-        logical :: recoverable, events, at_root, stop_user, held, driving, single
+        logical :: recoverable, events, at_root, stop_user, held, driving, single, stepped
         integer :: nx, outcome, taken
-        real(wp) :: t_reached, t_stop, t_ask, t_before
+        real(wp) :: t_reached, t_stop, t_ask, t_before, t_now
 
         core => self%core
         if (.not. associated(core)) then
@@ -424,7 +424,7 @@ contains
                     end if
                 end if
                 held = .false.
-                t_before = stepper%time()
+                if (single) t_before = stepper%time()
                 if (driving .and. .not. single .and. core%stop_at_pass_end .and. core%started .and. &
                     stepper%time() < tout) then
                     ! the step end passed over (an implicit integrator samples it now): a pass end
@@ -434,8 +434,12 @@ contains
                     if (outcome == outcome_reached .and. held) outcome = outcome_pass_end
                 end if
                 if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg, one_step=single)
-                if (events) call self%ev%state_after(outcome == outcome_reached, single .and. stepper%time() > t_before, &
-                                                     t_stop, stepper%time())
+                if (events) then   ! where the state is now (the search evaluates there without interpolating)
+                    t_now = stepper%time()
+                    stepped = .false.
+                    if (single) stepped = (t_now > t_before)
+                    call self%ev%state_after(outcome == outcome_reached, stepped, t_stop, t_now)
+                end if
                 if (single .and. outcome == outcome_reached) t_ask = t_stop   ! the step's end, or tout
                 core%opts%stop_at_output = stop_user
                 if (driving) then
