@@ -214,20 +214,22 @@ contains
 
     !> After an advance of the integrator that stopped at t_stop, its last step ending
     !! at t_end: where its state is. `reached` (outcome_reached): the integrators
-    !! interpolate at a t_stop inside their last step (state and slope there);
-    !! `stepped` (one step taken in one-step mode): at t_stop = t_end the state is the
-    !! step's own (its slope need not be the continuous extension's). Otherwise unknown.
-    subroutine locator_state_after(self, reached, stepped, t_stop, t_end)
+    !! interpolate at a t_stop inside their last step (state and slope there); in
+    !! one-step mode (`single`) with a step taken (t_end beyond t_before, the time before
+    !! the advance), at t_stop = t_end the state is the step's own (its slope need not be
+    !! the continuous extension's). Otherwise unknown.
+    subroutine locator_state_after(self, reached, single, t_before, t_stop, t_end)
         class(event_locator), intent(inout) :: self
-        logical, intent(in) :: reached, stepped
+        logical, intent(in) :: reached, single
+        real(wp), intent(in) :: t_before   !! read with `single` only
         real(wp), intent(in) :: t_stop, t_end
         self%t_state = -huge(1.0_wp)
         self%t_step_end = -huge(1.0_wp)
         if (.not. reached) return
         if (t_stop < t_end) then
             self%t_state = t_stop
-        else if (stepped) then
-            self%t_step_end = t_stop
+        else if (single) then
+            if (t_end > t_before) self%t_step_end = t_stop
         end if
     end subroutine locator_state_after
 
@@ -261,7 +263,7 @@ contains
         call evaluate(self, stepper, t_hi, self%e_hi, stat, msg)
         if (stat /= regdae_success) return
         if (.not. any_reported(self%sgn, self%e_hi)) then   ! no crossing (most steps): on to t_hi
-            call accept(self, stepper, t_hi, self%e_hi, t_step, stat)
+            call accept(self, stepper, t_hi, self%e_hi, t_step, stat, msg)
             return
         end if
         self%e_b(:) = self%e_hi
@@ -288,7 +290,7 @@ contains
                 end if
                 if (.not. (t_end > self%t_lo)) exit
             end do
-            call accept(self, stepper, t_end, self%e_b, t_step, stat)
+            call accept(self, stepper, t_end, self%e_b, t_step, stat, msg)
         end subroutine search
     end subroutine locator_scan
 
@@ -464,12 +466,13 @@ contains
     end subroutine keep_state
 
     ! No reported root in (t_lo, t], the values e at t: the search moves there.
-    subroutine accept(self, stepper, t, e, t_step, stat)
+    subroutine accept(self, stepper, t, e, t_step, stat, msg)
         type(event_locator), intent(inout) :: self
         class(integrator), intent(inout), target :: stepper
         real(wp), intent(in) :: t, e(:)
         real(wp), intent(in) :: t_step   ! the end of the integrator's last step
         integer, intent(out) :: stat
+        character(len=:), allocatable, intent(inout) :: msg
         integer :: i
         stat = regdae_success
         do i = 1, self%n
@@ -479,9 +482,13 @@ contains
         self%t_lo = t
         if (self%t_state /= t .and. self%t_step_end /= t) then
             call stepper%interpolate(t, stat)
-            if (stat /= regdae_success) stat = regdae_err_integration
             self%t_state = t
             self%t_step_end = -huge(1.0_wp)
+            if (stat /= regdae_success) then
+                stat = regdae_err_integration
+                msg = 'events: the integrator could not interpolate at t = '//format_real(t, 16)
+                return
+            end if
         end if
         call keep_state(self, stepper, t, t_step)
     end subroutine accept

@@ -355,9 +355,9 @@ contains
         type(augmented_system), pointer :: sys
         real(c_double), pointer :: u(:)
         character(len=:), allocatable :: msg
-        logical :: recoverable, events, at_root, stop_user, held, driving, single, stepped
+        logical :: recoverable, events, at_root, stop_user, held, driving, single
         integer :: nx, outcome, taken
-        real(wp) :: t_reached, t_stop, t_ask, t_before, t_now
+        real(wp) :: t_reached, t_stop, t_ask, t_before
 
         core => self%core
         if (.not. associated(core)) then
@@ -385,7 +385,7 @@ contains
             taken = 0
             if (events) then
                 self%ev%found = 0
-                self%ev%t_step_end = -huge(1.0_wp)   ! (a restart since may have moved the state)
+                self%ev%t_step_end = -huge(1.0_wp)   ! (a restart since may have replaced the state)
                 if (.not. (self%ev%primed .and. core%started .and. associated(self%ev_core, core))) then
                     stepper => active_integrator(core)
                     call self%ev%prime(stepper, core%t, nx, core%second_order, stat, msg)
@@ -395,9 +395,7 @@ contains
                     end if
                     self%ev_core => core
                 end if
-                ! the rest of the integrator's last step, beyond the previous tout, before it
-                ! steps on (an integrator that does not step to reach tout searches up to tout
-                ! after the advance, at the state it interpolated there)
+                ! the rest of the last step before the integrator steps on (else searched after the advance)
                 outcome = outcome_reached
                 stepper => active_integrator(core)
                 t_stop = stepper%time()
@@ -434,12 +432,7 @@ contains
                     if (outcome == outcome_reached .and. held) outcome = outcome_pass_end
                 end if
                 if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg, one_step=single)
-                if (events) then   ! where the state is now (the search evaluates there without interpolating)
-                    t_now = stepper%time()
-                    stepped = .false.
-                    if (single) stepped = (t_now > t_before)
-                    call self%ev%state_after(outcome == outcome_reached, stepped, t_stop, t_now)
-                end if
+                if (events) call self%ev%state_after(outcome == outcome_reached, single, t_before, t_stop, stepper%time())
                 if (single .and. outcome == outcome_reached) t_ask = t_stop   ! the step's end, or tout
                 core%opts%stop_at_output = stop_user
                 if (driving) then
@@ -586,7 +579,7 @@ contains
         logical function search_roots() result(ok)
             logical :: stop_here
             real(wp) :: t_hi
-            character(len=:), allocatable :: scan_msg   ! (allocated on a failure only)
+            character(len=:), allocatable :: scan_msg   ! (set on a failure only)
             ok = .true.
             select case (outcome)
             case (outcome_reached, outcome_pass_end, outcome_stiff, outcome_nonstiff)
@@ -598,7 +591,6 @@ contains
                     self%ev%log = ''
                 end if
                 if (stat /= regdae_success) then
-                    if (.not. allocated(scan_msg)) scan_msg = ''
                     call fail(stat, scan_msg)
                     ok = .false.
                 else if (stop_here) then
