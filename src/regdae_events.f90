@@ -31,6 +31,10 @@
 !! is located by the secant between the values at t_lo and t_b, and a stop there
 !! returns the state interpolated linearly between the two (an error up to the
 !! length of that stretch).
+!!
+!! The front tells the search where the integrator left its state after each
+!! advance (`state_after`: a one-step advance's step end, or the output time it
+!! interpolated at): the values there are taken without interpolating again.
 module regdae_events
     use, intrinsic :: iso_c_binding, only: c_double
     use regdae_kinds, only: wp
@@ -77,9 +81,14 @@ module regdae_events
         real(wp) :: t_lo = 0.0_wp               !! searched up to here
         real(wp), allocatable :: e_lo(:), e_hi(:), e_mid(:), e_b(:)
         integer, allocatable :: sgn(:)          !! sign of the last nonzero value (0: none yet)
-        real(wp), allocatable :: x(:), v(:)     !! x and v at an evaluation
-        real(wp), allocatable :: u_lo(:)        !! the integrator's state at t_lo
-        real(wp) :: t_state = -huge(1.0_wp)     !! the time of the integrator's state (the last evaluation)
+        real(wp), allocatable :: x(:), v(:)     !! x and v at an evaluation (the augmented formulation's)
+        real(wp), allocatable :: u_lo(:)        !! the integrator's state at t_u_lo: t_lo where that is the end
+        real(wp) :: t_u_lo = -huge(1.0_wp)      !! of a step (the secant needs it only after more than one step)
+        real(wp) :: t_state = -huge(1.0_wp)     !! the time of the integrator's state and slope (the last
+                                                !! interpolation; -huge: not known)
+        real(wp) :: t_step_end = -huge(1.0_wp)  !! the integrator's state (not necessarily its slope) is the
+                                                !! end of the step it just took, here (-huge: not so)
+        integer, allocatable :: sgn_lo(:)       !! the signs at the search's start (locate's scratch)
         character(len=:), allocatable :: log    !! lines for the solver's event log
     contains
         !> Set (n > 0) or clear (n = 0) the functions.
@@ -90,6 +99,9 @@ module regdae_events
         procedure :: step_target => locator_step_target
         !> Search (t_lo, t_hi] of the integrator's last step; stop = a stopping root found.
         procedure :: scan => locator_scan
+        !> Where the integrator's state is after an advance (the search evaluates there
+        !! without interpolating).
+        procedure :: state_after => locator_state_after
     end type event_locator
 
     integer, parameter :: max_iterations = 200
@@ -147,6 +159,7 @@ contains
         self%e_mid = self%e_lo
         self%e_b = self%e_lo
         self%sgn = spread(0, 1, n)
+        self%sgn_lo = self%sgn
         if (allocated(self%x)) deallocate (self%x, self%v)
     end subroutine locator_set
 
@@ -174,6 +187,7 @@ contains
         self%t_lo = t
         u => stepper%state()
         self%u_lo = u
+        self%t_u_lo = t
         self%found = 0
         self%primed = .true.
     end subroutine locator_prime
@@ -198,6 +212,27 @@ contains
         t_ask = min(tout, t + max(delta, 1.0e3_wp*resolution))
     end function locator_step_target
 
+    !> After an advance of the integrator that stopped at t_stop, its last step ending
+    !! at t_end: where its state is. `reached` (outcome_reached): the integrators
+    !! interpolate at a t_stop inside their last step (state and slope there); in
+    !! one-step mode (`single`) with a step taken (t_end beyond t_before, the time before
+    !! the advance), at t_stop = t_end the state is the step's own (its slope need not be
+    !! the continuous extension's). Otherwise unknown.
+    subroutine locator_state_after(self, reached, single, t_before, t_stop, t_end)
+        class(event_locator), intent(inout) :: self
+        logical, intent(in) :: reached, single
+        real(wp), intent(in) :: t_before   !! read with `single` only
+        real(wp), intent(in) :: t_stop, t_end
+        self%t_state = -huge(1.0_wp)
+        self%t_step_end = -huge(1.0_wp)
+        if (.not. reached) return
+        if (t_stop < t_end) then
+            self%t_state = t_stop
+        else if (single) then
+            if (t_end > t_before) self%t_step_end = t_stop
+        end if
+    end subroutine locator_state_after
+
     !> Search (t_lo, t_hi] of the integrator's last step for roots. Roots that only
     !! continue are logged and counted; at the first root with a function that
     !! stops, `stop` is true, t_root and found() are set and the integrator's state
@@ -211,12 +246,13 @@ contains
         logical, intent(out) :: stop
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: t_b, h, t_end
+        real(wp) :: t_b, h, t_end, t_step
         stop = .false.
         stat = regdae_success
         if (.not. (t_hi > self%t_lo)) return
         h = abs(stepper%last_step())
-        t_b = stepper%time() - h
+        t_step = stepper%time()
+        t_b = t_step - h
         if (t_b > self%t_lo .and. t_b < t_hi) then
             ! no continuous extension covers (t_lo, t_b]: the secant there
             call evaluate(self, stepper, t_b, self%e_b, stat, msg)
@@ -226,7 +262,11 @@ contains
         end if
         call evaluate(self, stepper, t_hi, self%e_hi, stat, msg)
         if (stat /= regdae_success) return
-        self%e_b = self%e_hi
+        if (.not. any_reported(self%sgn, self%e_hi)) then   ! no crossing (most steps): on to t_hi
+            call accept(self, stepper, t_hi, self%e_hi, t_step, stat, msg)
+            return
+        end if
+        self%e_b(:) = self%e_hi
         call search(t_hi, .true.)
     contains
         ! (t_lo, t_end], the values at t_end in e_b: locate, log, repeat past
@@ -250,7 +290,7 @@ contains
                 end if
                 if (.not. (t_end > self%t_lo)) exit
             end do
-            call accept(self, stepper, t_end, self%e_b, stat)
+            call accept(self, stepper, t_end, self%e_b, t_step, stat, msg)
         end subroutine search
     end subroutine locator_scan
 
@@ -266,100 +306,96 @@ contains
         character(len=:), allocatable, intent(inout) :: msg
         real(wp) :: ta, tb, tm, ttol, fa, fb, frac, best
         integer :: i, k, side, last_side
-        integer :: s_lo(self%n)
         logical :: moved
         real(c_double), pointer :: u(:)
         stat = regdae_success
         any_root = .false.
-        self%e_hi = self%e_b
-        s_lo = self%sgn
-        if (.not. any(reported(s_lo, self%e_hi))) return
-        any_root = .true.
-        ta = self%t_lo
-        tb = t_end
-        ttol = 4*epsilon(1.0_wp)*max(abs(tb), h)
-        self%e_mid = self%e_lo   ! the values at ta (where a function was zero: its sign)
-        where (self%e_mid == 0.0_wp) self%e_mid = s_lo*tiny(1.0_wp)
-        if (.not. dense) then
-            ! the secant of the earliest crossing
-            tm = tb
-            do i = 1, self%n
-                if (.not. reported_one(i, s_lo(i), self%e_hi(i))) cycle
-                tm = min(tm, tb - (tb - ta)*self%e_hi(i)/(self%e_hi(i) - self%e_mid(i)))
+        self%e_hi(:) = self%e_b
+        if (.not. any_reported(self%sgn, self%e_hi)) return
+        associate (s_lo => self%sgn_lo)
+            s_lo = self%sgn
+            any_root = .true.
+            ta = self%t_lo
+            tb = t_end
+            ttol = 4*epsilon(1.0_wp)*max(abs(tb), h)
+            self%e_mid = self%e_lo   ! the values at ta (where a function was zero: its sign)
+            where (self%e_mid == 0.0_wp) self%e_mid = s_lo*tiny(1.0_wp)
+            if (.not. dense) then
+                ! the secant of the earliest crossing
+                tm = tb
+                do i = 1, self%n
+                    if (.not. reported_one(i, s_lo(i), self%e_hi(i))) cycle
+                    tm = min(tm, tb - (tb - ta)*self%e_hi(i)/(self%e_hi(i) - self%e_mid(i)))
+                end do
+                tm = max(ta, min(tb, tm))
+                self%found = 0
+                do i = 1, self%n
+                    if (.not. reported_one(i, s_lo(i), self%e_hi(i))) cycle
+                    if (abs(tb - (tb - ta)*self%e_hi(i)/(self%e_hi(i) - self%e_mid(i)) - tm) <= ttol) &
+                        self%found(i) = -s_lo(i)
+                end do
+                ! the state and the values there, linear between ta and tb
+                self%e_hi = self%e_mid + (tm - ta)/(tb - ta)*(self%e_hi - self%e_mid)
+                call stepper%interpolate(tb, stat)
+                u => stepper%state()
+                ! (the state at ta is kept where ta ended a step, as it does here: else the state at tb)
+                if (self%t_u_lo == ta) u = self%u_lo + (tm - ta)/(tb - ta)*(u - self%u_lo)
+                call stepper%state_written()
+                self%t_state = tm
+                self%t_step_end = -huge(1.0_wp)
+                stat = regdae_success
+                call move_lo(self, stepper, tm, self%e_hi)
+                return
+            end if
+            side = 0
+            last_side = 0
+            fa = 1.0_wp   ! the Illinois weights of the retained ends
+            fb = 1.0_wp
+            do k = 1, max_iterations
+                if (tb - ta <= ttol) exit
+                ! the crossing whose secant root comes first
+                best = 0.0_wp
+                do i = 1, self%n
+                    if (.not. reported_one(i, s_lo(i), self%e_hi(i))) cycle
+                    frac = abs(fb*self%e_hi(i))/abs(fb*self%e_hi(i) - fa*self%e_mid(i))
+                    best = max(best, frac)
+                end do
+                tm = tb - (tb - ta)*min(max(best, 0.0_wp), 1.0_wp)
+                tm = max(ta + 0.5_wp*ttol, min(tb - 0.5_wp*ttol, tm))
+                call evaluate(self, stepper, tm, self%e_lo, stat, msg)   ! e_lo: scratch here
+                if (stat /= regdae_success) return
+                moved = any_reported(s_lo, self%e_lo)
+                if (moved) then   ! a crossing in (ta, tm]: tm is the new right end
+                    tb = tm
+                    self%e_hi = self%e_lo
+                    side = 1
+                else              ! none: tm is the new left end
+                    ta = tm
+                    self%e_mid = self%e_lo
+                    where (self%e_mid == 0.0_wp) self%e_mid = s_lo*tiny(1.0_wp)
+                    side = 2
+                end if
+                ! Illinois: an end retained again counts half as much again
+                if (side /= last_side) then
+                    fa = 1.0_wp
+                    fb = 1.0_wp
+                else if (side == 1) then
+                    fa = 0.5_wp*fa
+                else
+                    fb = 0.5_wp*fb
+                end if
+                last_side = side
             end do
-            tm = max(ta, min(tb, tm))
             self%found = 0
             do i = 1, self%n
-                if (.not. reported_one(i, s_lo(i), self%e_hi(i))) cycle
-                if (abs(tb - (tb - ta)*self%e_hi(i)/(self%e_hi(i) - self%e_mid(i)) - tm) <= ttol) &
-                    self%found(i) = -s_lo(i)
+                if (reported_one(i, s_lo(i), self%e_hi(i))) self%found(i) = -s_lo(i)
             end do
-            ! the state and the values there, linear between ta and tb
-            self%e_hi = self%e_mid + (tm - ta)/(tb - ta)*(self%e_hi - self%e_mid)
-            call stepper%interpolate(tb, stat)
-            u => stepper%state()
-            u = self%u_lo + (tm - ta)/(tb - ta)*(u - self%u_lo)
-            self%t_state = tm
-            stat = regdae_success
-            call move_lo(self, stepper, tm, self%e_hi)
-            return
-        end if
-        side = 0
-        last_side = 0
-        fa = 1.0_wp   ! the Illinois weights of the retained ends
-        fb = 1.0_wp
-        do k = 1, max_iterations
-            if (tb - ta <= ttol) exit
-            ! the crossing whose secant root comes first
-            best = 0.0_wp
-            do i = 1, self%n
-                if (.not. reported_one(i, s_lo(i), self%e_hi(i))) cycle
-                frac = abs(fb*self%e_hi(i))/abs(fb*self%e_hi(i) - fa*self%e_mid(i))
-                best = max(best, frac)
-            end do
-            tm = tb - (tb - ta)*min(max(best, 0.0_wp), 1.0_wp)
-            tm = max(ta + 0.5_wp*ttol, min(tb - 0.5_wp*ttol, tm))
-            call evaluate(self, stepper, tm, self%e_lo, stat, msg)   ! e_lo: scratch here
+            ! the state at the root (the last evaluation may have been at the left end)
+            call evaluate(self, stepper, tb, self%e_hi, stat, msg)
             if (stat /= regdae_success) return
-            moved = any(reported(s_lo, self%e_lo))
-            if (moved) then   ! a crossing in (ta, tm]: tm is the new right end
-                tb = tm
-                self%e_hi = self%e_lo
-                side = 1
-            else              ! none: tm is the new left end
-                ta = tm
-                self%e_mid = self%e_lo
-                where (self%e_mid == 0.0_wp) self%e_mid = s_lo*tiny(1.0_wp)
-                side = 2
-            end if
-            ! Illinois: an end retained again counts half as much again
-            if (side /= last_side) then
-                fa = 1.0_wp
-                fb = 1.0_wp
-            else if (side == 1) then
-                fa = 0.5_wp*fa
-            else
-                fb = 0.5_wp*fb
-            end if
-            last_side = side
-        end do
-        self%found = 0
-        do i = 1, self%n
-            if (reported_one(i, s_lo(i), self%e_hi(i))) self%found(i) = -s_lo(i)
-        end do
-        ! the state at the root (the last evaluation may have been at the left end)
-        call evaluate(self, stepper, tb, self%e_hi, stat, msg)
-        if (stat /= regdae_success) return
-        call move_lo(self, stepper, tb, self%e_hi)
+            call move_lo(self, stepper, tb, self%e_hi)
+        end associate
     contains
-        elemental logical function reported(s, e)
-            integer, intent(in) :: s
-            real(wp), intent(in) :: e
-            reported = .false.
-            if (s == 0) return
-            reported = (e == 0.0_wp .or. int(sign(1.0_wp, e)) /= s)
-        end function reported
-
         logical function reported_one(i, s, e)
             integer, intent(in) :: i, s
             real(wp), intent(in) :: e
@@ -368,13 +404,33 @@ contains
         end function reported_one
     end subroutine locate
 
+    ! Does any function cross (signs s before, values e now)?
+    pure logical function any_reported(s, e)
+        integer, intent(in) :: s(:)
+        real(wp), intent(in) :: e(:)
+        integer :: j
+        any_reported = .true.
+        do j = 1, size(s)
+            if (reported(s(j), e(j))) return
+        end do
+        any_reported = .false.
+    end function any_reported
+
+    ! Does a function of sign s (0: none yet) cross to the value e?
+    elemental logical function reported(s, e)
+        integer, intent(in) :: s
+        real(wp), intent(in) :: e
+        reported = .false.
+        if (s == 0) return
+        reported = (e == 0.0_wp .or. int(sign(1.0_wp, e)) /= s)
+    end function reported
+
     ! The search has reached t with the values e there: the signs follow (a
     ! function zero at a reported root has none until its next nonzero value).
     subroutine move_lo(self, stepper, t, e)
         type(event_locator), intent(inout) :: self
         class(integrator), intent(inout), target :: stepper
         real(wp), intent(in) :: t, e(:)
-        real(c_double), pointer :: u(:)
         integer :: i
         do i = 1, self%n
             if (self%found(i) /= 0) then
@@ -388,31 +444,53 @@ contains
         end do
         self%e_lo = e
         self%t_lo = t
-        u => stepper%state()   ! the state is at t
-        self%u_lo = u
+        call keep_state(self, stepper, t, stepper%time())   ! the state is at t
     end subroutine move_lo
 
+    ! u_lo: the integrator's state at t (t_lo), where t ends its step: the search covers the
+    ! rest of a step before the integrator steps on, so only a step's end can start a
+    ! stretch of more than one step (the secant's); in place where the size is the same.
+    subroutine keep_state(self, stepper, t, t_step)
+        type(event_locator), intent(inout) :: self
+        class(integrator), intent(inout), target :: stepper
+        real(wp), intent(in) :: t, t_step   !! t_step: the end of the integrator's last step
+        real(c_double), pointer :: u(:)
+        if (t < t_step) return
+        u => stepper%state()
+        if (size(self%u_lo) == size(u)) then
+            self%u_lo(:) = u
+        else
+            self%u_lo = u
+        end if
+        self%t_u_lo = t
+    end subroutine keep_state
+
     ! No reported root in (t_lo, t], the values e at t: the search moves there.
-    subroutine accept(self, stepper, t, e, stat)
+    subroutine accept(self, stepper, t, e, t_step, stat, msg)
         type(event_locator), intent(inout) :: self
         class(integrator), intent(inout), target :: stepper
         real(wp), intent(in) :: t, e(:)
+        real(wp), intent(in) :: t_step   ! the end of the integrator's last step
         integer, intent(out) :: stat
-        real(c_double), pointer :: u(:)
+        character(len=:), allocatable, intent(inout) :: msg
         integer :: i
         stat = regdae_success
         do i = 1, self%n
             if (e(i) /= 0.0_wp) self%sgn(i) = int(sign(1.0_wp, e(i)))
         end do
-        self%e_lo = e
+        self%e_lo(:) = e
         self%t_lo = t
-        if (self%t_state /= t) then
+        if (self%t_state /= t .and. self%t_step_end /= t) then
             call stepper%interpolate(t, stat)
-            if (stat /= regdae_success) stat = regdae_err_integration
             self%t_state = t
+            self%t_step_end = -huge(1.0_wp)
+            if (stat /= regdae_success) then
+                stat = regdae_err_integration
+                msg = 'events: the integrator could not interpolate at t = '//format_real(t, 16)
+                return
+            end if
         end if
-        u => stepper%state()
-        self%u_lo = u
+        call keep_state(self, stepper, t, t_step)
     end subroutine accept
 
     ! A root at t_lo with found(): counted and logged.
@@ -440,26 +518,35 @@ contains
         character(len=:), allocatable, intent(inout) :: msg
         logical, intent(in), optional :: at_state   !! the integrator's state is at t already
         stat = regdae_success
-        if (.not. present(at_state)) call stepper%interpolate(t, stat)
-        self%t_state = t
+        ! the state is at t already: given, the last interpolation's, or the step's end
+        if (present(at_state)) then
+            self%t_state = t
+        else if (t /= self%t_state .and. t /= self%t_step_end) then
+            call stepper%interpolate(t, stat)
+            self%t_state = t
+            self%t_step_end = -huge(1.0_wp)
+        end if
         if (stat /= regdae_success) then
             stat = regdae_err_integration
             msg = 'events: the integrator could not interpolate at t = '//format_real(t, 16)
             return
         end if
-        call unpack_state(self, stepper)
         stat = 0
-        call self%fn%values(t, self%x, self%v, e, stat)
+        call unpack_values(self, stepper, t, e, stat)
         if (stat /= 0) then
             stat = regdae_err_user_callback
             msg = 'the event functions reported failure at t = '//format_real(t, 16)
         end if
     end subroutine evaluate
 
-    ! x (and v) from the integrator's state (the augmented formulation's unpacked).
-    subroutine unpack_state(self, stepper)
+    ! The event functions at t of the integrator's state: x and v its own parts (the
+    ! augmented formulation's unpacked into x, v).
+    subroutine unpack_values(self, stepper, t, e, stat)
         type(event_locator), intent(inout) :: self
         class(integrator), intent(inout), target :: stepper
+        real(wp), intent(in) :: t
+        real(wp), intent(out) :: e(:)
+        integer, intent(inout) :: stat
         real(c_double), pointer :: u(:)
         type(augmented_system), pointer :: sys
         integer :: nx
@@ -469,10 +556,10 @@ contains
         if (associated(sys)) then
             call sys%unpack(u, u, q=self%x)
             if (size(self%v) > 0) call sys%unpack(u, u, v=self%v)
-            return
+            call self%fn%values(t, self%x, self%v, e, stat)
+        else
+            call self%fn%values(t, u(1:nx), u(nx + 1:nx + size(self%v)), e, stat)
         end if
-        self%x = u(1:nx)
-        if (size(self%v) > 0) self%v = u(nx + 1:2*nx)
-    end subroutine unpack_state
+    end subroutine unpack_values
 
 end module regdae_events

@@ -105,6 +105,10 @@ module regdae_ida_backend
         ! earliest time at which one happened (see note_recoverable_failure)
         integer :: stall_count = 0
         real(wp) :: stall_t = 0.0_wp
+        ! u, u' hold IDA's interpolant at t_interpolated (set by interpolate only; a step,
+        ! a restart or a write into state() forgets it): interpolate there again is a no-op
+        logical :: interpolated = .false.
+        real(wp) :: t_interpolated = 0.0_wp
     contains
         !> Create the SUNDIALS context, vectors, IDA memory and the linear solver.
         procedure :: create => backend_create
@@ -121,8 +125,11 @@ module regdae_ida_backend
         procedure :: last_step => backend_last_step
         !> Restart IDA at (t, u, u') (its history forgotten).
         procedure :: restart => backend_restart
-        !> u, u' at t within IDA's last step, from its interpolant.
+        !> u, u' at t within IDA's last step, from its interpolant (nothing to do
+        !! where they hold it at t already).
         procedure :: interpolate => backend_interpolate
+        !> u or u' was written other than by interpolate: the next interpolate computes.
+        procedure :: forget_interpolation => backend_forget_interpolation
         !> IDA's solution vector u and its derivative u' (at the last return).
         procedure :: state => backend_state
         procedure :: slope => backend_slope
@@ -155,6 +162,7 @@ contains
         integer(c_int) :: ierr
         real(c_double), pointer :: p(:)
         type(c_ptr) :: user_data
+        self%interpolated = .false.
 
         user_data = c_null_ptr
         select type (self)
@@ -322,6 +330,7 @@ contains
         type(N_Vector), pointer :: id
         real(c_double), pointer :: p(:)
         integer(c_int) :: ierr
+        self%interpolated = .false.
         stat = regdae_success
         msg = ''
         id => FN_VNew_Serial(int(self%neq, c_long), self%sunctx)
@@ -353,6 +362,7 @@ contains
         real(c_double) :: t_reached(1)
         integer(c_int) :: flag
         real(wp) :: t_before
+        self%interpolated = .false.
 
         self%pending_stat = regdae_success
         if (len(self%pending_message) > 0) self%pending_message = ''
@@ -380,6 +390,7 @@ contains
         real(c_double) :: t_reached(1)
         integer(c_int) :: flag
         real(wp) :: t_before
+        self%interpolated = .false.
 
         self%pending_stat = regdae_success
         if (len(self%pending_message) > 0) self%pending_message = ''
@@ -416,6 +427,7 @@ contains
         real(wp), intent(in) :: t, u(:), up(:)
         integer, intent(out) :: stat
         real(c_double), pointer :: p(:)
+        self%interpolated = .false.
         call self%get_statistics(self%carried)   ! FIDAReInit zeroes IDA's counters: keep them
         self%carried%jac_res_evals = 0           ! (counted by regdae itself, not reset)
         self%carried%res_evals = self%carried%res_evals - self%jac_res_evals
@@ -431,9 +443,20 @@ contains
         class(ida_backend), intent(inout) :: self
         real(wp), intent(in) :: t
         integer, intent(out) :: ierr
+        if (self%interpolated .and. t == self%t_interpolated) then
+            ierr = 0
+            return
+        end if
         ierr = int(FIDAGetDky(self%ida_mem, t, 0_c_int, self%uu))
         if (ierr == 0) ierr = int(FIDAGetDky(self%ida_mem, t, 1_c_int, self%up))
+        self%interpolated = (ierr == 0)
+        self%t_interpolated = t
     end subroutine backend_interpolate
+
+    subroutine backend_forget_interpolation(self)
+        class(ida_backend), intent(inout) :: self
+        self%interpolated = .false.
+    end subroutine backend_forget_interpolation
 
     function backend_state(self) result(u)
         class(ida_backend), intent(in) :: self
@@ -550,6 +573,7 @@ contains
     subroutine backend_free(self)
         class(ida_backend), intent(inout) :: self
         integer(c_int) :: ierr
+        self%interpolated = .false.
         if (c_associated(self%ida_mem)) then   ! the counters of a later IDA continue from these
             call self%get_statistics(self%carried)
             self%carried%jac_res_evals = 0

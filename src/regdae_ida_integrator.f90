@@ -44,6 +44,7 @@ module regdae_ida_integrator
         procedure :: ready => ida_ready
         procedure :: free => ida_free
         procedure :: augmented => ida_augmented
+        procedure :: state_written => ida_state_written
     end type ida_integrator
 
 contains
@@ -153,7 +154,8 @@ contains
         up => self%ida%slope()
     end function ida_slope
 
-    !> IDA's interpolant at t (state and slope); stat: IDAGetDky's flag.
+    !> IDA's interpolant at t (state and slope); stat: IDAGetDky's flag. Where state
+    !! and slope hold it at t already (the last interpolation, no step since), nothing to do.
     subroutine ida_interpolate(self, t, stat)
         class(ida_integrator), intent(inout), target :: self
         real(wp), intent(in) :: t
@@ -219,6 +221,12 @@ contains
             sys => s
         end select
     end function ida_augmented
+
+    !> The caller wrote into state(): the next interpolation computes again.
+    subroutine ida_state_written(self)
+        class(ida_integrator), intent(inout) :: self
+        call self%ida%forget_interpolation()
+    end subroutine ida_state_written
 
     pure function merge_text(prefix, text) result(s)
         character(len=*), intent(in) :: prefix, text

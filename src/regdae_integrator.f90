@@ -34,7 +34,9 @@
 !!  - `stiffness(t)`: an estimate of the spectral radius of the Jacobian of the
 !!    regularized system at the state at t (0: none);
 !!  - `ready()`: does the integrator hold a started state; `free()`: release it;
-!!  - `augmented()`: the augmented system it integrates, if it does (null otherwise).
+!!  - `augmented()`: the augmented system it integrates, if it does (null otherwise);
+!!  - `state_written()`: the caller wrote into `state()` (IDA then interpolates again
+!!    at a time it last interpolated at; by default nothing to do).
 module regdae_integrator
     use, intrinsic :: iso_c_binding, only: c_double
     use regdae_kinds, only: wp
@@ -82,6 +84,9 @@ module regdae_integrator
         procedure :: augmented => no_augmented_system
         !> Does advance honour its one_step argument (return after each step)?
         procedure :: steps_singly => no_single_steps
+        !> The caller wrote into state(): an integrator that keeps its last interpolation
+        !! (to skip interpolating at the same time again) forgets it (default: nothing to do).
+        procedure :: state_written => nothing_kept
     end type integrator
 
     abstract interface
@@ -160,5 +165,9 @@ contains
         class(integrator), intent(in) :: self
         no_single_steps = .false.
     end function no_single_steps
+
+    subroutine nothing_kept(self)
+        class(integrator), intent(inout) :: self
+    end subroutine nothing_kept
 
 end module regdae_integrator

@@ -2,8 +2,10 @@
 !! singular intervals (runs of consecutive samples with sigma_min(GB) below a
 !! threshold), and the velocity jump across each singular interval. A sample
 !! reads the regularized model's last evaluation, so it costs nothing when that
-!! evaluation was made at a point of the solution anyway (IDA: the output times;
-!! dopri5: the end of each accepted step).
+!! evaluation was made at a point of the solution anyway (dopri5: the end of each
+!! accepted step). An implicit integrator evaluates the model for it; it takes the
+!! full sample only where `full_sample_due` (a singular interval may be near) and
+!! elsewhere feeds the work-energy balance alone (`sample_work`).
 !!
 !! Velocity jump: on the physical branch the velocity v = x' of a problem of
 !! order >= 2 is continuous through a singular configuration, v' = a with
@@ -73,6 +75,12 @@ module regdae_monitor
     !> The checkpoint a pass is re-integrated from: the last sample where sigma_min(GB) was
     !! at least this many times the singular threshold.
     real(wp), parameter, public :: checkpoint_factor = 2.0_wp
+    !> An implicit integrator's step end needs the full sample while sigma_min(GB) at the last
+    !! one is below this many times the singular threshold (and the regularization layer's).
+    real(wp), parameter, public :: near_factor = 10.0_wp
+    !> Far from a singular interval, full samples at most this fraction of the motion's time
+    !! scale apart (`motion_time`).
+    real(wp), parameter, public :: far_gap = 0.25_wp
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
@@ -187,6 +195,9 @@ module regdae_monitor
         !> Is a new look at the rate due at t (weights following, a regular sample,
         !! half a time scale after the last look)?
         procedure :: weights_due => monitor_weights_due
+        !> Does a sample at t need the full sample (`sample`), or do the work-energy
+        !! balance's energies (`sample_work`) do: is a singular interval near?
+        procedure :: full_sample_due => monitor_full_sample_due
     end type solution_monitor
 
 contains
@@ -365,6 +376,30 @@ contains
         real(wp), intent(in) :: t
         due = self%weights%on .and. t >= self%weights%t_next .and. .not. self%in_singular .and. .not. self%in_layer
     end function monitor_weights_due
+
+    ! The full sample is due (doc/methods.md, "The full sample where a singular interval may
+    ! be near") unless the last two full samples lie above the near level, outside singular
+    ! intervals and layers, less than far_gap motion times ago, and a falling sigma_min(GB)
+    ! is less than halfway (in time) to the near level along their secant.
+    logical function monitor_full_sample_due(self, t) result(due)
+        class(solution_monitor), intent(in) :: self
+        real(wp), intent(in) :: t
+        real(wp) :: near, since
+        due = .true.
+        if (.not. (self%sigma_before >= 0.0_wp)) return   ! no full sample yet (or its sigma was NaN)
+        if (self%in_singular .or. self%in_layer .or. self%weights_due(t)) return
+        near = near_factor*max(self%threshold, self%layer_threshold)
+        if (.not. (self%sigma_last >= near .and. self%sigma_before >= near)) return
+        if (.not. (self%motion_time() < huge(1.0_wp))) return   ! no time scale: every sample full
+        since = t - self%t_sigma_before
+        if (.not. (since < far_gap*self%motion_time())) return
+        ! sigma falling (the secant of the last two full samples): the next full sample
+        ! halfway to where the secant reaches the near level
+        if (self%slope_before < 0.0_wp) then
+            if (since >= 0.5_wp*(self%sigma_before - near)/(-self%slope_before)) return
+        end if
+        due = .false.
+    end function monitor_full_sample_due
 
     logical function monitor_new_rate(self, t, rate) result(change)
         class(solution_monitor), intent(inout) :: self

@@ -357,7 +357,7 @@ contains
         character(len=:), allocatable :: msg
         logical :: recoverable, events, at_root, stop_user, held, driving, single
         integer :: nx, outcome, taken
-        real(wp) :: t_reached, t_stop, t_ask
+        real(wp) :: t_reached, t_stop, t_ask, t_before
 
         core => self%core
         if (.not. associated(core)) then
@@ -385,6 +385,7 @@ contains
             taken = 0
             if (events) then
                 self%ev%found = 0
+                self%ev%t_step_end = -huge(1.0_wp)   ! (a restart since may have replaced the state)
                 if (.not. (self%ev%primed .and. core%started .and. associated(self%ev_core, core))) then
                     stepper => active_integrator(core)
                     call self%ev%prime(stepper, core%t, nx, core%second_order, stat, msg)
@@ -394,11 +395,11 @@ contains
                     end if
                     self%ev_core => core
                 end if
-                ! the rest of the integrator's last step, beyond the previous tout
+                ! the rest of the last step before the integrator steps on (else searched after the advance)
                 outcome = outcome_reached
                 stepper => active_integrator(core)
                 t_stop = stepper%time()
-                if (t_stop > self%ev%t_lo .and. core%started) then
+                if (t_stop > self%ev%t_lo .and. core%started .and. (stepper%steps_singly() .or. tout > t_stop)) then
                     if (.not. search_roots()) return
                 end if
             end if
@@ -421,6 +422,7 @@ contains
                     end if
                 end if
                 held = .false.
+                if (single) t_before = stepper%time()
                 if (driving .and. .not. single .and. core%stop_at_pass_end .and. core%started .and. &
                     stepper%time() < tout) then
                     ! the step end passed over (an implicit integrator samples it now): a pass end
@@ -430,6 +432,7 @@ contains
                     if (outcome == outcome_reached .and. held) outcome = outcome_pass_end
                 end if
                 if (.not. held) call stepper%advance(t_ask, t_stop, outcome, stat, msg, one_step=single)
+                if (events) call self%ev%state_after(outcome == outcome_reached, single, t_before, t_stop, stepper%time())
                 if (single .and. outcome == outcome_reached) t_ask = t_stop   ! the step's end, or tout
                 core%opts%stop_at_output = stop_user
                 if (driving) then
@@ -576,18 +579,19 @@ contains
         logical function search_roots() result(ok)
             logical :: stop_here
             real(wp) :: t_hi
+            character(len=:), allocatable :: scan_msg   ! (set on a failure only)
             ok = .true.
             select case (outcome)
             case (outcome_reached, outcome_pass_end, outcome_stiff, outcome_nonstiff)
                 t_hi = t_stop
                 if (outcome == outcome_reached) t_hi = min(stepper%time(), tout)
-                call self%ev%scan(stepper, t_hi, stop_here, stat, msg)
+                call self%ev%scan(stepper, t_hi, stop_here, stat, scan_msg)
                 if (len(self%ev%log) > 0) then
                     call log_event(core, self%ev%log(:len(self%ev%log) - 1))
                     self%ev%log = ''
                 end if
                 if (stat /= regdae_success) then
-                    call fail(stat, msg)
+                    call fail(stat, scan_msg)
                     ok = .false.
                 else if (stop_here) then
                     at_root = .true.

@@ -16,6 +16,7 @@ module regdae_solver_sampling
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_augmented_rules, only: mass_diagonal, augmented_motion_scales
     use regdae_solver_core, only: solver_core
+    use regdae_mechanical_problem, only: mechanical_problem
     implicit none
     private
 
@@ -62,7 +63,11 @@ contains
     end subroutine start_monitor_augmented
 
     !> The monitor's sample at the end of an accepted step of the implicit integrator
-    !! (its state and slope there).
+    !! (its state and slope there): the full sample where a singular interval may be
+    !! near (the monitor's `full_sample_due`: the regularized model evaluated there,
+    !! sigma_min(GB) and every check), elsewhere only the work-energy balance's
+    !! energies at the step's end (its quadrature of the power needs every step; an
+    !! output time inside the step is not sampled there).
     subroutine sample_step(core, t)
         type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t
@@ -75,6 +80,10 @@ contains
         end if
         u => core%stiff%state()
         up => core%stiff%slope()
+        if (.not. core%monitor%full_sample_due(t)) then
+            if (t < core%stiff%time()) return   ! an output time inside the step: its end serves the balance
+            if (work_sampled(core, t, u(1:core%n))) return
+        end if
         call core%model%evaluate(t, u(1:core%n), stat, recoverable)
         if (stat /= regdae_success) return
         call core%monitor%sample(t, core%model, u(1:core%n), up(1:core%n))
@@ -85,7 +94,35 @@ contains
         end if
     end subroutine sample_step
 
-    ! The monitor's sample of the augmented formulation at the implicit integrator's state.
+    ! The work-energy balance's sample at (t, z) without the regularized model: T and P
+    ! of a mechanical problem of order 2 whose constraints do not move (g_t = 0 there,
+    ! so that the multiplier does no work); false where that does not hold (the full
+    ! sample then serves).
+    logical function work_sampled(core, t, z) result(done)
+        type(solver_core), intent(inout), target :: core
+        real(wp), intent(in) :: t, z(:)
+        real(wp) :: kinetic, power, sums(2), gt(core%m), y(core%m)
+        integer :: stat, nx
+        done = .not. (core%monitor%work_tol > 0.0_wp)   ! no balance: nothing to sample
+        if (done .or. .not. allocated(core%model%second)) return
+        nx = core%model%n
+        select type (p => core%model%second)
+        class is (mechanical_problem)
+            stat = 0
+            gt = 0.0_wp
+            if (p%m > 0) call p%constraint_dt(t, z(1:nx), gt, stat)
+            if (stat /= 0 .or. any(gt /= 0.0_wp)) return
+            y = 0.0_wp
+            call kinetic_energy_and_power(p, t, z(1:nx), z(nx + 1:2*nx), y, kinetic, power, stat, sums=sums)
+            call core%monitor%sample_work(t, kinetic, power, stat, core%monitor%energy_tolerance(sums, z(1:nx), &
+                                          z(nx + 1:min(size(z), 2*nx))))
+            done = .true.
+        end select
+    end function work_sampled
+
+    ! The monitor's sample of the augmented formulation at the implicit integrator's state:
+    ! full where a singular interval may be near (as sample_step's), else the work-energy
+    ! balance's energies at a step's end (the multiplier is one of the unknowns).
     subroutine sample_augmented(core, t)
         type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t
@@ -97,24 +134,29 @@ contains
         u => core%stiff%state()
         up => core%stiff%slope()
         sys => core%stiff%augmented()
-        drift = 0.0_wp
-        invariant = 0.0_wp
-        sigma = huge(1.0_wp)
-        dstat = 0
-        istat = 0
-        if (associated(sys)) then
-            call sys%unpack(u, up, q=q, v=v, a=a)
-            drift = sys%drift(t, u, dstat)
-            if (dstat /= 0) drift = huge(1.0_wp)
-            sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
-            if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
-                call sys%diagonal_scales(gb, g)
-                if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
+        if (associated(sys) .and. .not. core%monitor%full_sample_due(t)) then
+            if (t < core%stiff%time()) return   ! an output time inside the step: its end serves the balance
+            call sys%unpack(u, up, q=q, v=v)
+        else
+            drift = 0.0_wp
+            invariant = 0.0_wp
+            sigma = huge(1.0_wp)
+            dstat = 0
+            istat = 0
+            if (associated(sys)) then
+                call sys%unpack(u, up, q=q, v=v, a=a)
+                drift = sys%drift(t, u, dstat)
+                if (dstat /= 0) drift = huge(1.0_wp)
+                sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
+                if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
+                    call sys%diagonal_scales(gb, g)
+                    if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
+                end if
+                if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
             end if
-            if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
+            call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
+            if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
         end if
-        call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
-        if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
         if (core%monitor%work_tol > 0.0_wp .and. associated(sys)) then   ! after sample_values: it knows
             call sys%unpack(u, up, y=y)                                    ! whether t is in a layer
             call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums)

@@ -36,7 +36,13 @@ contains
         real(wp), intent(out), optional :: sums(2)   !! sum_i |(M v)_i| and sum_i |f_i|: the energy an error
                                                      !! dv, dq moves by at most sums(1) max|dv| + sums(2) max|dq|
         real(wp) :: f(size(q)), gt(problem%m), mv(size(q)), mdot_v(size(q)), d, vmax
+        real(wp), allocatable :: dense(:, :), vals(:)   ! M at a point (one allocation for the three)
         stat = 0
+        if (present(pattern)) then
+            allocate (vals(pattern%nnz()))
+        else
+            allocate (dense(size(q), size(q)))
+        end if
         kinetic = 0.0_wp
         power = 0.0_wp
         call mass_times(q, t, v, mv)
@@ -64,14 +70,11 @@ contains
         subroutine mass_times(qq, tt, x, mx)
             real(wp), intent(in) :: qq(:), tt, x(:)
             real(wp), intent(out) :: mx(:)
-            real(wp), allocatable :: dense(:, :), vals(:)
             if (present(pattern)) then
-                allocate (vals(pattern%nnz()))
                 call problem%mass_values(tt, qq, pattern, vals, stat)
                 if (stat /= 0) return
                 mx = sparse_times(pattern, vals, x)
             else
-                allocate (dense(size(qq), size(qq)))
                 call problem%mass_matrix(tt, qq, dense, stat)
                 if (stat /= 0) return
                 mx = matmul(dense, x)
