@@ -49,7 +49,7 @@ done
 grep '^summary' "$tmp/fourbar.out"
 # the four-bar at index 2 from seeded starts (issue 19): the run left the parallelogram branch at
 # t ~ 3 with status ok at every output after a warning at t = 0.65 (error 1.05e8; the driver counts a
-# later pass's error beyond the bound and 100x the warned one as silent); index 3 from the same start
+# later fold's error beyond the bound and 100x all errors before it as silent); index 3 from the same start
 for sc in "77 107" "6 104" "77 53"; do
     set -- $sc
     run fourbar_s$1_$2 family=fourbar seed=$1 cell=$2
