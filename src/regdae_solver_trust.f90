@@ -49,6 +49,9 @@ module regdae_solver_trust
     !> The eps probe's eps over its level's: where consecutive levels share the automatic
     !! eps (its floor), their agreement says nothing about the regularization error.
     real(wp), parameter :: eps_probe = 10.0_wp
+    !> Inside a pass, a solution farther than this times pass_tol from level 1 (another
+    !! branch, not an integration error a tighter tolerance shrinks) restarts from the level.
+    real(wp), parameter :: branch_gap = 1000.0_wp
     !> No companion below this rtol (the integrators' own floor).
     real(wp), parameter :: rtol_floor = 1.0e-13_wp
 
@@ -69,6 +72,14 @@ module regdae_solver_trust
         integer :: levels = 0          ! levels started
         logical :: active = .false.
         logical :: warned = .false.    ! this pass has warned already
+        logical :: outputs_warned = .false.   ! this pass has warned of its earlier outputs
+        logical :: regularized = .false.   ! the solution entered the regularization's layer in this pass
+        integer :: output_level = max_levels + 1   ! the lowest level whose values were returned at the
+                                                   ! outputs inside the solution's current step
+        real(wp) :: t_output = 0.0_wp      ! the first of those outputs from that level
+        real(wp) :: step_end = -huge(1.0_wp)   ! the end of that step (the solution's integrator time)
+        integer :: prev_level = max_levels + 1 ! output_level and t_output of the step before, until
+        real(wp) :: prev_output = 0.0_wp       ! the first check after it
         real(wp) :: t_start = 0.0_wp
         real(wp), allocatable :: z_start(:)
         real(wp), allocatable :: z(:, :)   ! (n, 0:max_levels): the states at the last check
@@ -411,6 +422,11 @@ contains
                 call self%main%checkpoint(tc, zc, frozen, valid)
                 lad%active = .true.
                 lad%warned = .false.
+                lad%regularized = .false.
+                lad%outputs_warned = .false.
+                lad%step_end = -huge(1.0_wp)
+                lad%prev_level = max_levels + 1
+                lad%output_level = max_levels + 1
                 lad%over_budget = 0
                 lad%dead_level = max_levels + 1
                 lad%probes_failed = .false.
@@ -457,7 +473,9 @@ contains
             ! Baumgarte) the levels' branches at a bifurcation are chance, and the solution
             ! keeps its own (measured: the crank with Baumgarte's weights 1e6 at rtol 1e-9,
             ! the finest level off the branch)
-            if (.not. agreed) answer = merge(lad%levels, 0, self%main%regularized())
+            ! (the pass's layer, also where the solution went on from a level inside it)
+            lad%regularized = lad%regularized .or. self%main%regularized()
+            if (.not. agreed) answer = merge(lad%levels, 0, lad%regularized)
             if (agreed .and. answer < lad%levels) then
                 ! the answer and the next level share the eps floor: probes at 10 and 100 eps (at
                 ! the next level's tolerance, where the integration error is 10 times smaller)
@@ -473,9 +491,19 @@ contains
             ! for the answer, do not add up over many passes at the answer's size.
             adopt = merge(min(answer + 1, lad%levels), answer, agreed)
             if (adopt > 0) call lad%level(adopt)%engine%advance(t, x, y, lstat, v, a)
+            ! the solution itself farther from level 1 than a finer tolerance moves a state (another
+            ! branch, or caught at the fold: the pass does not end, and the outputs would come from
+            ! a companion without checks of its own to the end): it goes on from the adopted level
+            ! now (fourbar seed=77 cell 107, index 2: 1.2e6 error weights at t = 1.85, the solution
+            ! stuck at th1 = 2 pi to t = 5 while a companion's outputs left the branch at t = 3)
+            if (.not. ended .and. adopt > 0 .and. lad%d(1) > branch_gap*self%pass_tol) then
+                call self%main%restart_at(t, lad%z(:, adopt), lstat)
+                call self%main%note_event('t = '//format_real(t)//': the solution differed from the pass''s '// &
+                                          'level at rtol/10 by '//format_real(lad%d(1))//' error weights: '// &
+                                          'it goes on from the level''s state')
+            end if
             if (.not. agreed .and. .not. lad%warned) then
                 lad%warned = .true.
-                self%passes_unresolved = self%passes_unresolved + 1
                 text = 'the singular pass after t = '//format_real(lad%t_start)//' is not resolved to the '// &
                        'tolerance at t = '//format_real(t)//': '
                 if (lad%levels > 0) then
@@ -503,11 +531,40 @@ contains
                     text = text//'; x is the solution''s own (no regularization: the levels'' branches are chance)'
                 end if
                 text = text//'; a smaller rtol, or another eps, may resolve it; pass_check=no skips this check'
-                call self%main%note_event('t = '//format_real(t)//': unresolved: '//text)
-                if (warn == regdae_success) then
-                    warn = regdae_warn_unresolved
-                    warn_text = text
-                end if
+                call warn_unresolved(self, t, text, warn, warn_text)
+            end if
+            ! Outputs returned earlier from inside one step of the solution (interpolated), from a
+            ! level that this check, in that step or the first one after it, finds off: the check at
+            ! those outputs could not see it (levels 0 and 1 agreed, both off alike: a Dormand-Prince
+            ! step over the singular point, the outputs inside it from its continuous extension;
+            ! linear seed=2026 cell 97, S2 at rtol 1e-3: 10.9 error weights at t = -0.62 with levels
+            ! 0 and 1 2.5 apart, at t = -0.61, after the step's end, levels 1 and 2 8.5 apart).
+            ! Warned. Outputs at step ends and of earlier steps are not: the levels' difference at a
+            ! singular point says nothing of them (ex51 direct with stop_at_output at t = 0).
+            if (self%main%integrator_time() /= lad%step_end) then   ! a new step since the last output
+                lad%step_end = self%main%integrator_time()
+                lad%prev_level = lad%output_level
+                lad%prev_output = lad%t_output
+                lad%output_level = max_levels + 1
+            end if
+            if (lad%prev_level < lad%output_level) then
+                lad%output_level = lad%prev_level
+                lad%t_output = lad%prev_output
+            end if
+            lad%prev_level = max_levels + 1
+            if (agreed .and. lad%output_level < answer .and. .not. lad%outputs_warned) then
+                lad%outputs_warned = .true.   ! (a later disagreement of the levels still warns)
+                text = 'the singular pass after t = '//format_real(lad%t_start)//': outputs from t = '// &
+                       format_real(lad%t_output)//' on came from the level at rtol/'// &
+                       format_real(kappa**lad%output_level)//', which at t = '//format_real(t)// &
+                       ' differs from the next finer level by '//format_real(lad%d(lad%output_level + 1))// &
+                       ' error weights (> pass_tol = '//format_real(self%pass_tol)//'): those outputs may be '// &
+                       'off by as much; a smaller rtol, or stop_at_output=yes, may resolve it'
+                call warn_unresolved(self, t, text, warn, warn_text)
+            end if
+            if (.not. ended .and. adopt < lad%output_level .and. lad%step_end > t) then
+                lad%output_level = adopt
+                lad%t_output = t
             end if
             if (.not. ended) return
             ! the end of the pass: the engine goes on from the answer's state
@@ -528,6 +585,20 @@ contains
             lad%active = .false.
         end associate
     end subroutine check_pass
+
+    ! A pass not resolved at t: logged, counted, and the call's warning (the first one of the call).
+    subroutine warn_unresolved(self, t, text, warn, warn_text)
+        type(regdae_solver), intent(inout) :: self
+        real(wp), intent(in) :: t
+        character(len=*), intent(in) :: text
+        integer, intent(inout) :: warn
+        character(len=:), allocatable, intent(inout) :: warn_text
+        self%passes_unresolved = self%passes_unresolved + 1
+        call self%main%note_event('t = '//format_real(t)//': unresolved: '//text)
+        if (warn /= regdae_success) return
+        warn = regdae_warn_unresolved
+        warn_text = text
+    end subroutine warn_unresolved
 
     ! The eps probes of level `level` (started from the checkpoint if they are not running
     ! for that level) brought to t: the regularization error at the level's eps, estimated
