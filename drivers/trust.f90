@@ -6,7 +6,9 @@
 !! (x: the positions of a mechanical problem, all of x for a first-order one); err_ref, the
 !! same norm for a reference method at the same rtol where the family has one (else 0);
 !! bound = 10 max(1, err_ref); the class (drivers/common/trust_support.f90): ok, warned,
-!! silent, false_alarm (stopped by regdae's branch, drift, work-energy or invariant check while
+!! silent (status ok above the bound; also a warned run whose status-0 outputs after its last
+!! warning, past a fold of the reference other than the warned pass's, are above the bound and
+!! 100x every error before that fold), false_alarm (stopped by regdae's branch, drift, work-energy or invariant check while
 !! the same run with jump_tol = drift_tol = work_tol = 0 ends with status >= 0 within the
 !! bound), failed, refused (init refused the case), undecided (the reference's own convergence
 !! check, column ref_chk, is larger than |err - bound|) and no_reference. For a failure err counts

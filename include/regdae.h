@@ -74,8 +74,10 @@ extern "C" {
 #define REGDAE_SUCCESS 0
 /** Warning: x(tout) is valid, but the multiplier is undefined at tout (y = NaN). */
 #define REGDAE_WARN_MULTIPLIER_UNDEFINED 1
-/** Warning: the integration error approaching a singular configuration exceeds resolution_tol times the
- *  tolerance (the solution near it is not converged in the tolerance; regdae_message says where). */
+/** Warning: near a singular configuration passed the tolerance may not be met: the pass check's levels
+ *  did not agree within pass_tol (or outputs interpolated inside a step came from a level found off),
+ *  the error on the approach exceeded resolution_tol times the tolerance, or (order 3, 4) the Taylor
+ *  weights' regularization layer grew the errors; regdae_message says which and where. */
 #define REGDAE_WARN_UNRESOLVED 2
 /** regdae_advance returned at a root of an event function that stops (regdae_set_events): x there; which
  *  functions: regdae_get_roots. Not a failure: the next regdae_advance goes on from the root. */
@@ -127,7 +129,8 @@ extern "C" {
 #define REGDAE_METHOD_TRUST_REGION 2
 #define REGDAE_METHOD_DIRECT 3
 
-/** formulation: what IDA integrates (default auto). */
+/** formulation: what the implicit integrator integrates (IDA: all three; Radau: eliminated or
+ *  augmented; default auto). */
 #define REGDAE_FORMULATION_AUTO 0
 #define REGDAE_FORMULATION_MULTIPLIER 1
 #define REGDAE_FORMULATION_ELIMINATED 2
@@ -246,7 +249,7 @@ typedef struct regdae_stats {
     double resolution_ratio;  /**< largest x error implied by the residual on an approach, over the tolerance */
     int pass_checks;          /**< singular passes re-integrated at tighter tolerances (pass_check) */
     int passes_resolved;      /**< of those, passes where the solution disagreed with rtol/10 and a tighter pair agreed */
-    int passes_unresolved;    /**< of those, passes where no two levels agreed (a warning each) */
+    int passes_unresolved;    /**< the pass check's warnings: levels that did not agree, outputs found off */
     double pass_error;        /**< largest difference of the solution from the first tighter level, in error weights */
     int64_t companion_steps;  /**< steps of the companions (pass checks, error estimate) */
     double error_estimate;    /**< error_estimate: the estimated error of x at the last output in error weights; -1: none */
@@ -521,8 +524,9 @@ int regdae_init(regdae_solver *solver, double t0, const double *x0, int nx0, con
  * its message in regdae_message; the solver can go on after it:
  * REGDAE_WARN_MULTIPLIER_UNDEFINED: x (and v) valid, y NaN;
  * REGDAE_WARN_UNRESOLVED: x is the integrator's, but near a singular configuration
- * passed during this call it may miss the tolerance (once per pass; the option
- * resolution_tol, 0: off); REGDAE_ROOT_FOUND: returned at a root of an event function
+ * passed during this call it may miss the tolerance (the pass check, the option
+ * resolution_tol, or the Taylor layer at order 3 and 4: see REGDAE_WARN_UNRESOLVED);
+ * REGDAE_ROOT_FOUND: returned at a root of an event function
  * that stops (regdae_set_events), x there, stats.t its time.
  */
 int regdae_advance(regdae_solver *solver, double tout, double *x, int nx, double *y, int ny, double *v, int nv);

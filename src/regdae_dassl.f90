@@ -623,7 +623,8 @@ contains
             text = 'a JAC routine, which '//trim(merge('DREGDAE ', 'DREGDAEM', kind == kind_first_order))// &
                    ' does not take (its argument list has no place for it): call '// &
                    trim(merge('DREGDAEJ ', 'DREGDAEMJ', kind == kind_first_order))//' (the same arguments '// &
-                   'and JAC after IPAR, as DASSL), or set INFO(5) = 0'
+                   'and JAC after IPAR, as DASSL; with RT, NRT, JROOT: '// &
+                   trim(merge('DREGDAEJR ', 'DREGDAEMJR', kind == kind_first_order))//'), or set INFO(5) = 0'
         case (6)
             text = 'a banded matrix (IWORK(1), IWORK(2)), which DREGDAE does not take: the Newton matrix of its '// &
                    'regularized system is not banded when df/dx is (the multiplier y(x) solves (GB) y = G f + ..., '// &

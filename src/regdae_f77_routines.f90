@@ -108,6 +108,8 @@ module regdae_f77_routines
     contains
         procedure :: has => f77_has
         procedure :: evaluate => f77_evaluate
+        !> Around IDA's difference-quotient Jacobian: with JAC in use, keep f and PD at the point
+        !! (on) and answer the perturbed evaluations by f + PD (x - x0) until off.
         procedure :: linearize => f77_linearize
         !> Whether JAC was given (DREGDAEJ, DREGDAEMJ with INFO(5) = 1).
         procedure :: has_jac => f77_has_jac

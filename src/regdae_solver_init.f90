@@ -269,6 +269,12 @@ contains
         on_radau = (opts%integrator == integrator_radau)
         core%active = merge(integrator_radau, integrator_ida, on_radau)
         core%events = ''
+        if (any(problem%nonnegative())) then
+            stat = start_failed(self, regdae_err_bad_input, 'the problem keeps components nonnegative '// &
+                                '(its nonnegative binding), which the augmented formulation does not enforce: '// &
+                                'set formulation=eliminated with integrator=ida or auto')
+            return
+        end if
         core%n = 2*problem%n
         core%m = problem%m
         core%t = t0
@@ -442,6 +448,18 @@ contains
                 end if
             end if
             core%switching = (core%active == integrator_dopri5)
+        end if
+        ! Nonnegativity (the problem's `nonnegative`) is IDA's constraint option: auto keeps IDA,
+        ! an integrator that cannot keep it is refused rather than ignoring it
+        if (any(core%model%nonnegative_state())) then
+            if (opts%integrator == integrator_auto) then
+                core%active = integrator_ida
+                core%switching = .false.
+            else if (core%active /= integrator_ida) then
+                stat = start_failed(self, regdae_err_bad_input, 'the problem keeps components nonnegative '// &
+                                    '(its nonnegative binding), which only IDA enforces: set integrator=ida or auto')
+                return
+            end if
         end if
         if (core%active == integrator_dopri5) then
             dopri5 => dopri5_in_slot(core)

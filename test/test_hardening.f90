@@ -5,7 +5,7 @@
 !! copying a solver by assignment.
 module test_hardening
     use regdae
-    use ex51_problem, only: new_ex51, orientation_psd
+    use ex51_problem, only: ex51, new_ex51, orientation_psd
     use test_solver, only: failing_ex51
     use regdae_testing, only: checker, test_case, new_test
     implicit none
@@ -14,7 +14,49 @@ module test_hardening
 
     real(wp), parameter :: t0 = -1.0_wp
 
+    !> Example 5.1 (x = t + 1 >= 0 on [-1, 1]) with x declared nonnegative.
+    type, extends(ex51) :: nonnegative_ex51
+    contains
+        procedure :: nonnegative => all_nonnegative
+    end type nonnegative_ex51
+
 contains
+
+    function all_nonnegative(self) result(mask)
+        class(nonnegative_ex51), intent(in) :: self
+        logical :: mask(self%n)
+        mask = .true.
+    end function all_nonnegative
+
+    ! A problem with nonnegative components: only IDA enforces them, so dopri5 and radau
+    ! are refused with a message and auto runs IDA throughout (x(1) = 2 exactly).
+    subroutine nonnegative_needs_ida(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts, used
+        type(nonnegative_ex51) :: p
+        real(wp) :: x(1), y(1)
+        integer :: stat, integrator
+        p%ex51 = new_ex51(orientation_psd)
+        do integrator = integrator_dopri5, integrator_radau
+            if (integrator /= integrator_dopri5 .and. integrator /= integrator_radau) cycle
+            opts = solver_options()
+            opts%integrator = integrator
+            call solver%init(p, t0, [0.0_wp], opts, stat)
+            call chk%equal(stat, regdae_err_bad_input, 'nonnegative with '//integrator_name(integrator)//' refused')
+            call chk%true(index(solver%message(), 'only IDA enforces') > 0, 'the message says why')
+            call solver%destroy()
+        end do
+        opts = solver_options()
+        call solver%init(p, t0, [0.0_wp], opts, stat)
+        call chk%equal(stat, regdae_success, 'nonnegative with auto: init')
+        used = solver%options()
+        call chk%equal(used%integrator, integrator_ida, 'auto runs IDA')
+        call solver%advance(1.0_wp, x, y, stat)
+        call chk%equal(stat, regdae_success, 'advance to t = 1')
+        call chk%close(x(1), 2.0_wp, 1.0e-4_wp, 'x(1) = 2 (rtol 1e-6 default: 100 rtol)')
+        call solver%destroy()
+    end subroutine nonnegative_needs_ida
 
     real(wp) function time_reached(solver)
         type(regdae_solver), intent(in) :: solver
@@ -32,7 +74,8 @@ contains
                  new_test('tout_too_close_to_t0', tout_too_close_to_t0), &
                  new_test('tiny_output_intervals_later', tiny_output_intervals_later), &
                  new_test('first_step_impossible', first_step_impossible), &
-                 new_test('assignment_does_not_copy', assignment_does_not_copy)]
+                 new_test('assignment_does_not_copy', assignment_does_not_copy), &
+                 new_test('nonnegative_needs_ida', nonnegative_needs_ida)]
     end function hardening_tests
 
     ! The forms people write are read; list-directed input's extensions

@@ -590,17 +590,9 @@ takes 5.1 ms against 3.3 ms before (the same 687 steps; 4.3 ms with \`jump_tol=0
 work_tol=0\`; medians of 9 by hand on 2026-11-29), which is most of the change of this ratio from
 the issue-10 run (63x at 1e-4, 84x at 1e-6). The default path is the explicit one.
 
-**Proposal** (not implemented; what these numbers support): a Radau IIA integrator of order 5
-(three stages, the method of Hairer and Wanner's RADAU5) as regdae's way to small stiff mechanisms.
-It is a one-step method of order 5 like Dormand-Prince, so on a smooth problem its step count
-should be of the explicit method's size (DOPRI5 on the reduced ODE: $(steps_of crank_oracle "dopri5 reduced ODE" 1.0000E-04 | sed 's/ .*//')
-/ $(steps_of crank_oracle "dopri5 reduced ODE" 1.0000E-06 | sed 's/ .*//') / $(steps_of crank_oracle "dopri5 reduced ODE" 1.0000E-08 | sed 's/ .*//') steps at rtol 1e-4 / 1e-6 / 1e-8, against IDA's $(steps_of crank_oracle "ida_bdf reduced ODE" 1.0000E-04 | sed 's/ .*//')
-/ $(steps_of crank_oracle "ida_bdf reduced ODE" 1.0000E-06 | sed 's/ .*//') / $(steps_of crank_oracle "ida_bdf reduced ODE" 1.0000E-08 | sed 's/ .*//')), and it is L-stable and stiffly accurate like BDF, so it applies where the
-explicit path does not (stiff forces, large regularization weights gamma0, gamma1). Each step
-solves the 3n-dimensional collocation system with one real and one complex LU of the n x n
-iteration matrix (n the size of the regularized system). Expected: the explicit path's step count
-at IDA's stability, i.e. RADAU5's speed on small stiff mechanisms; to be measured against these
-tables when it exists.
+**What followed** (issue 21): the Radau IIA integrator of order 5 these numbers proposed is
+`integrator=radau`, and `auto` hands small stiff problems of order 2 to it; its measurements
+against RADAU5 and the Dormand-Prince oracle are in [Radau IIA](#radau-iia).
 
 TXT
 cat <<'TXT'
@@ -771,7 +763,8 @@ cat "$raw/events_section.md"
 cat <<'TXT'
 ## Machine and commands
 
-`sh tools/benchmark.sh` (7.5 minutes on 2 cores, measured on 2026-11-29: the bench under 1, the
+`sh tools/benchmark.sh` (48 minutes on 2 cores at d82beff, the trust grids 12 of them; before
+the trust grids and the later sections, 7.5 minutes on 2026-11-29: the bench under 1, the
 tuned stability grid about 2, most of it index 3 with gamma >= 1e7 at tight tolerances, the
 default-options grid and the extended grid under 1, the chain sections about 2, of which 40 s
 are the two runs stopped at 20 s, the sweeps 2.5). Single runs: `build/bin/bench

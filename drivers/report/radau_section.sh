@@ -202,7 +202,7 @@ instead of 0.001 cut the crank's Jacobians 2.5-4x but not its evaluations nor it
 (the monitor's sample at every implicit step only near a singular interval): sampling only at the
 outputs broke the work-energy check (its power integral needs every step); the full sample is now
 taken only near a singular interval and every other step's end gives the balance its energies (see
-"Small problems" above: the IDA path's samples 1.55x -> 1.24x of its run without them).
+"Small problems" above: the IDA path's samples 1.55x -> 1.28x of its run without them).
 
 TXT
     ;;

@@ -115,7 +115,9 @@ same error of a reference method at the same R (Dormand-Prince on the reduced OD
 and the four-bar, the plain IDA peer for the plain chain, on [0, 10] too, Dormand-Prince on the
 slider crank's reduced ODE for the chain of 2 links with the slider on [0, 10], none for the linear
 DAEs and the other chains with sliders). Classes: **ok** (status ok, error within the bound), **warned** (a warning status,
-x returned), **silent** (status ok, error above the bound), **false alarm** (a check stopped a run
+x returned), **silent** (status ok, error above the bound; also a warned run whose outputs after
+its last warning jump above the bound, by 100x every error before, past a fold of the reference
+other than the warned pass's: a later silent departure), **false alarm** (a check stopped a run
 that ends within the bound with the checks off), **failed** (stopped, and without the checks not
 within the bound either), **undecided** (the reference's own check too coarse to judge).
 
