@@ -30,17 +30,12 @@
 !! of a conservative mechanism) and invariant_tol > 0, |I - I(t0)| above
 !! invariant_tol raises the alarm (`alarm_kind = alarm_invariant`).
 !!
-!! Work-energy balance (mechanical problems, regdae_work_energy): the kinetic
-!! energy T and the power P of the applied forces at each sample; the work W is
-!! the quadrature of P over the samples (the quadratic through the last three
-!! samples; trapezoidal on the first interval), and the defect
-!! D = T - T(t0) - W, relative to the energy scale of the motion
-!! S = max over the samples of (T, |W|, |T - T(t0)|), must stay below work_tol
-!! plus the quadrature's own error estimate E (the sum of
-!! |quadratic - trapezoidal| per interval: large steps do not raise false
-!! alarms) (`alarm_kind = alarm_work`). Inside a regularization layer the
-!! damped multiplier exchanges energy with the motion for a moment (a spike of
-!! lambda^T G v): D is tested at the samples outside the layers only.
+!! Work-energy balance (mechanical problems, regdae_work_energy): D = T - T(t0) - W,
+!! W the quadrature of the power P over the samples (`parabola_work`; an interval whose
+!! estimate is not small against the allowance by `interval_work` on the integrator's motion
+!! inside it), against work_tol S plus the quadratures' estimates and the energy the state's
+!! tolerance leaves open (`alarm_kind = alarm_work`); tested outside the regularization layers
+!! (the damped multiplier exchanges energy with the motion there for a moment).
 !!
 !! Resolution (problems of order 1 and 2, dense formulations): the constraint
 !! residual g of the integrated solution, made at each step at the scale of the
@@ -65,6 +60,9 @@ module regdae_monitor
     use regdae_options, only: option_auto, method_direct, method_baumgarte
     use regdae_scales, only: running_scales
     use regdae_auto_rules, only: weight_rule, dense_motion_scales, baumgarte_weights
+    use regdae_mechanical_problem, only: mechanical_problem
+    use regdae_velocity_index2, only: velocity_index2_problem
+    use regdae_work_energy, only: interval_work, parabola_work, state_energy_tolerance => tolerance_energy
     implicit none
     private
 
@@ -81,6 +79,8 @@ module regdae_monitor
     !> Far from a singular interval, full samples at most this fraction of the motion's time
     !! scale apart (`motion_time`).
     real(wp), parameter, public :: far_gap = 0.25_wp
+    !> The work-energy balance refines an interval whose quadrature estimate is above this x work_tol S.
+    real(wp), parameter, public :: work_refine = 0.1_wp
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
@@ -143,6 +143,7 @@ module regdae_monitor
         real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
                              t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
         integer, private :: work_samples = 0
+        real(wp), allocatable, private :: work_z(:), work_dz(:)   ! the last sample's (q, v) and slope (or none)
         real(wp), private :: layer_threshold = 0.05_wp   ! max(threshold, 3 sqrt(eps)): J's end samples lie above
         real(wp), private :: layer_eps = 0.0_wp
         real(wp), private :: sigma_peak = 0.0_wp         ! relative threshold: the largest sigma_min(GB) so far
@@ -269,7 +270,7 @@ contains
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
         real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
-        real(wp) :: drift, invariant, kinetic, power, gb, g, sigma, ell, rate, sigma_pred, sums(2)
+        real(wp) :: drift, invariant, kinetic, power, gb, g, sigma, ell, rate, sigma_pred, sums(2), energy
         integer :: stat, invariant_stat, i
         invariant = 0.0_wp
         invariant_stat = 0
@@ -312,10 +313,22 @@ contains
             end if
         end if
         if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
-            call model%work_sample(t, z, kinetic, power, stat, sums)
-            ! the energy the state's tolerance leaves open at this sample
-            call self%sample_work(t, kinetic, power, stat, self%energy_tolerance(sums, z(1:model%n), &
-                                  z(model%n + 1:min(size(z), 2*model%n))))
+            call model%work_sample(t, z, kinetic, power, stat, sums)   ! and the energy the tolerance leaves open:
+            energy = self%energy_tolerance(sums, z(1:model%n), z(model%n + 1:min(size(z), 2*model%n)))
+            if (allocated(model%second)) then   ! the problem, z = (q, v) and its slope for the refinement
+                select type (p => model%second)
+                class is (mechanical_problem)
+                    call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
+                end select
+            else if (allocated(model%first)) then
+                select type (p => model%first)
+                type is (velocity_index2_problem)
+                    select type (pp => p%second)
+                    class is (mechanical_problem)
+                        call self%sample_work(t, kinetic, power, stat, energy, pp, z(1:2*pp%n), dz(1:2*pp%n))
+                    end select
+                end select
+            end if
         end if
         if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
     end subroutine monitor_sample
@@ -561,16 +574,22 @@ contains
         call settle_alarm(self)
     end subroutine monitor_sample_values
 
-    subroutine monitor_sample_work(self, t, kinetic, power, stat, energy_tol)
+    subroutine monitor_sample_work(self, t, kinetic, power, stat, energy_tol, problem, z, dz)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: t, kinetic, power
         integer, intent(in) :: stat   !! the user routines' status (nonzero: the sample is skipped)
         real(wp), intent(in), optional :: energy_tol   !! the energy the tolerance on the state leaves open
                                                        !! here (energy_tolerance); the sum over the samples
                                                        !! is allowed
-        real(wp) :: defect, h, trapezoid, quadratic, d2, allowed
+        class(mechanical_problem), intent(inout), optional :: problem   !! with z = (q, v) at t and its slope dz:
+        real(wp), intent(in), optional :: z(:), dz(:)                   !! an uncertain interval is refined
+        real(wp) :: defect, h, quadratic, allowed, estimate, refined, refined_error
+        integer :: rstat
+        logical :: refine
         if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
         self%kinetic_last = kinetic
+        refine = present(problem) .and. present(z) .and. present(dz) .and. allocated(self%work_z)
+        if (refine) refine = size(self%work_z) == size(z)
         if (.not. self%have_work) then
             self%kinetic0 = kinetic
             self%tolerance_energy = 0.0_wp
@@ -581,29 +600,25 @@ contains
             self%quadrature_error = 0.0_wp
             self%work_samples = 1
             self%have_work = .true.
+            call keep_state()
             return
         end if
         h = t - self%t_work
         if (.not. (h > 0.0_wp)) return
-        trapezoid = 0.5_wp*h*(power + self%power_last)
-        quadratic = trapezoid
-        if (self%work_samples >= 2) then   ! the quadratic through the last three samples
-            d2 = ((power - self%power_last)/h - (self%power_last - self%power_before)/(self%t_work - self%t_before))/ &
-                 (t - self%t_before)
-            quadratic = trapezoid - d2*h**3/6.0_wp
-            ! a step long against the motion's time scale, or much longer than the one before:
-            ! the parabola through three samples does not follow P, and its correction is no
-            ! bound of its error (measured: a 0.625 s step of the crank at rtol 1e-3 over a
-            ! turning point, error 0.28 J against a correction of 0.05 J)
-            if (h*self%work_rate > 0.3_wp .or. h > 2.5_wp*(self%t_work - self%t_before)) then
-                self%quadrature_error = self%quadrature_error + max(abs(quadratic - trapezoid), &
-                                                                    0.25_wp*h*abs(power - self%power_last))
-            else
-                self%quadrature_error = self%quadrature_error + abs(quadratic - trapezoid)
+        call parabola_work(h, self%t_work - self%t_before, self%power_before, self%power_last, power, &
+                           self%work_samples >= 2, h*self%work_rate > 0.3_wp, quadratic, estimate)
+        ! an interval whose estimate is not small against the allowance: Boole's rule on the
+        ! integrator's motion inside it (the Hermite interpolant of the ends), with its own estimate
+        if (refine .and. estimate > work_refine*self%work_tol*self%work_scale) then
+            call interval_work(problem, self%t_work, self%work_z, self%work_dz, self%power_last, t, z, dz, power, &
+                               refined, refined_error, rstat)
+            if (rstat == 0) then
+                quadratic = refined
+                estimate = refined_error
             end if
-        else
-            self%quadrature_error = self%quadrature_error + 0.5_wp*h*abs(power - self%power_last)
         end if
+        call keep_state()
+        self%quadrature_error = self%quadrature_error + estimate
         self%work = self%work + quadratic
         self%power_before = self%power_last
         self%t_before = self%t_work
@@ -632,20 +647,21 @@ contains
                                  format_real(self%work_tol)//')'
         end if
         call settle_alarm(self)
+    contains
+        subroutine keep_state()   ! this sample's state and slope for the next interval's refinement
+            if (.not. (present(problem) .and. present(z) .and. present(dz))) then
+                if (allocated(self%work_z)) deallocate (self%work_z, self%work_dz)
+                return
+            end if
+            self%work_z = z
+            self%work_dz = dz   ! (both reallocated only when the size changes)
+        end subroutine keep_state
     end subroutine monitor_sample_work
 
-    !> The energy that errors within the tolerance on the state leave open: sums(1)
-    !! max|dv| + sums(2) max|dq| with dv, dq at rtol |.| + atol (kinetic_energy_and_power's sums).
     pure real(wp) function monitor_energy_tolerance(self, sums, q, v) result(e)
         class(solution_monitor), intent(in) :: self
         real(wp), intent(in) :: sums(2), q(:), v(:)
-        real(wp) :: vmax, qmax
-        vmax = 0.0_wp
-        qmax = 0.0_wp
-        if (size(v) > 0) vmax = maxval(abs(v))
-        if (size(q) > 0) qmax = maxval(abs(q))
-        e = sums(1)*(self%scales%rtol*vmax + self%scales%atol) + sums(2)*(self%scales%rtol*qmax + self%scales%atol)
-        if (.not. (e == e)) e = 0.0_wp
+        e = state_energy_tolerance(sums, q, v, self%scales%rtol, self%scales%atol)
     end function monitor_energy_tolerance
 
     ! An alarm inside a singular pass while a pass check is on: left to the pass check
@@ -684,6 +700,7 @@ contains
         self%t_work = t      ! the quadrature goes on from t (the last sample may lie beyond it)
         self%t_before = t
         self%work_samples = 1
+        if (allocated(self%work_z)) deallocate (self%work_z, self%work_dz)   ! the last sample is not the state at t
     end subroutine monitor_rebase_work
 
     ! The invariant at t: the first sample sets I(t0).

@@ -82,7 +82,7 @@ contains
         up => core%stiff%slope()
         if (.not. core%monitor%full_sample_due(t)) then
             if (t < core%stiff%time()) return   ! an output time inside the step: its end serves the balance
-            if (work_sampled(core, t, u(1:core%n))) return
+            if (work_sampled(core, t, u(1:core%n), up(1:core%n))) return
         end if
         call core%model%evaluate(t, u(1:core%n), stat, recoverable)
         if (stat /= regdae_success) return
@@ -98,9 +98,9 @@ contains
     ! of a mechanical problem of order 2 whose constraints do not move (g_t = 0 there,
     ! so that the multiplier does no work); false where that does not hold (the full
     ! sample then serves).
-    logical function work_sampled(core, t, z) result(done)
+    logical function work_sampled(core, t, z, dz) result(done)
         type(solver_core), intent(inout), target :: core
-        real(wp), intent(in) :: t, z(:)
+        real(wp), intent(in) :: t, z(:), dz(:)   !! the state and its slope
         real(wp) :: kinetic, power, sums(2), gt(core%m), y(core%m)
         integer :: stat, nx
         done = .not. (core%monitor%work_tol > 0.0_wp)   ! no balance: nothing to sample
@@ -115,7 +115,7 @@ contains
             y = 0.0_wp
             call kinetic_energy_and_power(p, t, z(1:nx), z(nx + 1:2*nx), y, kinetic, power, stat, sums=sums)
             call core%monitor%sample_work(t, kinetic, power, stat, core%monitor%energy_tolerance(sums, z(1:nx), &
-                                          z(nx + 1:min(size(z), 2*nx))))
+                                          z(nx + 1:min(size(z), 2*nx))), p, z(1:2*nx), dz(1:2*nx))
             done = .true.
         end select
     end function work_sampled

@@ -11,6 +11,7 @@ module test_defaults
     use regdae_testing, only: checker, test_case, new_test
     use regdae_auto_rules, only: constraint_mode_step, stable_radius
     use regdae_taylor_layer, only: taylor_layer_watch, layer_efolds_max
+    use regdae_work_energy, only: interval_work
     implicit none
     private
     public :: defaults_tests
@@ -50,6 +51,7 @@ contains
         type(test_case), allocatable :: tests(:)
         tests = [new_test('rules_are_scale_free', rules_are_scale_free), &
                  new_test('work_check_quiet_and_fires', work_check_quiet_and_fires), &
+                 new_test('work_over_a_long_step', work_over_a_long_step), &
                  new_test('switches_halfway_and_back', switches_halfway_and_back), &
                  new_test('explicit_off_branch_fails', explicit_off_branch_fails), &
                  new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented), &
@@ -226,6 +228,37 @@ contains
     ! 1e-7 of the energy scale at rtol 1e-6); without it the string still moves (the
     ! stabilization follows g(x, t)), its work is missing from the balance, and the
     ! check stops the run (the drift and jump checks off, so that this one is tested).
+    ! The work over one long step (regdae_work_energy's interval_work): uniform motion on the
+    ! unit circle, q = (cos wt, sin wt), over h w = 1.2 (a long explicit step), under gravity.
+    ! The work of the constant force along the interpolated path is exactly -g (y1 - y0) (Boole's
+    ! rule is exact for it), where the trapezoid of the ends' powers v.f is 12% off; the estimate
+    ! (the interpolant's own q' against its v, times the forces) is small against the work but
+    ! not zero. A moving constraint (g_t /= 0) is left to the caller's quadrature (stat /= 0).
+    subroutine work_over_a_long_step(chk)
+        type(checker), intent(inout) :: chk
+        type(growing_pendulum) :: p
+        real(wp), parameter :: w = 2.0_wp, h = 0.6_wp, g = 9.81_wp
+        real(wp) :: z0(4), dz0(4), z1(4), dz1(4), work, error, exact, trapezoid
+        integer :: stat
+        p%n = 2
+        p%m = 1
+        p%forget_gt = .true.
+        z0 = [1.0_wp, 0.0_wp, 0.0_wp, w]
+        dz0 = [0.0_wp, w, -w**2, 0.0_wp]
+        z1 = [cos(w*h), sin(w*h), -w*sin(w*h), w*cos(w*h)]
+        dz1 = [z1(3:4), -w**2*z1(1:2)]
+        exact = -g*(z1(2) - z0(2))
+        trapezoid = 0.5_wp*h*(-g*z0(4) - g*z1(4))
+        call interval_work(p, 0.0_wp, z0, dz0, -g*z0(4), h, z1, dz1, -g*z1(4), work, error, stat)
+        call chk%true(stat == 0, 'interval_work succeeds')
+        call chk%close(work, exact, 1.0e-13_wp, 'the work along the path: -g (y1 - y0)')
+        call chk%true(abs(trapezoid - exact) > 0.1_wp*abs(exact), 'the trapezoid of the ends is 10% off')
+        call chk%true(error > 0.0_wp .and. error < 0.02_wp*abs(exact), 'the estimate: small, not zero')
+        p%forget_gt = .false.
+        call interval_work(p, 0.0_wp, z0, dz0, -g*z0(4), h, z1, dz1, -g*z1(4), work, error, stat)
+        call chk%true(stat /= 0, 'a moving constraint: left to the caller')
+    end subroutine work_over_a_long_step
+
     subroutine work_check_quiet_and_fires(chk)
         type(checker), intent(inout) :: chk
         type(growing_pendulum) :: p
