@@ -399,6 +399,11 @@ contains
         if (len(self%pending_message) > 0) self%pending_message = ''
         t_before = tret
         t_reached(1) = tret   ! IDA does not write tret when it refuses its input
+        if (within_roundoff_of_start(self, tret, tout)) then
+            tret = tout
+            ierr = 0
+            return
+        end if
         ! SUNDIALS 6.4.1 keeps a stop time in force after returning at it: set it anew each call.
         flag = 0
         if (stop_at_output) flag = FIDASetStopTime(self%ida_mem, tout)
@@ -427,6 +432,11 @@ contains
         if (len(self%pending_message) > 0) self%pending_message = ''
         t_before = tret
         t_reached(1) = tret
+        if (within_roundoff_of_start(self, tret, tout)) then
+            tret = tout
+            ierr = 0
+            return
+        end if
         flag = 0
         if (stop_at_output) flag = FIDASetStopTime(self%ida_mem, tout)
         if (flag == 0) flag = FIDASolve(self%ida_mem, tout, t_reached, self%uu, self%up, IDA_ONE_STEP)
@@ -436,6 +446,20 @@ contains
             if (flag == IDA_ILL_INPUT .or. .not. (tret >= t_before)) tret = t_before
         end if
     end subroutine backend_step
+
+    ! No step since IDA's (re)start (a restart inside a pass check, say) and tout within IDA's
+    ! roundoff of the start, 2 u (|t| + |tout|): IDA refuses such a first call ("tout too
+    ! close to t0"); the state at the start is the state at tout to that roundoff.
+    logical function within_roundoff_of_start(self, t, tout) result(close)
+        class(ida_backend), intent(in) :: self
+        real(wp), intent(in) :: t, tout
+        integer(c_long) :: nst(1)
+        close = .false.
+        if (.not. (abs(tout - t) < 2.0_wp*epsilon(1.0_wp)*(abs(t) + abs(tout)))) return
+        if (.not. c_associated(self%ida_mem)) return
+        if (FIDAGetNumSteps(self%ida_mem, nst) /= 0) return
+        close = (nst(1) == 0)
+    end function within_roundoff_of_start
 
     real(wp) function backend_current_time(self) result(t)
         class(ida_backend), intent(in) :: self
