@@ -30,7 +30,7 @@ program ex52_driver
     use regdae
     use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
     use reference_ode, only: integrate_reference
-    use crank_roots, only: crank_events, crank_reference_roots
+    use crank_roots, only: crank_events, crank_reference_roots, root_errors
     use driver_support, only: resolved_line, event_lines, &
                               format_int, common_argument, stats_fields, run_status, argument, split_key_value, num, &
                               stopwatch, warning_log, &
@@ -195,31 +195,14 @@ contains
     ! The summary's event fields (events=yes only): the roots logged (their lines
     ! '# event: t = T: event K ...') against the reduced ODE's.
     function root_fields() result(text)
-        character(len=:), allocatable :: text, log
+        character(len=:), allocatable :: text
         real(wp), allocatable :: rref(:, :)
-        real(wp) :: worst(3), d, tl
-        integer :: j, a, b, kind, rs
+        real(wp) :: worst(3)
+        integer :: rs
         text = ''
         if (.not. events) return
         call crank_reference_roots(gravity, th1, st%t, rref, rs)
-        log = solver%events()
-        worst = 0.0_wp
-        a = 1
-        do while (a <= len(log))
-            b = index(log(a:), new_line('a')) + a - 1
-            if (b < a) b = len(log) + 1
-            j = index(log(a:b - 1), ': event ')
-            if (log(a:a + 3) == 't = ' .and. j > 0) then
-                read (log(a + 4:a + j - 2), *) tl
-                read (log(a + j + 7:a + j + 7), *) kind
-                d = huge(1.0_wp)
-                do j = 1, size(rref, 2)
-                    if (nint(rref(2, j)) == kind) d = min(d, abs(rref(1, j) - tl))
-                end do
-                worst(kind) = max(worst(kind), d)
-            end if
-            a = b + 1
-        end do
+        worst = root_errors(solver%events(), rref)
         text = ' roots='//format_int(st%roots_found)//' roots_ref='//format_int(size(rref, 2))// &
                ' max_root_err='//num(maxval(worst))//' root_err_th1='//num(worst(1))//' root_err_pi4='// &
                num(worst(2))//' root_err_w1='//num(worst(3))

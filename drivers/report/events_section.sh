@@ -5,14 +5,16 @@
 #    rtol = atol = R, R = 1e-4 ... 1e-10, integrator auto (the default), ida, radau: the largest
 #    event-time error against the reduced ODE's roots (drivers/common/crank_roots.f90: CVODE at
 #    1e-12 and Newton's method) over R, against the issue's target 10 x rtol, next to the
-#    integrator's own theta error (max_err_th) over R.
+#    integrator's own theta error (max_err_th) over R; the same for the pendulum (drivers/pendulum.f90
+#    events=yes, from rest at 1 rad: x1 through 0, x1 through sin(1/2), v1 = 0; the angle ODE's roots)
+#    against its own position error (max_err_pos).
 #  - Cost: the instructions of the solve (valgrind's callgrind, inclusive of the solver's
 #    init_second and advance: exact and repeatable on a loaded machine, unlike timings) with
 #    events=no and events=yes at rtol = atol = 1e-6, against the target of at most 10% more.
 # Usage: events_section.sh BUILD_DIR    (about 2 minutes; needs valgrind)
 set -eu
 bin=${1:?usage: events_section.sh BUILD_DIR}/bin
-[ -x "$bin/ex52" ] || { echo "events_section.sh: no $bin/ex52" >&2; exit 2; }
+for d in ex52 pendulum; do [ -x "$bin/$d" ] || { echo "events_section.sh: no $bin/$d" >&2; exit 2; }; done
 command -v valgrind >/dev/null || { echo "events_section.sh: needs valgrind" >&2; exit 2; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -21,16 +23,23 @@ rtols="1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"
 field() { grep '^summary' "$1" | tr ' ' '\n' | awk -F= -v k="$2" '$1 == k { v = $2 } END { print (v == "" ? "-" : v) }'; }
 
 # --- accuracy: one row per (integrator, rtol) ---
-for integ in auto ida radau; do
-    for r in $rtols; do
-        extra=""
-        [ "$integ" = auto ] || extra="integrator=$integ"
-        # shellcheck disable=SC2086
-        "$bin/ex52" events=yes rtol="$r" atol="$r" $extra >"$tmp/run" 2>/dev/null || true
-        echo "$integ $r $(field "$tmp/run" status) $(field "$tmp/run" max_err_th) $(field "$tmp/run" roots)" \
-            "$(field "$tmp/run" roots_ref) $(field "$tmp/run" max_root_err)" >>"$tmp/accuracy"
+# accuracy OUT OWN_ERROR DRIVER ARGS...: the rows 'integrator rtol status own_error roots roots_ref max_root_err'
+accuracy() {
+    out=$1 own=$2
+    shift 2
+    for integ in auto ida radau; do
+        for r in $rtols; do
+            extra=""
+            [ "$integ" = auto ] || extra="integrator=$integ"
+            # shellcheck disable=SC2086
+            "$@" events=yes rtol="$r" atol="$r" $extra >"$tmp/run" 2>/dev/null || true
+            echo "$integ $r $(field "$tmp/run" status) $(field "$tmp/run" "$own") $(field "$tmp/run" roots)" \
+                "$(field "$tmp/run" roots_ref) $(field "$tmp/run" max_root_err)" >>"$out"
+        done
     done
-done
+}
+accuracy "$tmp/accuracy" max_err_th "$bin/ex52"
+accuracy "$tmp/pendulum" max_err_pos "$bin/pendulum" phi0=1
 
 # --- cost: instructions of the solve, events=no and yes ---
 # instructions ARGS...: 'instructions steps' of one ex52 run
@@ -59,8 +68,21 @@ radau nout=10 integrator=radau
 EOF
 
 # --- the section ---
-met_acc=$(awk '$7 != "-" && $5 == $6 && $7 / $2 <= 10' "$tmp/accuracy" | wc -l)
-rows_acc=$(wc -l <"$tmp/accuracy")
+# table FILE OWN_NAME: the accuracy table's rows, then the count of rows meeting the target and the misses
+table() {
+    awk '{ ratio = ($7 == "-") ? "-" : sprintf("%.4g", $7 / $2)
+           own = ($4 == "-") ? "-" : sprintf("%.4g", $4 / $2)
+           above = ($4 == "-") ? "-" : (($4 / $2 > 10) ? "yes" : "no")
+           ok = ($7 != "-" && $5 == $6 && $7 / $2 <= 10)
+           why = ok ? "met" : (($5 != $6) ? "missed (roots " $5 " of " $6 ")" : "missed (" ratio " > 10)")
+           printf "| %s | %s | %s | %s / %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $5, $6, $7, ratio, own, above, why }' "$1"
+    echo
+    echo "$(awk '$7 != "-" && $5 == $6 && $7 / $2 <= 10' "$1" | wc -l) of $(wc -l <"$1") rows meet the target; the misses:"
+    awk -v own="$2" '$7 == "-" || $5 != $6 || $7 / $2 > 10 { n++
+            printf "%s at %s (max |t_err| / rtol = %.4g, its own %s / rtol = %.4g%s)\n", $1, $2, $7 / $2, own, $4 / $2,
+                ($4 / $2 > 10) ? ", itself above 10" : ", within 10" }
+         END { if (!n) print "none." }' "$1" | sed 's/^/- /'
+}
 roots_ref=$(awk '{ print $6 }' "$tmp/accuracy" | sort -u | tr '\n' ' ' | sed 's/ $//; s/ / or /g')
 cat <<TXT
 ## Events
@@ -85,19 +107,19 @@ found root; a row meets the target when it is at most 10 rtol and every referenc
 | integrator | rtol | status | roots found / reference | max \|t_err\| | max \|t_err\| / rtol | max_err_th / rtol | own error above 10 rtol | target |
 |---|---|---|---|---|---|---|---|---|
 TXT
-awk '{ ratio = ($7 == "-") ? "-" : sprintf("%.4g", $7 / $2)
-       own = ($4 == "-") ? "-" : sprintf("%.4g", $4 / $2)
-       above = ($4 == "-") ? "-" : (($4 / $2 > 10) ? "yes" : "no")
-       ok = ($7 != "-" && $5 == $6 && $7 / $2 <= 10)
-       why = ok ? "met" : (($5 != $6) ? "missed (roots " $5 " of " $6 ")" : "missed (" ratio " > 10)")
-       printf "| %s | %s | %s | %s / %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $5, $6, $7, ratio, own, above, why }' \
-    "$tmp/accuracy"
-echo
-echo "$met_acc of $rows_acc rows meet the target; the misses:"
-awk '$7 == "-" || $5 != $6 || $7 / $2 > 10 { n++
-        printf "%s at %s (max |t_err| / rtol = %.4g, its own max_err_th / rtol = %.4g%s)\n", $1, $2, $7 / $2, $4 / $2,
-            ($4 / $2 > 10) ? ", itself above 10" : ", within 10" }
-     END { if (!n) print "none." }' "$tmp/accuracy" | sed 's/^/- /'
+table "$tmp/accuracy" max_err_th
+cat <<TXT
+
+The pendulum (\`pendulum events=yes phi0=1 rtol=R atol=R [integrator=ida|radau]\`: x'' = (0, -g) - 2 x y
+on |x| = 1 from rest at 1 rad on [0, 10], 1000 outputs; three event functions, logged and continued: x1
+through 0 (the bottom), x1 through sin(1/2) (the angle through 1/2) and v1 = 0 (the turning points);
+$(awk '{ print $6 }' "$tmp/pendulum" | sort -u | tr '\n' ' ' | sed 's/ $//; s/ / or /g') roots; reference times on the angle ODE phi'' = -g sin(phi), CVODE at 1e-12 and
+Newton's method, drivers/common/crank_roots.f90); "own error": the position error \`max_err_pos\`:
+
+| integrator | rtol | status | roots found / reference | max \|t_err\| | max \|t_err\| / rtol | max_err_pos / rtol | own error above 10 rtol | target |
+|---|---|---|---|---|---|---|---|---|
+TXT
+table "$tmp/pendulum" max_err_pos
 cat <<TXT
 
 ### Cost of root finding
