@@ -25,7 +25,7 @@ module regdae_ddaskr
     use regdae_ddaskr_input, only: info_length, info_start, info_vector_tol, info_intermediate, info_tstop, info_jac, &
                                    info_ic_only, info_messages, rwork_tstop, min_liw, min_lrw, iwork_mark, &
                                    iwork_check, iwork_address, iwork_refusal, refused_no_solver, refused_after_failure, &
-                                   refused_info1, check_call, options_from, tolerances, needed_liw
+                                   refused_info1, refused_start, check_call, options_from, tolerances, needed_liw
     use fida_mod, only: IDA_TOO_MUCH_WORK, IDA_TOO_MUCH_ACC, IDA_ERR_FAIL, IDA_CONV_FAIL, IDA_LSETUP_FAIL, &
                         IDA_LSOLVE_FAIL, IDA_RES_FAIL, IDA_REP_RES_ERR, IDA_FIRST_RES_FAIL, IDA_CONSTR_FAIL, &
                         IDA_ILL_INPUT, IDA_RTFUNC_FAIL
@@ -169,7 +169,7 @@ contains
         if (liw < min_liw) then
             msg = 'DREGDASKRMSG: an IWORK of LIW = '//format_int(liw)//' holds no solver (LIW >= '// &
                   format_int(min_liw)//' is needed)'
-        else if (iwork(iwork_refusal) >= refused_no_solver .and. iwork(iwork_refusal) <= refused_info1) then
+        else if (iwork(iwork_refusal) >= refused_no_solver .and. iwork(iwork_refusal) <= refused_start) then
             msg = refusal_text(iwork(iwork_refusal))
         else if (session_in(iwork, liw, s)) then
             msg = s%message
@@ -227,7 +227,7 @@ contains
                 s%neq = neq
                 s%nrt = nrt
             else
-                refusal = refused_info1 + 1   ! a refused start: its text below, printed
+                refusal = refused_start   ! its own text is printed; DREGDASKRMSG gives its gist
             end if
         else if (session_in(iwork, liw, s)) then
             if (info(info_start) == 1) then
@@ -251,9 +251,7 @@ contains
         if (associated(s)) then
             s%message = msg
         else if (liw >= min_liw) then
-            ! no session: the code of the reason for DREGDASKRMSG (a refused start's own
-            ! text is printed; DREGDASKRMSG gives its gist)
-            iwork(iwork_refusal) = min(refusal, refused_info1 + 1)
+            iwork(iwork_refusal) = refusal   ! no session: the reason's code, for DREGDASKRMSG
         end if
         info(info_start) = -1
         call report(info, msg)

@@ -25,7 +25,8 @@ module regdae_ddaskr_input
     !> DDASKR's private words that hold regdae's session: the reason of a refusal found
     !! without a session (10), the mark (37), the check word (38), the address (39, 40).
     integer, parameter, public :: iwork_refusal = 10, iwork_mark = 37, iwork_check = 38, iwork_address = 39
-    integer, parameter, public :: refused_no_solver = 1, refused_after_failure = 2, refused_info1 = 3
+    integer, parameter, public :: refused_no_solver = 1, refused_after_failure = 2, refused_info1 = 3, &
+                                  refused_start = 4
     !> The smallest LIW and LRW (DDASKR's own are larger and suffice).
     integer, parameter, public :: min_liw = 40, min_lrw = 20
 
@@ -111,8 +112,6 @@ contains
             msg = 'INFO(11) = '//format_int(info(info_initial))//' must be 0, 1 or 2'
         else if (info(info_ic_print) < 0 .or. info(info_ic_print) > 2) then
             msg = 'INFO(18) = '//format_int(info(info_ic_print))//' must be 0, 1 or 2'
-        else if (info(info_ic_only) == 1 .and. info(info_initial) == 0) then
-            msg = 'INFO(14) = 1 (return after the initial values) needs INFO(11) = 1 or 2'
         end if
         if (len(msg) > 0) return
         call tolerances(info, rtol, atol, neq, rtol_v, atol_v)

@@ -350,6 +350,10 @@ contains
         case (IDA_SUCCESS)
             how = reached_tout
             if (each_step .and. (tret(1) - tout)*direction < 0.0_wp) how = reached_step
+            ! tstop = tout: IDA's test of tout comes first; the step ended at tstop all the same
+            if (present(tstop)) then
+                if (tret(1) == tstop) how = reached_tstop
+            end if
         case (IDA_TSTOP_RETURN)
             how = reached_tstop
         case (IDA_ROOT_RETURN)
