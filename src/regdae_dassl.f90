@@ -532,7 +532,8 @@ contains
                   '(dopri5 and radau form their error weights from a scalar rtol, and so do regdae''s own '// &
                   'checks of the passes and the drift); give RTOL equal entries, e.g. all '// &
                   format_real(minval(rtol(1:n_tol)))//' (the smallest, which meets every component''s), and '// &
-                  'set the scale of each component through ATOL, which may vary'
+                  'set the scale of each component through ATOL, which may vary (a plain DAE F(t, y, y'') = 0 '// &
+                  'without singular configurations: DREGDASKR, DDASKR''s door, takes RTOL per component)'
         end if
         do i = 2, 11
             if (len(msg) == 0 .and. info(i) /= 0 .and. info(i) /= 1) &
@@ -630,7 +631,8 @@ contains
                    'regularized system is not banded when df/dx is (the multiplier y(x) solves (GB) y = G f + ..., '// &
                    'so every component that G f reads enters every row that B has), and the dense solver '// &
                    'serves it; set INFO(6) = 0 (for a large mechanism declare its structure in the Fortran or C '// &
-                   'API: the augmented formulation takes linear_solver=band or sparse)'
+                   'API: the augmented formulation takes linear_solver=band or sparse; a plain banded DAE '// &
+                   'F(t, y, y'') = 0 without singular configurations: DREGDASKR, DDASKR''s door, with INFO(6) = 1)'
         case (12, 13, 15)
             text = 'DDASPK''s Krylov method (INFO(12), (13), (15)), which DREGDAE does not have (its Newton '// &
                    'systems are solved directly): set INFO(12), INFO(13) and INFO(15) to 0'
