@@ -14,6 +14,7 @@
 !! DREGDASKRMSG reads when IWORK holds no session.
 module regdae_ddaskr
     use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer
+    use regdae_iwork_address, only: address_words, put_address, get_address
     use, intrinsic :: iso_fortran_env, only: error_unit, int64
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_root_found, regdae_err_inconsistent_ic, regdae_err_user_callback
@@ -99,8 +100,6 @@ module regdae_ddaskr
                           iwork_lin_iters = 20, iwork_psol = 21, iwork_root_evals = 36
     integer, parameter :: rwork_h_next = 3, rwork_tn = 4, rwork_h_last = 7
 
-    ! Default integers that hold an address (2 for 64-bit addresses and 32-bit integers).
-    integer, parameter :: address_words = ceiling(real(storage_size(c_null_ptr))/real(storage_size(0)))
     integer, parameter :: session_mark = 2002815   ! IWORK(37) of an IWORK that holds a session
 
 contains
@@ -458,14 +457,10 @@ contains
         integer, intent(in) :: liw
         integer, intent(inout) :: iwork(liw)
         type(ddaskr_session), pointer, intent(out) :: s
-        type(c_ptr) :: address
         allocate (s)
         s%message = ''
-        address = c_loc(s)
-        iwork(iwork_address:iwork_address + address_words - 1) = &
-            transfer(address, iwork(iwork_address:iwork_address + address_words - 1))
-        iwork(iwork_mark) = session_mark
-        iwork(iwork_check) = check_word(iwork(iwork_address:iwork_address + address_words - 1))
+        call put_address(c_loc(s), session_mark, iwork(iwork_mark), iwork(iwork_check), &
+                         iwork(iwork_address:iwork_address + address_words - 1))
     end subroutine new_session
 
     logical function session_in(iwork, liw, s)
@@ -476,20 +471,9 @@ contains
         s => null()
         session_in = .false.
         if (liw < min_liw) return
-        if (iwork(iwork_mark) /= session_mark) return
-        if (iwork(iwork_check) /= check_word(iwork(iwork_address:iwork_address + address_words - 1))) return
-        address = transfer(iwork(iwork_address:iwork_address + address_words - 1), address)
-        call c_f_pointer(address, s)
-        session_in = .true.
+        session_in = get_address(session_mark, iwork(iwork_mark), iwork(iwork_check), &
+                                 iwork(iwork_address:iwork_address + address_words - 1), address)
+        if (session_in) call c_f_pointer(address, s)
     end function session_in
-
-    pure integer function check_word(words)
-        integer, intent(in) :: words(:)
-        integer :: k
-        check_word = session_mark
-        do k = 1, size(words)
-            check_word = ieor(ishftc(check_word, 7), words(k))
-        end do
-    end function check_word
 
 end module regdae_ddaskr
