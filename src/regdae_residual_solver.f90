@@ -109,7 +109,9 @@ module regdae_residual_solver
         procedure :: free => solver_free
     end type residual_solver
 
-    real(wp), parameter :: far_away = huge(1.0_wp)
+    !> The stop time in force when none is asked for (SUNDIALS 6.4 has no IDAClearStopTime):
+    !! far, and small enough that IDA's products of it with a step do not overflow.
+    real(wp), parameter :: far_away = sqrt(huge(1.0_wp))
 
 contains
 
@@ -339,7 +341,7 @@ contains
         if (present(tstop)) then
             flag = FIDASetStopTime(c%ida_mem, tstop)
         else
-            flag = FIDASetStopTime(c%ida_mem, sign(far_away, direction))   ! SUNDIALS 6.4 has no IDAClearStopTime
+            flag = FIDASetStopTime(c%ida_mem, sign(far_away, direction))
         end if
         mode = merge(IDA_ONE_STEP, IDA_NORMAL, each_step)
         tret(1) = t

@@ -29,6 +29,13 @@ C              = -2 after t = 0.05: IDID = -11, the message names RES
 C     TSTOP    INFO(4) = 1, TSTOP = TOUT: IDID = 2 and T = TSTOP exactly
 C     TWO      two heat problems interleaved (different tolerances) give
 C              what each gives alone, bit for bit
+C     NONNEG   INFO(10) = 2 on Robertson's kinetics (y3 algebraic,
+C              INFO(2) = 1, RTOL = 1E-4) with INFO(3) = 1 to T = 4E10:
+C              IDA's constraints in force (another run than INFO(10) =
+C              0, fewer convergence failures), every step end >= -0.1
+C              ATOL (measured: two step ends at -3.0E-8 and -3.8E-8,
+C              accepted by IDA), y1 + y2 + y3 = 1 to 1E-6 (IDA's Newton
+C              test; measured 5.9E-9); a negative start refused (-33)
 C     RESTART  INFO(1) = 0 again on the same IWORK without DREGDASKRFREE
 C              gives the same run bit for bit (ctest
 C              valgrind.ddaskr_restart: no leak)
@@ -49,6 +56,7 @@ C              valgrind.ddaskr_restart: no leak)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'IRES') CALL TIRES
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'TSTOP') CALL TTSTOP
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'TWO') CALL TTWO
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'NONNEG') CALL TNONNG
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'RESTART') CALL TRESTA
       WRITE (*, '(I4, A, I4, A)') NPASS, ' passed, ', NFAIL, ' failed'
       IF (NFAIL .GT. 0 .OR. NPASS .EQ. 0) STOP 1
@@ -101,9 +109,8 @@ C     solution, IWORK(11) and the last IDID.
      *         IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJACB, PSOL,
      *         RTNONE, 0, JROOT)
          ELSE
-            CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL,
-     *         IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL,
-     *         RTNONE, 0, JROOT)
+            CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
+     *         RWORK, LRW, IWORK, LIW, IPAR)
          END IF
          IF (IDID .LT. 0) GO TO 40
    30 CONTINUE
@@ -185,6 +192,21 @@ C     The same in band storage, ML = MU = 1: (I, J) in row I - J + 3.
          PD(3, I) = CJ + 2.0D0/DX2
          PD(2, I + 1) = -1.0D0/DX2
    10 CONTINUE
+      END
+
+C     One DREGDASKR call on the heat problem (dense, JAC when INFO(5)
+C     = 1, no events).
+      SUBROUTINE HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
+     *   RWORK, LRW, IWORK, LIW, IPAR)
+      IMPLICIT NONE
+      INTEGER NEQ, INFO(20), IDID, LRW, IWORK(*), LIW, IPAR(*),
+     *   JROOT(1)
+      DOUBLE PRECISION T, Y(*), YP(*), TOUT, RTOL(*), ATOL(*),
+     *   RWORK(*), RPAR(1)
+      EXTERNAL HRES, HJAC, PSOL, RTNONE
+      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
+     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
+     *   JROOT)
       END
 
 C     IWORK zeroed: DREGDASKR reads IWORK(37:40) at a start to find the
@@ -291,9 +313,8 @@ C     ------------------------------------------------------------------
       T = 0.0D0
       TOUT = 0.1D0
       INFO(12) = 1
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. -33, 'KRYLOV: INFO(12) = 1 gives -33')
       CALL CHECK(IWORK(37) .EQ. 0, 'KRYLOV: nothing allocated')
       CALL CHECK(INFO(1) .EQ. -1, 'KRYLOV: INFO(1) = -1 after it')
@@ -303,36 +324,31 @@ C     ------------------------------------------------------------------
 C     the message printed on unit 6 (INFO(20) = 6) names Krylov
       INFO(1) = 0
       INFO(20) = 6
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       INFO(20) = -1
       INFO(1) = 0
       INFO(12) = 0
       INFO(17) = 1
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. -33, 'KRYLOV: INFO(17) = 1 gives -33')
       INFO(17) = 0
       INFO(1) = 1
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. -33, 'KRYLOV: INFO(1) = 1 without a start')
       CALL DREGDASKRMSG(IWORK, LIW, MSG)
       CALL CHECK(INDEX(MSG, 'holds no solver') .GT. 0,
      *   'KRYLOV: its message')
       INFO(1) = 0
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, T, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, T, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. -33, 'KRYLOV: TOUT = T refused')
       INFO(1) = 0
       RTOL(1) = -1.0D0
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. -33, 'KRYLOV: RTOL < 0 refused')
       CALL CHECK(IWORK(37) .EQ. 0, 'KRYLOV: still nothing allocated')
       END
@@ -510,23 +526,20 @@ C     ------------------------------------------------------------------
       T = 0.0D0
       TOUT = 0.0123D0
       RWORK(1) = TOUT
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. 2 .AND. T .EQ. TOUT,
      *   'TSTOP: IDID = 2 at TSTOP exactly')
       CALL CHECK(RWORK(4) .EQ. TOUT, 'TSTOP: RWORK(4) = TN = TSTOP')
       TOUT = 0.02D0
       RWORK(1) = 0.0123D0
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. -33, 'TSTOP: TOUT beyond TSTOP refused')
       INFO(1) = 1
       RWORK(1) = 0.05D0
-      CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
-     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
-     *   JROOT)
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. 3 .AND. T .EQ. TOUT,
      *   'TSTOP: a later TSTOP, IDID = 3 at TOUT')
       CALL DREGDASKRFREE(IWORK, LIW)
@@ -607,9 +620,8 @@ C        after a refused start)
          IF (R .EQ. 2) THEN
             INFO(1) = 0
             INFO(12) = 1
-            CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL,
-     *         IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL,
-     *         RTNONE, 0, JROOT)
+            CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
+     *         RWORK, LRW, IWORK, LIW, IPAR)
             INFO(12) = 0
          END IF
          INFO(1) = 0
@@ -617,9 +629,8 @@ C        after a refused start)
          T = 0.0D0
          DO 20 K = 1, 5
             TOUT = 0.01D0*K
-            CALL DREGDASKR(HRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL,
-     *         IDID, RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL,
-     *         RTNONE, 0, JROOT)
+            CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
+     *         RWORK, LRW, IWORK, LIW, IPAR)
    20    CONTINUE
          NST(R) = IWORK(11)
          DO 25 I = 1, NEQ
@@ -634,4 +645,90 @@ C        after a refused start)
    40 CONTINUE
       CALL CHECK(SAME .AND. IDID .EQ. 3,
      *   'RESTART: INFO(1) = 0 again gives the same run')
+      END
+
+C     ------------------------------------------------------------------
+      SUBROUTINE TNONNG
+      IMPLICIT NONE
+      INTEGER NEQ, LRW, LIW
+      PARAMETER (NEQ = 3, LRW = 60 + 9*NEQ + NEQ**2, LIW = 40 + NEQ)
+      INTEGER INFO(20), IWORK(LIW), IPAR(1), JROOT(1), IDID, I, NNEG,
+     *   NSTEP
+      DOUBLE PRECISION Y(NEQ), YP(NEQ), RWORK(LRW), RPAR(1), T, TOUT,
+     *   RTOL(NEQ), ATOL(NEQ), CONS, YMIN
+      INTEGER NCFN(2), NSTEPS(2), K
+      EXTERNAL RRES, HJAC, PSOL, RTNONE
+      DO 50 K = 1, 2
+      DO 10 I = 1, 20
+         INFO(I) = 0
+   10 CONTINUE
+      CALL IZERO(IWORK, LIW)
+      INFO(2) = 1
+      INFO(3) = 1
+      INFO(10) = 2*(K - 1)
+      INFO(20) = -1
+      DO 20 I = 1, NEQ
+         RTOL(I) = 1.0D-4
+   20 CONTINUE
+      ATOL(1) = 1.0D-6
+      ATOL(2) = 1.0D-10
+      ATOL(3) = 1.0D-6
+      Y(1) = 1.0D0
+      Y(2) = 0.0D0
+      Y(3) = 0.0D0
+      YP(1) = -0.04D0
+      YP(2) = 0.04D0
+      YP(3) = 0.0D0
+      T = 0.0D0
+      TOUT = 4.0D10
+      NNEG = 0
+      NSTEP = 0
+      CONS = 0.0D0
+      YMIN = 0.0D0
+   30 CALL DREGDASKR(RRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
+     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
+     *   JROOT)
+      IF (IDID .EQ. 1 .OR. IDID .EQ. -1) THEN
+         NSTEP = NSTEP + 1
+         IF (MIN(Y(1), Y(2), Y(3)) .LT. -0.1D0*ATOL(1)) NNEG = NNEG + 1
+         YMIN = MIN(YMIN, Y(1), Y(2), Y(3))
+         CONS = MAX(CONS, ABS(Y(1) + Y(2) + Y(3) - 1.0D0))
+         INFO(1) = 1
+         IF (NSTEP .LT. 100000) GO TO 30
+      END IF
+      CALL CHECK(IDID .EQ. 3 .AND. T .EQ. TOUT, 'NONNEG: reaches 4E10')
+      NCFN(K) = IWORK(15)
+      NSTEPS(K) = IWORK(11)
+      WRITE (*, '(A, I2, A, I6, A, I4, A, 3ES10.2, 2(A, ES9.2))')
+     *   ' NONNEG: INFO(10) =', INFO(10), ' steps', IWORK(11),
+     *   ' conv. failures', IWORK(15), '  Y(4E10)', Y, '  |sum - 1|',
+     *   CONS, '  min', YMIN
+      CALL DREGDASKRFREE(IWORK, LIW)
+   50 CONTINUE
+      CALL CHECK(NNEG .EQ. 0, 'NONNEG: every step end >= -0.1 ATOL')
+      CALL CHECK(CONS .LE. 1.0D-6, 'NONNEG: y1 + y2 + y3 = 1')
+      CALL CHECK(NSTEPS(1) .NE. NSTEPS(2) .AND. NCFN(2) .LT. NCFN(1),
+     *   'NONNEG: INFO(10) = 2 in force')
+      INFO(1) = 0
+      INFO(10) = 2
+      Y(1) = -1.0D-3
+      Y(2) = 0.0D0
+      Y(3) = 1.001D0
+      T = 0.0D0
+      CALL DREGDASKR(RRES, NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID,
+     *   RWORK, LRW, IWORK, LIW, RPAR, IPAR, HJAC, PSOL, RTNONE, 0,
+     *   JROOT)
+      CALL CHECK(IDID .EQ. -33, 'NONNEG: a negative start refused')
+      CALL DREGDASKRFREE(IWORK, LIW)
+      END
+
+C     Robertson's kinetics with the conservation law as its algebraic
+C     equation.
+      SUBROUTINE RRES(T, Y, YP, CJ, DELTA, IRES, RPAR, IPAR)
+      IMPLICIT NONE
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, Y(*), YP(*), CJ, DELTA(*), RPAR(*)
+      DELTA(1) = -0.04D0*Y(1) + 1.0D4*Y(2)*Y(3) - YP(1)
+      DELTA(2) = 0.04D0*Y(1) - 1.0D4*Y(2)*Y(3) - 3.0D7*Y(2)**2 - YP(2)
+      DELTA(3) = Y(1) + Y(2) + Y(3) - 1.0D0
       END
