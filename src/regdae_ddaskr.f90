@@ -17,7 +17,8 @@ module regdae_ddaskr
     use regdae_iwork_address, only: address_words, put_address, get_address
     use, intrinsic :: iso_fortran_env, only: error_unit, int64
     use regdae_kinds, only: wp
-    use regdae_status, only: regdae_success, regdae_root_found, regdae_err_inconsistent_ic, regdae_err_user_callback
+    use regdae_status, only: regdae_success, regdae_root_found, regdae_err_inconsistent_ic, regdae_err_user_callback, &
+                             regdae_err_bad_input
     use regdae_format, only: format_int, format_real
     use regdae_residual_problem, only: residual_problem
     use regdae_residual_options, only: residual_options, initial_given
@@ -340,6 +341,10 @@ contains
         end if
         if (stat == regdae_err_inconsistent_ic) then
             idid = idid_ic
+            return
+        end if
+        if (stat == regdae_err_bad_input) then
+            idid = idid_bad_input   ! IDA refused the input (init, or IDASolve's first checks)
             return
         end if
         select case (flag)

@@ -85,7 +85,7 @@ program ddaskr_fortran2008
     type(residual_stats) :: st
     real(wp) :: y(5), yp(5), y0(4), t, tout, p, pi, a, b, c, tex, err, etmax, eymax
     integer :: i, k, stat, how, nfail, nroot
-    integer, allocatable :: jroot(:)
+    integer :: jroot(2)
 
     pi = 4.0_wp*atan(1.0_wp)
     a = 1.0_wp

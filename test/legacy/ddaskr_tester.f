@@ -18,7 +18,8 @@ C              least 100 times more accurate than with 1E-4 everywhere
 C     KRYLOV   INFO(12) = 1 and INFO(17) = 1 refused with IDID = -33 and
 C              a message that says why; nothing allocated (IWORK(37)
 C              holds no mark); INFO(1) = 1 without a start refused; TOUT
-C              = T refused; a negative RTOL refused
+C              = T refused; a negative RTOL refused; ATOL = 0 where Y = 0:
+C              IDID = -3, the message names the component
 C     IC       INFO(11) = 1 with the ID array (the pendulum of
 C              drivers/example_ddaskr.f, lambda and y' guessed 0) and
 C              INFO(14) = 1: IDID = 4 with lambda = g cos(theta0) and
@@ -351,6 +352,16 @@ C     the message printed on unit 6 (INFO(20) = 6) names Krylov
      *   LRW, IWORK, LIW, IPAR)
       CALL CHECK(IDID .EQ. -33, 'KRYLOV: RTOL < 0 refused')
       CALL CHECK(IWORK(37) .EQ. 0, 'KRYLOV: still nothing allocated')
+C     ATOL = 0 and Y(1) = 0 (the boundary): no error weight, IDID = -3
+      INFO(1) = 0
+      RTOL(1) = 1.0D-6
+      ATOL(1) = 0.0D0
+      CALL HCALL(NEQ, T, Y, YP, TOUT, INFO, RTOL, ATOL, IDID, RWORK,
+     *   LRW, IWORK, LIW, IPAR)
+      CALL DREGDASKRMSG(IWORK, LIW, MSG)
+      CALL CHECK(IDID .EQ. -3 .AND. INDEX(MSG, 'component 1') .GT. 0,
+     *   'KRYLOV: ATOL = 0 at a zero component gives -3')
+      CALL DREGDASKRFREE(IWORK, LIW)
       END
 
 C     ------------------------------------------------------------------
