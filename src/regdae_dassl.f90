@@ -21,6 +21,7 @@
 !! reason's code in IWORK(10), which DREGDAEMSG reads first.
 module regdae_dassl
     use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer
+    use regdae_iwork_address, only: address_words, put_address, get_address
     use, intrinsic :: iso_fortran_env, only: error_unit, int64
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_warn_multiplier_undefined, regdae_warn_unresolved, &
@@ -74,8 +75,6 @@ module regdae_dassl
     integer, parameter :: iwork_refusal = 10
     integer, parameter :: iwork_max_order = 3   ! input: MAXORD with INFO(9) = 1 (as DASSL)
     integer, parameter :: refused_no_solver = 1, refused_after_failure = 2, refused_info1 = 3
-    ! Default integers that hold an address (2 for 64-bit addresses and 32-bit integers).
-    integer, parameter :: address_words = ceiling(real(storage_size(c_null_ptr))/real(storage_size(0)))
     !> The smallest LIW.
     integer, parameter, public :: min_liw = iwork_address + address_words - 1
     ! IWORK(iwork_mark) of an IWORK that holds a session (and a check word next to it).
@@ -532,7 +531,8 @@ contains
                   '(dopri5 and radau form their error weights from a scalar rtol, and so do regdae''s own '// &
                   'checks of the passes and the drift); give RTOL equal entries, e.g. all '// &
                   format_real(minval(rtol(1:n_tol)))//' (the smallest, which meets every component''s), and '// &
-                  'set the scale of each component through ATOL, which may vary'
+                  'set the scale of each component through ATOL, which may vary (a plain DAE F(t, y, y'') = 0 '// &
+                  'without singular configurations: DREGDASKR, DDASKR''s door, takes RTOL per component)'
         end if
         do i = 2, 11
             if (len(msg) == 0 .and. info(i) /= 0 .and. info(i) /= 1) &
@@ -630,7 +630,8 @@ contains
                    'regularized system is not banded when df/dx is (the multiplier y(x) solves (GB) y = G f + ..., '// &
                    'so every component that G f reads enters every row that B has), and the dense solver '// &
                    'serves it; set INFO(6) = 0 (for a large mechanism declare its structure in the Fortran or C '// &
-                   'API: the augmented formulation takes linear_solver=band or sparse)'
+                   'API: the augmented formulation takes linear_solver=band or sparse; a plain banded DAE '// &
+                   'F(t, y, y'') = 0 without singular configurations: DREGDASKR, DDASKR''s door, with INFO(6) = 1)'
         case (12, 13, 15)
             text = 'DDASPK''s Krylov method (INFO(12), (13), (15)), which DREGDAE does not have (its Newton '// &
                    'systems are solved directly): set INFO(12), INFO(13) and INFO(15) to 0'
@@ -667,12 +668,8 @@ contains
         integer, intent(in) :: liw
         integer, intent(inout) :: iwork(liw)
         type(dassl_session), pointer, intent(out) :: s
-        type(c_ptr) :: address
         allocate (s)
-        address = c_loc(s)
-        iwork(iwork_address:min_liw) = transfer(address, iwork(iwork_address:min_liw))
-        iwork(iwork_mark) = session_mark
-        iwork(iwork_check) = check_word(iwork(iwork_address:min_liw))
+        call put_address(c_loc(s), session_mark, iwork(iwork_mark), iwork(iwork_check), iwork(iwork_address:min_liw))
     end subroutine new_session
 
     ! The session whose address IWORK holds; false if it holds none (never had one,
@@ -685,21 +682,9 @@ contains
         s => null()
         session_in = .false.
         if (liw < min_liw) return
-        if (iwork(iwork_mark) /= session_mark) return
-        if (iwork(iwork_check) /= check_word(iwork(iwork_address:min_liw))) return
-        address = transfer(iwork(iwork_address:min_liw), address)
-        call c_f_pointer(address, s)
-        session_in = .true.
+        session_in = get_address(session_mark, iwork(iwork_mark), iwork(iwork_check), iwork(iwork_address:min_liw), &
+                                 address)
+        if (session_in) call c_f_pointer(address, s)
     end function session_in
-
-    ! A check word of the address words (with the mark).
-    pure integer function check_word(words)
-        integer, intent(in) :: words(:)
-        integer :: k
-        check_word = session_mark
-        do k = 1, size(words)
-            check_word = ieor(ishftc(check_word, 7), words(k))
-        end do
-    end function check_word
 
 end module regdae_dassl

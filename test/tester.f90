@@ -16,6 +16,7 @@ program regdae_tester
     use test_radau, only: radau_tests
     use test_radau_solver, only: radau_solver_tests
     use test_events, only: events_tests
+    use test_plain_dae, only: plain_dae_tests
     implicit none
     character(len=64) :: suite
     integer :: nfailed, ntotal
@@ -40,10 +41,11 @@ program regdae_tester
     call maybe_run('radau', radau_tests())
     call maybe_run('radau_solver', radau_solver_tests())
     call maybe_run('events', events_tests())
+    call maybe_run('plain_dae', plain_dae_tests())
     if (.not. known) then
         write (*, '(a)') 'regdae_tester: unknown suite "'//trim(suite)// &
             '" (lsq, residuals, solver, mechanics, theory, hardening, fuzz, structure, defaults, api, radau, ' // &
-            'radau_solver, events)'
+            'radau_solver, events, plain_dae)'
         stop 2
     end if
     write (*, '(i0,a,i0,a)') ntotal - nfailed, ' passed, ', nfailed, ' failed'
