@@ -81,6 +81,9 @@ module regdae_monitor
     real(wp), parameter, public :: far_gap = 0.25_wp
     !> The work-energy balance refines an interval whose quadrature estimate is above this x work_tol S.
     real(wp), parameter, public :: work_refine = 0.1_wp
+    !> A long explicit step whose energy defect plus the quadrature's estimate exceeds this many times
+    !! the energy the tolerance leaves open at its end is unresolved (`step_energy`).
+    real(wp), parameter, public :: step_energy_factor = 3.0_wp
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
@@ -164,6 +167,8 @@ module regdae_monitor
         procedure :: reset => monitor_reset
         !> Sample the kinetic energy and the power of the applied forces at t (work-energy balance).
         procedure :: sample_work => monitor_sample_work
+        !> Is the work-energy balance of a long explicit step resolved, before it is sampled?
+        procedure :: step_energy => monitor_step_energy
         !> The solution goes on from another state at the last sample's time (a pass
         !! check's): its kinetic energy and power; the balance starts again there.
         procedure :: rebase_work => monitor_rebase_work
@@ -315,23 +320,78 @@ contains
         if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
             call model%work_sample(t, z, kinetic, power, stat, sums)   ! and the energy the tolerance leaves open:
             energy = self%energy_tolerance(sums, z(1:model%n), z(model%n + 1:min(size(z), 2*model%n)))
-            if (allocated(model%second)) then   ! the problem, z = (q, v) and its slope for the refinement
-                select type (p => model%second)
-                class is (mechanical_problem)
-                    call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
-                end select
-            else if (allocated(model%first)) then
-                select type (p => model%first)
-                type is (velocity_index2_problem)
-                    select type (pp => p%second)
-                    class is (mechanical_problem)
-                        call self%sample_work(t, kinetic, power, stat, energy, pp, z(1:2*pp%n), dz(1:2*pp%n))
-                    end select
-                end select
-            end if
+            call on_mechanical(model, work)   ! the problem, z = (q, v) and its slope for the refinement
         end if
         if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
+    contains
+        subroutine work(p)
+            class(mechanical_problem), intent(inout) :: p
+            call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
+        end subroutine work
     end subroutine monitor_sample
+
+    ! action(p) on the mechanical problem p behind the model (second order, or under the
+    ! velocity form of index 2); nothing for other problems.
+    subroutine on_mechanical(model, action)
+        type(regularized_dae), intent(inout) :: model
+        interface
+            subroutine action(p)
+                import :: mechanical_problem
+                class(mechanical_problem), intent(inout) :: p
+            end subroutine action
+        end interface
+        if (allocated(model%second)) then
+            select type (p => model%second)
+            class is (mechanical_problem)
+                call action(p)
+            end select
+        else if (allocated(model%first)) then
+            select type (p => model%first)
+            type is (velocity_index2_problem)
+                select type (pp => p%second)
+                class is (mechanical_problem)
+                    call action(pp)
+                end select
+            end select
+        end if
+    end subroutine on_mechanical
+
+    !> The work-energy balance of an explicit step ending at t (the model evaluated at its end z,
+    !! slope dz), before the step is taken: from the last sample (its start) on the cubic Hermite
+    !! interpolant of the two (`interval_work`), the step's defect dT - W plus the quadrature's
+    !! estimate of W against step_energy_factor x the energy the tolerance leaves open at t (and
+    !! at least work_refine work_tol S). `unresolved`: above it, the balance cannot vouch for the
+    !! step (the integrator takes it again shorter). Only a long step (h work_rate > 0.3, as
+    !! `parabola_work` counts it) outside the layers is looked at; rheonomic constraints are not.
+    subroutine monitor_step_energy(self, t, model, z, dz, unresolved)
+        class(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, z(:), dz(:)
+        type(regularized_dae), intent(inout) :: model
+        logical, intent(out) :: unresolved
+        real(wp) :: kinetic, power, sums(2)
+        integer :: stat
+        unresolved = .false.
+        if (.not. (self%work_tol > 0.0_wp .and. self%have_work .and. allocated(self%work_z))) return
+        if (self%in_layer .or. self%in_singular .or. .not. (t > self%t_work)) return
+        if (.not. ((t - self%t_work)*self%work_rate > 0.3_wp)) return
+        call model%work_sample(t, z, kinetic, power, stat, sums)
+        if (stat /= 0) return
+        call on_mechanical(model, balance)
+    contains
+        subroutine balance(p)
+            class(mechanical_problem), intent(inout) :: p
+            real(wp) :: work, error, allowed
+            integer :: n, rstat
+            n = p%n
+            if (size(self%work_z) /= 2*n) return
+            call interval_work(p, self%t_work, self%work_z, self%work_dz, self%power_last, t, z(1:2*n), dz(1:2*n), &
+                               power, work, error, rstat)
+            if (rstat /= 0) return
+            allowed = max(step_energy_factor*self%energy_tolerance(sums, z(1:n), z(n + 1:2*n)), &
+                          work_refine*self%work_tol*self%work_scale)
+            unresolved = abs(kinetic - self%kinetic_last - work) + error > allowed
+        end subroutine balance
+    end subroutine monitor_step_energy
 
     subroutine monitor_follow_weights(self, nx, order2, rate, ell, t0)
         class(solution_monitor), intent(inout) :: self
