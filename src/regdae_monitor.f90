@@ -61,7 +61,6 @@ module regdae_monitor
     use regdae_scales, only: running_scales
     use regdae_auto_rules, only: weight_rule, dense_motion_scales, baumgarte_weights
     use regdae_mechanical_problem, only: mechanical_problem
-    use regdae_velocity_index2, only: velocity_index2_problem
     use regdae_work_energy, only: interval_work, parabola_work, state_energy_tolerance => tolerance_energy
     implicit none
     private
@@ -143,6 +142,9 @@ module regdae_monitor
         character(len=:), allocatable :: alarm_message   !! what, where and how much
         logical, private :: have_regular = .false., have_invariant = .false., in_layer = .false., have_work = .false.
         real(wp), private :: kinetic_last = 0.0_wp, tolerance_energy = 0.0_wp
+        ! step_energy's interval work from the last sample to (step_t, step_z): sample_work reuses it
+        real(wp), private :: step_t = -huge(1.0_wp), step_from = -huge(1.0_wp), step_work = 0.0_wp, step_error = 0.0_wp
+        real(wp), allocatable, private :: step_z(:)
         real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
                              t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
         integer, private :: work_samples = 0
@@ -242,6 +244,7 @@ contains
         self%work_defect = 0.0_wp
         self%work_floor = 0.0_wp
         self%have_work = .false.
+        self%step_t = -huge(1.0_wp)
         self%alarm = .false.
         self%alarm_kind = alarm_none
         self%alarm_message = ''
@@ -320,7 +323,7 @@ contains
         if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
             call model%work_sample(t, z, kinetic, power, stat, sums)   ! and the energy the tolerance leaves open:
             energy = self%energy_tolerance(sums, z(1:model%n), z(model%n + 1:min(size(z), 2*model%n)))
-            call on_mechanical(model, work)   ! the problem, z = (q, v) and its slope for the refinement
+            call model%with_mechanical(work)   ! the problem, z = (q, v) and its slope for the refinement
         end if
         if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
     contains
@@ -329,32 +332,6 @@ contains
             call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
         end subroutine work
     end subroutine monitor_sample
-
-    ! action(p) on the mechanical problem p behind the model (second order, or under the
-    ! velocity form of index 2); nothing for other problems.
-    subroutine on_mechanical(model, action)
-        type(regularized_dae), intent(inout) :: model
-        interface
-            subroutine action(p)
-                import :: mechanical_problem
-                class(mechanical_problem), intent(inout) :: p
-            end subroutine action
-        end interface
-        if (allocated(model%second)) then
-            select type (p => model%second)
-            class is (mechanical_problem)
-                call action(p)
-            end select
-        else if (allocated(model%first)) then
-            select type (p => model%first)
-            type is (velocity_index2_problem)
-                select type (pp => p%second)
-                class is (mechanical_problem)
-                    call action(pp)
-                end select
-            end select
-        end if
-    end subroutine on_mechanical
 
     !> The work-energy balance of an explicit step ending at t (the model evaluated at its end z,
     !! slope dz), before the step is taken: from the last sample (its start) on the cubic Hermite
@@ -376,7 +353,7 @@ contains
         if (.not. ((t - self%t_work)*self%work_rate > 0.3_wp)) return
         call model%work_sample(t, z, kinetic, power, stat, sums)
         if (stat /= 0) return
-        call on_mechanical(model, balance)
+        call model%with_mechanical(balance)
     contains
         subroutine balance(p)
             class(mechanical_problem), intent(inout) :: p
@@ -387,6 +364,11 @@ contains
             call interval_work(p, self%t_work, self%work_z, self%work_dz, self%power_last, t, z(1:2*n), dz(1:2*n), &
                                power, work, error, rstat)
             if (rstat /= 0) return
+            self%step_t = t
+            self%step_from = self%t_work
+            self%step_z = z(1:2*n)
+            self%step_work = work
+            self%step_error = error
             allowed = max(step_energy_factor*self%energy_tolerance(sums, z(1:n), z(n + 1:2*n)), &
                           work_refine*self%work_tol*self%work_scale)
             unresolved = abs(kinetic - self%kinetic_last - work) + error > allowed
@@ -670,8 +652,18 @@ contains
         ! an interval whose estimate is not small against the allowance: Boole's rule on the
         ! integrator's motion inside it (the Hermite interpolant of the ends), with its own estimate
         if (refine .and. estimate > work_refine*self%work_tol*self%work_scale) then
-            call interval_work(problem, self%t_work, self%work_z, self%work_dz, self%power_last, t, z, dz, power, &
-                               refined, refined_error, rstat)
+            rstat = -1
+            if (t == self%step_t .and. self%t_work == self%step_from .and. allocated(self%step_z)) then
+                if (size(self%step_z) == size(z)) then
+                    if (all(self%step_z == z)) then   ! step_energy's of this interval
+                        refined = self%step_work
+                        refined_error = self%step_error
+                        rstat = 0
+                    end if
+                end if
+            end if
+            if (rstat /= 0) call interval_work(problem, self%t_work, self%work_z, self%work_dz, self%power_last, t, z, &
+                                               dz, power, refined, refined_error, rstat)
             if (rstat == 0) then
                 quadratic = refined
                 estimate = refined_error
