@@ -145,6 +145,8 @@ module regdae_monitor
         ! step_energy's interval work from the last sample to (step_t, step_z): sample_work reuses it
         real(wp), private :: step_t = -huge(1.0_wp), step_from = -huge(1.0_wp), step_work = 0.0_wp, step_error = 0.0_wp
         real(wp), allocatable, private :: step_z(:)
+        logical, private :: step_unresolved = .false.   ! that step's balance stayed unresolved (taken as it is)
+        real(wp), private :: unresolved_error = 0.0_wp   ! the quadrature estimates of such steps: against the balance
         real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
                              t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
         integer, private :: work_samples = 0
