@@ -55,6 +55,13 @@ check "ex52 th1=1.688345 w1=0.1 rtol=1e-3: status ${st:-none}, max_err_th ${e:-n
 run seed3_fourbar5 family=fourbar seed=3 cell=5
 c=$(class "$tmp/seed3_fourbar5.out")
 check "fourbar seed=3 cell 5 (was silent): $c" "$(case $c in ok|warned) echo 0 ;; *) echo 1 ;; esac)"
+# a fast spin of the fixed grid (crank cell 91: th1 = 1e-6, w1 = 20, R = 1e-3) whose energy grows
+# 1e5-fold: stopped by the work check at t = 0.90 before the step rule (status -117), now it runs on
+# and fails at t = 8.29 (-108, step size too small); it must not end ok or silent. (Stopping it by
+# the work check again is open: doc/methods.md, "A step still unresolved after the 3 halvings".)
+run crank91 family=crank cell=91
+c=$(class "$tmp/crank91.out")
+check "crank cell 91 (fast spin, energy 1e5-fold): $c" "$(case $c in ok|silent|'') echo 1 ;; *) echo 0 ;; esac)"
 # the order-3 problem with taylor_h = 1e-5 (drivers/order3, exact x = 1 + sin t): status ok with
 # max_err = 10.8 at t = 0 after 608,734 steps (the Taylor weights' layer, doc/methods.md): now a
 # warning that names the layer, or an error within 100 rtol
