@@ -61,7 +61,6 @@ module regdae_monitor
     use regdae_scales, only: running_scales
     use regdae_auto_rules, only: weight_rule, dense_motion_scales, baumgarte_weights
     use regdae_mechanical_problem, only: mechanical_problem
-    use regdae_velocity_index2, only: velocity_index2_problem
     use regdae_work_energy, only: interval_work, parabola_work, state_energy_tolerance => tolerance_energy
     implicit none
     private
@@ -81,6 +80,9 @@ module regdae_monitor
     real(wp), parameter, public :: far_gap = 0.25_wp
     !> The work-energy balance refines an interval whose quadrature estimate is above this x work_tol S.
     real(wp), parameter, public :: work_refine = 0.1_wp
+    !> A long explicit step whose energy defect plus the quadrature's estimate exceeds this many times
+    !! the energy the tolerance leaves open at its end is unresolved (`step_energy`).
+    real(wp), parameter, public :: step_energy_factor = 3.0_wp
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
@@ -140,6 +142,11 @@ module regdae_monitor
         character(len=:), allocatable :: alarm_message   !! what, where and how much
         logical, private :: have_regular = .false., have_invariant = .false., in_layer = .false., have_work = .false.
         real(wp), private :: kinetic_last = 0.0_wp, tolerance_energy = 0.0_wp
+        ! step_energy's interval work from the last sample to (step_t, step_z): sample_work reuses it
+        real(wp), private :: step_t = -huge(1.0_wp), step_from = -huge(1.0_wp), step_work = 0.0_wp, step_error = 0.0_wp
+        real(wp), allocatable, private :: step_z(:)
+        logical, private :: step_unresolved = .false.   ! that step's balance stayed unresolved (taken as it is)
+        real(wp), private :: unresolved_error = 0.0_wp   ! the quadrature estimates of such steps: against the balance
         real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
                              t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
         integer, private :: work_samples = 0
@@ -164,6 +171,8 @@ module regdae_monitor
         procedure :: reset => monitor_reset
         !> Sample the kinetic energy and the power of the applied forces at t (work-energy balance).
         procedure :: sample_work => monitor_sample_work
+        !> Is the work-energy balance of a long explicit step resolved, before it is sampled?
+        procedure :: step_energy => monitor_step_energy
         !> The solution goes on from another state at the last sample's time (a pass
         !! check's): its kinetic energy and power; the balance starts again there.
         procedure :: rebase_work => monitor_rebase_work
@@ -201,6 +210,50 @@ module regdae_monitor
         procedure :: full_sample_due => monitor_full_sample_due
     end type solution_monitor
 
+    ! The work-energy balance (submodule regdae_monitor_work).
+    interface
+        !> Sample the kinetic energy and the power of the applied forces at t (`sample_work`).
+        module subroutine monitor_sample_work(self, t, kinetic, power, stat, energy_tol, problem, z, dz)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t, kinetic, power
+            integer, intent(in) :: stat   !! the user routines' status (nonzero: the sample is skipped)
+            real(wp), intent(in), optional :: energy_tol   !! the energy the tolerance on the state leaves open
+                                                           !! here (energy_tolerance); the sum over the samples
+                                                           !! is allowed
+            class(mechanical_problem), intent(inout), optional :: problem   !! with z = (q, v) at t and its slope dz:
+            real(wp), intent(in), optional :: z(:), dz(:)                   !! an uncertain interval is refined
+        end subroutine monitor_sample_work
+        !> The work-energy balance of an explicit step ending at t (the model evaluated at its end z,
+        !! slope dz), before the step is taken: from the last sample (its start) on the cubic Hermite
+        !! interpolant of the two (`interval_work`), the step's defect dT - W plus the quadrature's
+        !! estimate of W against step_energy_factor x the energy the tolerance leaves open at t (and
+        !! at least work_refine work_tol S). `unresolved`: above it, the balance cannot vouch for the
+        !! step (the integrator takes it again shorter). Only a long step (h work_rate > 0.3, as
+        !! `parabola_work` counts it) outside the layers is looked at; rheonomic constraints are not.
+        module subroutine monitor_step_energy(self, t, model, z, dz, unresolved)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:), dz(:)
+            type(regularized_dae), intent(inout) :: model
+            logical, intent(out) :: unresolved
+        end subroutine monitor_step_energy
+        !> The balance goes on from another state at the last sample's time (`rebase_work`).
+        module subroutine monitor_rebase_work(self, t, kinetic, power)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t                !! the time of the new state
+            real(wp), intent(in) :: kinetic, power   !! of the new state
+        end subroutine monitor_rebase_work
+        !> The energy the state's tolerance leaves open at a sample (`energy_tolerance`).
+        module pure real(wp) function monitor_energy_tolerance(self, sums, q, v) result(e)
+            class(solution_monitor), intent(in) :: self
+            real(wp), intent(in) :: sums(2), q(:), v(:)
+        end function monitor_energy_tolerance
+        !> An alarm inside a singular pass while a pass check is on: left to the pass check
+        !! (which re-integrates the pass and takes a state that tighter tolerances agree on).
+        module subroutine settle_alarm(self)
+            type(solution_monitor), intent(inout) :: self
+        end subroutine settle_alarm
+    end interface
+
 contains
 
     subroutine monitor_reset(self, threshold, eps, np, jump_tol, drift_tol, invariant_tol, work_tol)
@@ -237,6 +290,7 @@ contains
         self%work_defect = 0.0_wp
         self%work_floor = 0.0_wp
         self%have_work = .false.
+        self%step_t = -huge(1.0_wp)
         self%alarm = .false.
         self%alarm_kind = alarm_none
         self%alarm_message = ''
@@ -315,22 +369,14 @@ contains
         if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
             call model%work_sample(t, z, kinetic, power, stat, sums)   ! and the energy the tolerance leaves open:
             energy = self%energy_tolerance(sums, z(1:model%n), z(model%n + 1:min(size(z), 2*model%n)))
-            if (allocated(model%second)) then   ! the problem, z = (q, v) and its slope for the refinement
-                select type (p => model%second)
-                class is (mechanical_problem)
-                    call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
-                end select
-            else if (allocated(model%first)) then
-                select type (p => model%first)
-                type is (velocity_index2_problem)
-                    select type (pp => p%second)
-                    class is (mechanical_problem)
-                        call self%sample_work(t, kinetic, power, stat, energy, pp, z(1:2*pp%n), dz(1:2*pp%n))
-                    end select
-                end select
-            end if
+            call model%with_mechanical(work)   ! the problem, z = (q, v) and its slope for the refinement
         end if
         if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
+    contains
+        subroutine work(p)
+            class(mechanical_problem), intent(inout) :: p
+            call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
+        end subroutine work
     end subroutine monitor_sample
 
     subroutine monitor_follow_weights(self, nx, order2, rate, ell, t0)
@@ -574,134 +620,10 @@ contains
         call settle_alarm(self)
     end subroutine monitor_sample_values
 
-    subroutine monitor_sample_work(self, t, kinetic, power, stat, energy_tol, problem, z, dz)
-        class(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t, kinetic, power
-        integer, intent(in) :: stat   !! the user routines' status (nonzero: the sample is skipped)
-        real(wp), intent(in), optional :: energy_tol   !! the energy the tolerance on the state leaves open
-                                                       !! here (energy_tolerance); the sum over the samples
-                                                       !! is allowed
-        class(mechanical_problem), intent(inout), optional :: problem   !! with z = (q, v) at t and its slope dz:
-        real(wp), intent(in), optional :: z(:), dz(:)                   !! an uncertain interval is refined
-        real(wp) :: defect, h, quadratic, allowed, estimate, refined, refined_error
-        integer :: rstat
-        logical :: refine
-        if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
-        self%kinetic_last = kinetic
-        refine = present(problem) .and. present(z) .and. present(dz) .and. allocated(self%work_z)
-        if (refine) refine = size(self%work_z) == size(z)
-        if (.not. self%have_work) then
-            self%kinetic0 = kinetic
-            self%tolerance_energy = 0.0_wp
-            self%work = 0.0_wp
-            self%work_scale = max(kinetic, self%work_floor)
-            self%power_last = power
-            self%t_work = t
-            self%quadrature_error = 0.0_wp
-            self%work_samples = 1
-            self%have_work = .true.
-            call keep_state()
-            return
-        end if
-        h = t - self%t_work
-        if (.not. (h > 0.0_wp)) return
-        call parabola_work(h, self%t_work - self%t_before, self%power_before, self%power_last, power, &
-                           self%work_samples >= 2, h*self%work_rate > 0.3_wp, quadratic, estimate)
-        ! an interval whose estimate is not small against the allowance: Boole's rule on the
-        ! integrator's motion inside it (the Hermite interpolant of the ends), with its own estimate
-        if (refine .and. estimate > work_refine*self%work_tol*self%work_scale) then
-            call interval_work(problem, self%t_work, self%work_z, self%work_dz, self%power_last, t, z, dz, power, &
-                               refined, refined_error, rstat)
-            if (rstat == 0) then
-                quadratic = refined
-                estimate = refined_error
-            end if
-        end if
-        call keep_state()
-        self%quadrature_error = self%quadrature_error + estimate
-        self%work = self%work + quadratic
-        self%power_before = self%power_last
-        self%t_before = self%t_work
-        self%power_last = power
-        self%t_work = t
-        self%work_samples = self%work_samples + 1
-        defect = kinetic - self%kinetic0 - self%work
-        self%work_scale = max(self%work_scale, kinetic, abs(self%work), abs(kinetic - self%kinetic0))
-        if (.not. (self%work_scale > 0.0_wp)) return
-        if (.not. (abs(defect) <= huge(1.0_wp))) defect = huge(1.0_wp)   ! NaN or Inf: a failure
-        if (self%in_layer) return   ! tested outside the layers only
-        self%work_defect = max(self%work_defect, abs(defect)/self%work_scale)
-        ! the energy errors the tolerance allows: each step's error within the tolerance moves
-        ! the energy by at most energy_tol; summed as a random walk (squares), three times:
-        ! the check is for energy gains beyond the integration error (a branch change, too
-        ! stiff a regularization), not for the integrator's own energy drift
-        if (present(energy_tol)) self%tolerance_energy = self%tolerance_energy + energy_tol**2
-        allowed = self%work_tol*self%work_scale + self%quadrature_error + 3.0_wp*sqrt(self%tolerance_energy)
-        if (abs(defect) > allowed .and. .not. self%alarm) then
-            self%alarm = .true.
-            self%alarm_kind = alarm_work
-            self%alarm_message = 'the work-energy balance failed at t = '//format_real(t)//': the kinetic energy '// &
-                                 'changed by '//format_real(kinetic - self%kinetic0)//' but the applied forces did '// &
-                                 format_real(self%work)//' of work (defect '//format_real(abs(defect)/self%work_scale)// &
-                                 ' of the energy scale '//format_real(self%work_scale)//' > work_tol = '// &
-                                 format_real(self%work_tol)//')'
-        end if
-        call settle_alarm(self)
-    contains
-        subroutine keep_state()   ! this sample's state and slope for the next interval's refinement
-            if (.not. (present(problem) .and. present(z) .and. present(dz))) then
-                if (allocated(self%work_z)) deallocate (self%work_z, self%work_dz)
-                return
-            end if
-            self%work_z = z
-            self%work_dz = dz   ! (both reallocated only when the size changes)
-        end subroutine keep_state
-    end subroutine monitor_sample_work
-
-    pure real(wp) function monitor_energy_tolerance(self, sums, q, v) result(e)
-        class(solution_monitor), intent(in) :: self
-        real(wp), intent(in) :: sums(2), q(:), v(:)
-        e = state_energy_tolerance(sums, q, v, self%scales%rtol, self%scales%atol)
-    end function monitor_energy_tolerance
-
-    ! An alarm inside a singular pass while a pass check is on: left to the pass check
-    ! (which re-integrates the pass and takes a state that tighter tolerances agree on).
-    subroutine settle_alarm(self)
-        type(solution_monitor), intent(inout) :: self
-        if (.not. (self%alarm .and. self%defer_in_pass .and. self%checkpoint_frozen)) return
-        ! without a regularization (eps = 0, Baumgarte) the branch at a bifurcation is not the
-        ! damped multiplier's: every level takes the same, and the jump check decides
-        if (self%alarm_kind == alarm_jump .and. .not. (self%layer_eps > 0.0_wp)) return
-        self%alarm = .false.
-        self%deferred_alarms = self%deferred_alarms + 1
-        self%deferred_message = self%alarm_message
-        self%alarm_kind = alarm_none
-    end subroutine settle_alarm
-
     pure logical function monitor_regularized(self) result(yes)
         class(solution_monitor), intent(in) :: self
         yes = (self%layer_eps > 0.0_wp)
     end function monitor_regularized
-
-    subroutine monitor_rebase_work(self, t, kinetic, power)
-        class(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t                !! the time of the new state
-        real(wp), intent(in) :: kinetic, power   !! of the new state
-        if (.not. self%have_work) return
-        ! the balance starts again from the verified state: D = 0 there (the path the
-        ! solution took through the pass is not the one it goes on from)
-        self%kinetic0 = kinetic
-        self%work = 0.0_wp
-        self%quadrature_error = 0.0_wp
-        self%tolerance_energy = 0.0_wp
-        self%kinetic_last = kinetic
-        self%power_last = power
-        self%power_before = power
-        self%t_work = t      ! the quadrature goes on from t (the last sample may lie beyond it)
-        self%t_before = t
-        self%work_samples = 1
-        if (allocated(self%work_z)) deallocate (self%work_z, self%work_dz)   ! the last sample is not the state at t
-    end subroutine monitor_rebase_work
 
     ! The invariant at t: the first sample sets I(t0).
     subroutine invariant_sample(self, t, val, stat)

@@ -88,6 +88,8 @@ module regdae_regularization
         procedure :: work_sample
         !> Whether the problem is a mechanical one (the work-energy check applies).
         procedure :: is_mechanical
+        !> Call an action on the mechanical problem behind the model (none for other problems).
+        procedure :: with_mechanical
         !> G = dg/dx of the user's position constraint at (t, x).
         procedure :: position_jacobian
         !> f alone at (t, z) (order 2: the acceleration of the applied forces, M^-1 f for a
@@ -548,22 +550,43 @@ contains
 
     logical function is_mechanical(self)
         class(regularized_dae), intent(in) :: self
+        class(mechanical_problem), allocatable :: mold   ! unallocated: its declared type
         is_mechanical = .false.
+        if (allocated(self%second)) then
+            is_mechanical = extends_type_of(self%second, mold)
+        else if (allocated(self%first)) then
+            select type (p => self%first)
+            type is (velocity_index2_problem)
+                is_mechanical = extends_type_of(p%second, mold)
+            end select
+        end if
+    end function is_mechanical
+
+    !> action(p) on the mechanical problem p behind the model (order 2, or under the velocity
+    !! form of index 2); nothing for other problems.
+    subroutine with_mechanical(self, action)
+        class(regularized_dae), intent(inout) :: self
+        interface
+            subroutine action(p)
+                import :: mechanical_problem
+                class(mechanical_problem), intent(inout) :: p
+            end subroutine action
+        end interface
         if (allocated(self%second)) then
             select type (p => self%second)
             class is (mechanical_problem)
-                is_mechanical = .true.
+                call action(p)
             end select
         else if (allocated(self%first)) then
             select type (p => self%first)
             type is (velocity_index2_problem)
                 select type (pp => p%second)
                 class is (mechanical_problem)
-                    is_mechanical = .true.
+                    call action(pp)
                 end select
             end select
         end if
-    end function is_mechanical
+    end subroutine with_mechanical
 
     subroutine work_sample(self, t, z, kinetic, power, stat, sums)
         class(regularized_dae), intent(inout) :: self
@@ -578,21 +601,12 @@ contains
         if (.not. self%is_mechanical()) return
         call self%solve_multiplier(t, y, stat)
         if (stat /= 0) return
-        if (allocated(self%second)) then
-            select type (p => self%second)
-            class is (mechanical_problem)
-                call kinetic_energy_and_power(p, t, z(1:p%n), z(p%n + 1:2*p%n), y, kinetic, power, stat, sums=sums)
-            end select
-        else
-            select type (p => self%first)
-            type is (velocity_index2_problem)
-                select type (pp => p%second)
-                class is (mechanical_problem)
-                    call kinetic_energy_and_power(pp, t, z(1:pp%n), z(pp%n + 1:2*pp%n), y, kinetic, power, stat, &
-                                                  sums=sums)
-                end select
-            end select
-        end if
+        call self%with_mechanical(energies)
+    contains
+        subroutine energies(p)
+            class(mechanical_problem), intent(inout) :: p
+            call kinetic_energy_and_power(p, t, z(1:p%n), z(p%n + 1:2*p%n), y, kinetic, power, stat, sums=sums)
+        end subroutine energies
     end subroutine work_sample
 
     !> sigma_min(GB) at the last evaluated point.
