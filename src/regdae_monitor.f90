@@ -233,7 +233,7 @@ module regdae_monitor
         module subroutine monitor_step_energy(self, t, model, z, dz, unresolved)
             class(solution_monitor), intent(inout) :: self
             real(wp), intent(in) :: t, z(:), dz(:)
-            type(regularized_dae), intent(inout) :: model
+            type(regularized_dae), intent(inout), target :: model   !! its mechanical problem is used by pointer
             logical, intent(out) :: unresolved
         end subroutine monitor_step_energy
         !> The balance goes on from another state at the last sample's time (`rebase_work`).
@@ -321,11 +321,12 @@ contains
     subroutine monitor_sample(self, t, model, z, dz)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: t
-        type(regularized_dae), intent(inout) :: model
+        type(regularized_dae), intent(inout), target :: model   !! a target: its mechanical problem is used by pointer
         real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
         real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
         real(wp) :: drift, invariant, kinetic, power, gb, g, sigma, ell, rate, sigma_pred, sums(2), energy
         integer :: stat, invariant_stat, i
+        class(mechanical_problem), pointer :: p
         invariant = 0.0_wp
         invariant_stat = 0
         sigma = model%sigma_min_gb()
@@ -369,14 +370,10 @@ contains
         if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
             call model%work_sample(t, z, kinetic, power, stat, sums)   ! and the energy the tolerance leaves open:
             energy = self%energy_tolerance(sums, z(1:model%n), z(model%n + 1:min(size(z), 2*model%n)))
-            call model%with_mechanical(work)   ! the problem, z = (q, v) and its slope for the refinement
+            p => model%mechanical()   ! the problem, z = (q, v) and its slope for the refinement
+            if (associated(p)) call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
         end if
         if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
-    contains
-        subroutine work(p)
-            class(mechanical_problem), intent(inout) :: p
-            call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
-        end subroutine work
     end subroutine monitor_sample
 
     subroutine monitor_follow_weights(self, nx, order2, rate, ell, t0)

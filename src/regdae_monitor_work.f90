@@ -102,8 +102,9 @@ contains
     end procedure monitor_sample_work
 
     module procedure monitor_step_energy
-        real(wp) :: kinetic, power, sums(2)
-        integer :: stat
+        real(wp) :: kinetic, power, sums(2), work, error, allowed
+        integer :: stat, n, rstat
+        class(mechanical_problem), pointer :: p
         unresolved = .false.
         self%step_unresolved = .false.
         if (.not. (self%work_tol > 0.0_wp .and. self%have_work .and. allocated(self%work_z))) return
@@ -111,27 +112,22 @@ contains
         if (.not. ((t - self%t_work)*self%work_rate > 0.3_wp)) return
         call model%work_sample(t, z, kinetic, power, stat, sums)
         if (stat /= 0) return
-        call model%with_mechanical(balance)
-    contains
-        subroutine balance(p)
-            class(mechanical_problem), intent(inout) :: p
-            real(wp) :: work, error, allowed
-            integer :: n, rstat
-            n = p%n
-            if (size(self%work_z) /= 2*n) return
-            call interval_work(p, self%t_work, self%work_z, self%work_dz, self%power_last, t, z(1:2*n), dz(1:2*n), &
-                               power, work, error, rstat)
-            if (rstat /= 0) return
-            self%step_t = t
-            self%step_from = self%t_work
-            self%step_z = z(1:2*n)
-            self%step_work = work
-            self%step_error = error
-            allowed = max(step_energy_factor*self%energy_tolerance(sums, z(1:n), z(n + 1:2*n)), &
-                          work_refine*self%work_tol*self%work_scale)
-            unresolved = abs(kinetic - self%kinetic_last - work) + error > allowed
-            self%step_unresolved = unresolved
-        end subroutine balance
+        p => model%mechanical()
+        if (.not. associated(p)) return
+        n = p%n
+        if (size(self%work_z) /= 2*n) return
+        call interval_work(p, self%t_work, self%work_z, self%work_dz, self%power_last, t, z(1:2*n), dz(1:2*n), &
+                           power, work, error, rstat)
+        if (rstat /= 0) return
+        self%step_t = t
+        self%step_from = self%t_work
+        self%step_z = z(1:2*n)
+        self%step_work = work
+        self%step_error = error
+        allowed = max(step_energy_factor*self%energy_tolerance(sums, z(1:n), z(n + 1:2*n)), &
+                      work_refine*self%work_tol*self%work_scale)
+        unresolved = abs(kinetic - self%kinetic_last - work) + error > allowed
+        self%step_unresolved = unresolved
     end procedure monitor_step_energy
 
     module procedure monitor_rebase_work

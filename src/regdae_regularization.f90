@@ -88,8 +88,8 @@ module regdae_regularization
         procedure :: work_sample
         !> Whether the problem is a mechanical one (the work-energy check applies).
         procedure :: is_mechanical
-        !> Call an action on the mechanical problem behind the model (none for other problems).
-        procedure :: with_mechanical
+        !> The mechanical problem behind the model (null for other problems).
+        procedure :: mechanical
         !> G = dg/dx of the user's position constraint at (t, x).
         procedure :: position_jacobian
         !> f alone at (t, z) (order 2: the acceleration of the applied forces, M^-1 f for a
@@ -562,51 +562,46 @@ contains
         end if
     end function is_mechanical
 
-    !> action(p) on the mechanical problem p behind the model (order 2, or under the velocity
-    !! form of index 2); nothing for other problems.
-    subroutine with_mechanical(self, action)
-        class(regularized_dae), intent(inout) :: self
-        interface
-            subroutine action(p)
-                import :: mechanical_problem
-                class(mechanical_problem), intent(inout) :: p
-            end subroutine action
-        end interface
+    !> The mechanical problem behind the model (order 2, or under the velocity form of
+    !! index 2), null for other problems. A pointer into the model: the caller's model
+    !! must be a target, and the pointer is not kept beyond the caller's use of it.
+    function mechanical(self) result(problem)
+        class(regularized_dae), intent(in), target :: self
+        class(mechanical_problem), pointer :: problem
+        problem => null()
         if (allocated(self%second)) then
             select type (p => self%second)
             class is (mechanical_problem)
-                call action(p)
+                problem => p
             end select
         else if (allocated(self%first)) then
             select type (p => self%first)
             type is (velocity_index2_problem)
                 select type (pp => p%second)
                 class is (mechanical_problem)
-                    call action(pp)
+                    problem => pp
                 end select
             end select
         end if
-    end subroutine with_mechanical
+    end function mechanical
 
     subroutine work_sample(self, t, z, kinetic, power, stat, sums)
-        class(regularized_dae), intent(inout) :: self
+        class(regularized_dae), intent(inout), target :: self
         real(wp), intent(in) :: t, z(:)     !! the last evaluated point
         real(wp), intent(out) :: kinetic, power
         integer, intent(out) :: stat
         real(wp), intent(out), optional :: sums(2)   !! see kinetic_energy_and_power
         real(wp) :: y(self%m)
+        class(mechanical_problem), pointer :: p
         kinetic = 0.0_wp
         power = 0.0_wp
         stat = -1
         if (.not. self%is_mechanical()) return
         call self%solve_multiplier(t, y, stat)
         if (stat /= 0) return
-        call self%with_mechanical(energies)
-    contains
-        subroutine energies(p)
-            class(mechanical_problem), intent(inout) :: p
+        p => self%mechanical()
+        if (associated(p)) &
             call kinetic_energy_and_power(p, t, z(1:p%n), z(p%n + 1:2*p%n), y, kinetic, power, stat, sums=sums)
-        end subroutine energies
     end subroutine work_sample
 
     !> sigma_min(GB) at the last evaluated point.
