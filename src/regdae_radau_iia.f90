@@ -592,11 +592,25 @@ contains
         self%counts%rhs_evals = self%counts%rhs_evals + 1
         recoverable = .false.
         call sys%rhs(t, u, f, stat, recoverable)
-        if (stat == regdae_success .and. .not. all(ieee_is_finite(f))) then
+        if (stat == regdae_success .and. .not. all_finite(f)) then
             stat = regdae_err_nonfinite
             recoverable = .true.
         end if
     end subroutine eval
+
+    ! No entry of f is NaN or Inf: one loop with a sum that stays 0 exactly while they
+    ! are finite (0 * NaN and 0 * Inf are NaN), cheaper per evaluation than
+    ! all(ieee_is_finite(f)).
+    pure logical function all_finite(f)
+        real(wp), intent(in) :: f(:)
+        real(wp) :: probe
+        integer :: i
+        probe = 0
+        do i = 1, size(f)
+            probe = probe + 0*f(i)
+        end do
+        all_finite = (probe == 0)
+    end function all_finite
 
     !> Record a failure (code and message with the time).
     subroutine fail(self, code, text)
