@@ -321,7 +321,10 @@ contains
         if (info < 0) stat = regdae_err_lapack
     contains
         subroutine normal_solve()
-            if (q <= small_cholesky_max) then
+            if (p == 2 .and. q == 2) then
+                call normal_solve_2x2(a, r, eps, ws%mat, y, info)
+                return
+            else if (q <= small_cholesky_max) then
                 call small_normal_equations(p, q, a, r, eps, ws%mat, size(ws%mat, 1), y)
             else
                 ws%mat(1:q, 1:q) = matmul(transpose(a), a)
@@ -434,6 +437,50 @@ contains
             y(j) = s
         end do
     end subroutine small_normal_equations
+
+    ! Two constraints (the car axis): `small_normal_equations`, `small_cholesky` and
+    ! `small_cholesky_solve` of a 2 x 2 system written out, the same operations in the same
+    ! order (so the same numbers, the factor left in mat as they leave it), without the
+    ! loops' and calls' overhead; info as spd_solve's.
+    pure subroutine normal_solve_2x2(a, r, eps, mat, y, info)
+        real(wp), intent(in) :: a(:, :), r(:), eps
+        real(wp), intent(inout) :: mat(:, :)
+        real(wp), intent(out) :: y(:)
+        integer, intent(out) :: info
+        real(wp) :: l11, l21, m22, s, b1, b2
+        l11 = ((0.0_wp + a(1, 1)*a(1, 1)) + a(2, 1)*a(2, 1)) + eps
+        l21 = (0.0_wp + a(1, 2)*a(1, 1)) + a(2, 2)*a(2, 1)
+        m22 = ((0.0_wp + a(1, 2)*a(1, 2)) + a(2, 2)*a(2, 2)) + eps
+        b1 = (0.0_wp + r(1)*a(1, 1)) + r(2)*a(2, 1)
+        b2 = (0.0_wp + r(1)*a(1, 2)) + r(2)*a(2, 2)
+        mat(2, 2) = m22
+        y(1) = b1
+        y(2) = b2
+        if (.not. (l11 > 0.0_wp)) then
+            mat(1, 1) = l11
+            mat(2, 1) = l21
+            info = 1
+            return
+        end if
+        l11 = sqrt(l11)
+        l21 = l21/l11
+        mat(1, 1) = l11
+        mat(2, 1) = l21
+        s = m22 - l21**2
+        if (.not. (s > 0.0_wp)) then
+            info = 2
+            return
+        end if
+        s = sqrt(s)
+        mat(2, 2) = s
+        info = 0
+        b1 = b1/l11
+        b2 = (b2 - l21*b1)/s
+        b2 = b2/s
+        b1 = (b1 - l21*b2)/l11
+        y(1) = b1
+        y(2) = b2
+    end subroutine normal_solve_2x2
 
     ! Solve with the SPD matrix in mat(1:q, 1:q) (lower triangle; overwritten by its Cholesky
     ! factor) and the right-hand side y: plain loops up to small_cholesky_max unknowns, dposv
