@@ -71,8 +71,8 @@ contains
         integer :: i, info
         complex(wp) :: fac_c
         fac_c = cmplx(fac_alpha, fac_beta, wp)
-        self%e1 = -jac
-        self%e2 = cmplx(-jac, 0.0_wp, wp)
+        self%e1(:, :) = -jac
+        self%e2(:, :) = cmplx(-jac, 0.0_wp, wp)
         do i = 1, self%n
             self%e1(i, i) = self%e1(i, i) + fac_real*mass(i)
             self%e2(i, i) = self%e2(i, i) + fac_c*mass(i)

@@ -429,17 +429,11 @@ contains
         real(wp), intent(in) :: w0, w1, g(m), gt(m), gx(m, n), v(n), curv(m)
         logical, intent(in) :: curvature
         real(wp), intent(out) :: q(m)
-        integer :: i, k
-        real(wp) :: s
+        integer :: i
         do i = 1, m
             q(i) = w0*g(i) + w1*gt(i)
         end do
-        do k = 1, n
-            s = w1*v(k)
-            do i = 1, m
-                q(i) = q(i) + gx(i, k)*s
-            end do
-        end do
+        call add_matvec(m, n, gx, v, w1, q)
         if (curvature) then
             do i = 1, m
                 q(i) = q(i) + curv(i)
