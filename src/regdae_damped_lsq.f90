@@ -129,6 +129,7 @@ contains
         real(wp), intent(in) :: a(:, :)
         real(wp) :: sigma, dummy(1, 1)
         integer :: info, p, q, k, d
+        logical :: done
         p = size(a, 1)
         q = size(a, 2)
         if (p == 0 .or. q == 0) then
@@ -138,9 +139,13 @@ contains
         else if (p == 1) then
             sigma = norm2(a(1, :))
         else
-            self%mat(1:p, 1:q) = a
-            call dgesvd('N', 'N', p, q, self%mat, size(self%mat, 1), self%sv, dummy, 1, dummy, 1, &
-                        self%work, size(self%work), info)
+            done = .false.
+            if (p == 2 .and. q == 2) call singular_values_2x2(a, self%sv, done)
+            if (.not. done) then
+                self%mat(1:p, 1:q) = a
+                call dgesvd('N', 'N', p, q, self%mat, size(self%mat, 1), self%sv, dummy, 1, dummy, 1, &
+                            self%work, size(self%work), info)
+            end if
             ! A matrix of constant rank r < min(p, q) (GB of redundant constraints) has
             ! sigma_(r+1..) zero in exact arithmetic and at rounding level in dgesvd's
             ! (0, 1e-16 |GB|, ... at random): their minimum says nothing about the
@@ -161,6 +166,106 @@ contains
             sigma = self%sv(max(1, k - self%deficiency))
         end if
     end function smallest_singular_value
+
+    ! The singular values of a 2 x 2 matrix (s(1) >= s(2)) by the arithmetic that reference
+    ! LAPACK's dgesvd('N', 'N') performs on it, operation for operation, so the same numbers
+    ! without its calls (a quarter of the car axis's instructions under the defaults went to
+    ! dgesvd on GB, mostly argument checks and block-size queries): a Householder reflection
+    ! that annihilates a(2, 1) (dgebd2: dlarfg with dlapy2, applied to the second column as
+    ! dlarf does, with dgemv's and dger's sums and their zero tests), then the 2 x 2
+    ! bidiagonal's values (dbdsqr -> dlasq1 -> dlas2). done = .false. (the caller calls
+    ! dgesvd) where dgesvd would scale the matrix first (max |a_ij| outside
+    ! [sqrt(safe minimum)/eps, its inverse], a zero matrix or a NaN or Inf included) or
+    ! dlarfg would rescale (|beta| below the safe minimum / eps).
+    pure subroutine singular_values_2x2(a, s, done)
+        real(wp), intent(in) :: a(:, :)
+        real(wp), intent(inout) :: s(:)
+        logical, intent(out) :: done
+        real(wp), parameter :: lapack_eps = epsilon(1.0_wp)          ! dlamch('P')
+        real(wp), parameter :: small_norm = sqrt(tiny(1.0_wp))/lapack_eps
+        real(wp), parameter :: big_norm = 1.0_wp/small_norm
+        real(wp), parameter :: safe_beta = tiny(1.0_wp)/(0.5_wp*epsilon(1.0_wp))   ! dlamch('S') / dlamch('E')
+        real(wp) :: a11, a21, a12, a22, anrm, beta, tau, v2, w, xa, xb, d1, e1, d2
+        logical :: two_rows
+        a11 = a(1, 1)
+        a21 = a(2, 1)
+        a12 = a(1, 2)
+        a22 = a(2, 2)
+        done = .false.
+        if (a11 /= a11 .or. a21 /= a21 .or. a12 /= a12 .or. a22 /= a22) return   ! a NaN
+        anrm = max(abs(a11), abs(a21), abs(a12), abs(a22))
+        if (.not. (anrm >= small_norm .and. anrm <= big_norm)) return
+        d1 = a11
+        if (abs(a21) /= 0.0_wp) then   ! dlarfg(2, a11, a21): xnorm = |a21|
+            xa = max(abs(a11), abs(a21))   ! dlapy2(a11, xnorm)
+            xb = min(abs(a11), abs(a21))
+            if (xb == 0.0_wp) then
+                beta = -sign(xa, a11)
+            else
+                beta = -sign(xa*sqrt(1.0_wp + (xb/xa)**2), a11)
+            end if
+            if (abs(beta) < safe_beta) return
+            tau = (beta - a11)/beta
+            v2 = (1.0_wp/(a11 - beta))*a21
+            d1 = beta
+            ! dlarf('Left'): the last nonzero entry of v = (1, v2), then w = C^T v and C - tau v w
+            two_rows = (v2 /= 0.0_wp)
+            if (a12 /= 0.0_wp .or. (two_rows .and. a22 /= 0.0_wp)) then
+                w = 0.0_wp + a12
+                if (two_rows) w = w + a22*v2
+                w = 0.0_wp + w
+                if (w /= 0.0_wp) then
+                    w = -tau*w
+                    a12 = a12 + w
+                    if (two_rows) a22 = a22 + v2*w
+                end if
+            end if
+        end if
+        e1 = a12
+        d2 = a22
+        call lapack_las2(d1, e1, d2, s(2), s(1))
+        done = .true.
+    end subroutine singular_values_2x2
+
+    ! The singular values of the upper bidiagonal [f g; 0 h] (dlas2's arithmetic).
+    pure subroutine lapack_las2(f, g, h, ssmin, ssmax)
+        real(wp), intent(in) :: f, g, h
+        real(wp), intent(out) :: ssmin, ssmax
+        real(wp) :: as, at, au, c, fa, fhmn, fhmx, ga, ha
+        fa = abs(f)
+        ga = abs(g)
+        ha = abs(h)
+        fhmn = min(fa, ha)
+        fhmx = max(fa, ha)
+        if (fhmn == 0.0_wp) then
+            ssmin = 0.0_wp
+            if (fhmx == 0.0_wp) then
+                ssmax = ga
+            else
+                ssmax = max(fhmx, ga)*sqrt(1.0_wp + (min(fhmx, ga)/max(fhmx, ga))**2)
+            end if
+        else if (ga < fhmx) then
+            as = 1.0_wp + fhmn/fhmx
+            at = (fhmx - fhmn)/fhmx
+            au = (ga/fhmx)**2
+            c = 2.0_wp/(sqrt(as*as + au) + sqrt(at*at + au))
+            ssmin = fhmn*c
+            ssmax = fhmx/c
+        else
+            au = fhmx/ga
+            if (au == 0.0_wp) then
+                ssmin = (fhmn*fhmx)/ga
+                ssmax = ga
+            else
+                as = 1.0_wp + fhmn/fhmx
+                at = (fhmx - fhmn)/fhmx
+                c = 1.0_wp/(sqrt(1.0_wp + (as*au)**2) + sqrt(1.0_wp + (at*au)**2))
+                ssmin = (fhmn*c)*au
+                ssmin = ssmin + ssmin
+                ssmax = ga/(c + c)
+            end if
+        end if
+    end subroutine lapack_las2
 
     !> Damped least-squares solution y = (A^T A + eps I)^{-1} A^T r.
     !!
@@ -216,11 +321,18 @@ contains
         if (info < 0) stat = regdae_err_lapack
     contains
         subroutine normal_solve()
-            ws%mat(1:q, 1:q) = matmul(transpose(a), a)
-            do i = 1, q
-                ws%mat(i, i) = ws%mat(i, i) + eps
-            end do
-            y = matmul(r, a)
+            if (p == 2 .and. q == 2) then
+                call normal_solve_2x2(a, r, eps, ws%mat, y, info)
+                return
+            else if (q <= small_cholesky_max) then
+                call small_normal_equations(p, q, a, r, eps, ws%mat, size(ws%mat, 1), y)
+            else
+                ws%mat(1:q, 1:q) = matmul(transpose(a), a)
+                do i = 1, q
+                    ws%mat(i, i) = ws%mat(i, i) + eps
+                end do
+                y = matmul(r, a)
+            end if
             call spd_solve(ws%mat, q, y, info)
         end subroutine normal_solve
 
@@ -296,6 +408,79 @@ contains
         if (info > 0) stat = regdae_err_not_psd
         if (info < 0) stat = regdae_err_lapack
     end subroutine shifted_spd_solve
+
+    ! The lower triangle of A^T A + eps I in mat and A^T r in y, by loops: each sum over
+    ! k = 1..p from 0 in ascending k, the order of matmul's, so the same numbers as
+    ! `matmul(transpose(a), a)` and `matmul(r, a)`, without their temporaries and zeroing
+    ! (a tenth of the car axis's slope); the upper triangle, which the Cholesky factor
+    ! does not read, is left alone.
+    pure subroutine small_normal_equations(p, q, a, r, eps, mat, ldm, y)
+        integer, intent(in) :: p, q, ldm
+        real(wp), intent(in) :: a(p, q), r(p), eps
+        real(wp), intent(inout) :: mat(ldm, q)
+        real(wp), intent(out) :: y(q)
+        integer :: i, j, k
+        real(wp) :: s
+        do j = 1, q
+            do i = j, q
+                s = 0.0_wp
+                do k = 1, p
+                    s = s + a(k, i)*a(k, j)
+                end do
+                mat(i, j) = s
+            end do
+            mat(j, j) = mat(j, j) + eps
+            s = 0.0_wp
+            do k = 1, p
+                s = s + r(k)*a(k, j)
+            end do
+            y(j) = s
+        end do
+    end subroutine small_normal_equations
+
+    ! Two constraints (the car axis): `small_normal_equations`, `small_cholesky` and
+    ! `small_cholesky_solve` of a 2 x 2 system written out, the same operations in the same
+    ! order (so the same numbers, the factor left in mat as they leave it), without the
+    ! loops' and calls' overhead; info as spd_solve's.
+    pure subroutine normal_solve_2x2(a, r, eps, mat, y, info)
+        real(wp), intent(in) :: a(:, :), r(:), eps
+        real(wp), intent(inout) :: mat(:, :)
+        real(wp), intent(out) :: y(:)
+        integer, intent(out) :: info
+        real(wp) :: l11, l21, m22, s, b1, b2
+        l11 = ((0.0_wp + a(1, 1)*a(1, 1)) + a(2, 1)*a(2, 1)) + eps
+        l21 = (0.0_wp + a(1, 2)*a(1, 1)) + a(2, 2)*a(2, 1)
+        m22 = ((0.0_wp + a(1, 2)*a(1, 2)) + a(2, 2)*a(2, 2)) + eps
+        b1 = (0.0_wp + r(1)*a(1, 1)) + r(2)*a(2, 1)
+        b2 = (0.0_wp + r(1)*a(1, 2)) + r(2)*a(2, 2)
+        mat(2, 2) = m22
+        y(1) = b1
+        y(2) = b2
+        if (.not. (l11 > 0.0_wp)) then
+            mat(1, 1) = l11
+            mat(2, 1) = l21
+            info = 1
+            return
+        end if
+        l11 = sqrt(l11)
+        l21 = l21/l11
+        mat(1, 1) = l11
+        mat(2, 1) = l21
+        s = m22 - l21**2
+        if (.not. (s > 0.0_wp)) then
+            info = 2
+            return
+        end if
+        s = sqrt(s)
+        mat(2, 2) = s
+        info = 0
+        b1 = b1/l11
+        b2 = (b2 - l21*b1)/s
+        b2 = b2/s
+        b1 = (b1 - l21*b2)/l11
+        y(1) = b1
+        y(2) = b2
+    end subroutine normal_solve_2x2
 
     ! Solve with the SPD matrix in mat(1:q, 1:q) (lower triangle; overwritten by its Cholesky
     ! factor) and the right-hand side y: plain loops up to small_cholesky_max unknowns, dposv

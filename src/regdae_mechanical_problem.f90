@@ -329,8 +329,9 @@ contains
         end associate
     end subroutine mechanical_b_from_jacobian
 
-    ! Copy the lower triangle of A into l (all that the Cholesky factorizations
-    ! read) and check symmetry: ok = max |A - A^T| <= tol max |A| (false for NaN).
+    ! Copy A into l (the Cholesky factorizations read its lower triangle only: one
+    ! copy of the whole matrix is cheaper than n copies of the triangle's columns)
+    ! and check symmetry: ok = max |A - A^T| <= tol max |A| (false for NaN).
     pure subroutine copy_if_symmetric(n, a, l, tol, ok)
         integer, intent(in) :: n
         real(wp), intent(in) :: a(n, n), tol
@@ -338,11 +339,11 @@ contains
         logical, intent(out) :: ok
         integer :: i, j
         real(wp) :: amax, asym
+        l(:, :) = a
         amax = 0.0_wp
         asym = 0.0_wp
         do j = 1, n
             do i = j, n
-                l(i, j) = a(i, j)
                 amax = max(amax, abs(a(i, j)), abs(a(j, i)))
                 asym = max(asym, abs(a(i, j) - a(j, i)))
             end do

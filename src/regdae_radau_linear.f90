@@ -71,15 +71,15 @@ contains
         integer :: i, info
         complex(wp) :: fac_c
         fac_c = cmplx(fac_alpha, fac_beta, wp)
-        self%e1 = -jac
-        self%e2 = cmplx(-jac, 0.0_wp, wp)
+        self%e1(:, :) = -jac
+        self%e2(:, :) = cmplx(-jac, 0.0_wp, wp)
         do i = 1, self%n
             self%e1(i, i) = self%e1(i, i) + fac_real*mass(i)
             self%e2(i, i) = self%e2(i, i) + fac_c*mass(i)
         end do
         if (self%n <= small_n) then
-            call small_lu_real(self%e1, self%ipiv1, info)
-            if (info == 0) call small_lu_complex(self%e2, self%ipiv2, info)
+            call small_lu_real(self%n, self%e1, self%ipiv1, info)
+            if (info == 0) call small_lu_complex(self%n, self%e2, self%ipiv2, info)
         else
             call dgetrf(self%n, self%n, self%e1, self%n, self%ipiv1, info)
             if (info == 0) call zgetrf(self%n, self%n, self%e2, self%n, self%ipiv2, info)
@@ -92,45 +92,27 @@ contains
     subroutine matrices_solve_real(self, b)
         class(radau_newton_matrices), intent(inout) :: self
         real(wp), intent(inout) :: b(:)   !! right-hand side in, solution out
-        integer :: info, k, n
+        integer :: info, n
         n = self%n
         if (n > small_n) then
             call dgetrs('N', n, 1, self%e1, n, self%ipiv1, b, n, info)
             return
         end if
-        do k = 1, n   ! P b: the swaps in their order
-            if (self%ipiv1(k) /= k) b([k, self%ipiv1(k)]) = b([self%ipiv1(k), k])
-        end do
-        do k = 1, n   ! L y = P b
-            b(k + 1:n) = b(k + 1:n) - self%e1(k + 1:n, k)*b(k)
-        end do
-        do k = n, 1, -1   ! U x = y
-            b(k) = b(k)/self%e1(k, k)
-            b(1:k - 1) = b(1:k - 1) - self%e1(1:k - 1, k)*b(k)
-        end do
+        call small_solve_real(n, self%e1, self%ipiv1, b)
     end subroutine matrices_solve_real
 
     subroutine matrices_solve_complex(self, b, c)
         class(radau_newton_matrices), intent(inout) :: self
         real(wp), intent(inout) :: b(:)   !! real part of the right-hand side in, of the solution out
         real(wp), intent(inout) :: c(:)   !! imaginary part, likewise
-        integer :: info, k, n
+        integer :: info, n
         n = self%n
         associate (w => self%work, e => self%e2, ipiv => self%ipiv2)
             w = cmplx(b, c, wp)
             if (n > small_n) then
                 call zgetrs('N', n, 1, e, n, ipiv, w, n, info)
             else
-                do k = 1, n   ! P b: the swaps in their order
-                    if (ipiv(k) /= k) w([k, ipiv(k)]) = w([ipiv(k), k])
-                end do
-                do k = 1, n   ! L y = P b
-                    w(k + 1:n) = w(k + 1:n) - e(k + 1:n, k)*w(k)
-                end do
-                do k = n, 1, -1   ! U x = y
-                    w(k) = w(k)/e(k, k)
-                    w(1:k - 1) = w(1:k - 1) - e(1:k - 1, k)*w(k)
-                end do
+                call small_solve_complex(n, e, ipiv, w)
             end if
             b = real(w, wp)
             c = aimag(w)
@@ -140,13 +122,13 @@ contains
     !> LU with partial pivoting of a small real matrix in place (LAPACK's dgetrf
     !! layout: unit L below the diagonal, U on and above it, row k swapped with
     !! ipiv(k)); info = k > 0 at the first exactly zero pivot.
-    pure subroutine small_lu_real(a, ipiv, info)
-        real(wp), intent(inout) :: a(:, :)
-        integer, intent(out) :: ipiv(:)
+    pure subroutine small_lu_real(n, a, ipiv, info)
+        integer, intent(in) :: n
+        real(wp), intent(inout) :: a(n, n)
+        integer, intent(out) :: ipiv(n)
         integer, intent(out) :: info
         real(wp) :: swap, pivot
-        integer :: i, j, k, p, n
-        n = size(a, 1)
+        integer :: i, j, k, p
         info = 0
         do k = 1, n
             p = k
@@ -174,14 +156,14 @@ contains
     end subroutine small_lu_real
 
     !> The same for a complex matrix, the pivot the first largest |Re| + |Im|.
-    pure subroutine small_lu_complex(a, ipiv, info)
-        complex(wp), intent(inout) :: a(:, :)
-        integer, intent(out) :: ipiv(:)
+    pure subroutine small_lu_complex(n, a, ipiv, info)
+        integer, intent(in) :: n
+        complex(wp), intent(inout) :: a(n, n)
+        integer, intent(out) :: ipiv(n)
         integer, intent(out) :: info
         complex(wp) :: swap, pivot
         real(wp) :: big
-        integer :: i, j, k, p, n
-        n = size(a, 1)
+        integer :: i, j, k, p
         info = 0
         do k = 1, n
             p = k
@@ -211,5 +193,67 @@ contains
             end do
         end do
     end subroutine small_lu_complex
+
+    !> Solve with the factors of `small_lu_real` in place: the row swaps in their
+    !! order, then L y = P b and U x = y column by column (explicit shapes and scalar
+    !! swaps: no temporaries).
+    pure subroutine small_solve_real(n, e, ipiv, b)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: e(n, n)
+        integer, intent(in) :: ipiv(n)
+        real(wp), intent(inout) :: b(n)
+        real(wp) :: swap, bk
+        integer :: i, k
+        do k = 1, n
+            if (ipiv(k) /= k) then
+                swap = b(k)
+                b(k) = b(ipiv(k))
+                b(ipiv(k)) = swap
+            end if
+        end do
+        do k = 1, n
+            bk = b(k)
+            do i = k + 1, n
+                b(i) = b(i) - e(i, k)*bk
+            end do
+        end do
+        do k = n, 1, -1
+            b(k) = b(k)/e(k, k)
+            bk = b(k)
+            do i = 1, k - 1
+                b(i) = b(i) - e(i, k)*bk
+            end do
+        end do
+    end subroutine small_solve_real
+
+    !> The same with the factors of `small_lu_complex`.
+    pure subroutine small_solve_complex(n, e, ipiv, w)
+        integer, intent(in) :: n
+        complex(wp), intent(in) :: e(n, n)
+        integer, intent(in) :: ipiv(n)
+        complex(wp), intent(inout) :: w(n)
+        complex(wp) :: swap, wk
+        integer :: i, k
+        do k = 1, n
+            if (ipiv(k) /= k) then
+                swap = w(k)
+                w(k) = w(ipiv(k))
+                w(ipiv(k)) = swap
+            end if
+        end do
+        do k = 1, n
+            wk = w(k)
+            do i = k + 1, n
+                w(i) = w(i) - e(i, k)*wk
+            end do
+        end do
+        do k = n, 1, -1
+            w(k) = w(k)/e(k, k)
+            wk = w(k)
+            do i = 1, k - 1
+                w(i) = w(i) - e(i, k)*wk
+            end do
+        end do
+    end subroutine small_solve_complex
 
 end module regdae_radau_linear

@@ -219,7 +219,7 @@ contains
         real(wp), intent(in) :: z(:)    !! state: x (order 1) or (x, v) (order 2)
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable   !! may a smaller step help?
-        integer :: ustat, n, i, j
+        integer :: ustat, n
         real(wp) :: probe
 
         stat = regdae_success
@@ -312,26 +312,8 @@ contains
                 end if
             end if
         end if
-        do j = 1, self%m
-            self%gb(:, j) = 0.0_wp
-            call add_matvec(self%m, self%n, self%gx, self%b(:, j), 1.0_wp, self%gb(:, j))
-        end do
         call self%constraint_terms(z, self%q)
-        self%r(:) = self%q
-        call add_matvec(self%m, self%n, self%gx, self%f, 1.0_wp, self%r)
-        ! A NaN or Inf in B, g, G, g_t or c reaches GB or r (0 * NaN and 0 * Inf
-        ! are NaN), so checking f, GB and r suffices; the probe is 0 exactly when
-        ! all of them are finite.
-        probe = 0.0_wp
-        do i = 1, n
-            probe = probe + 0.0_wp*self%f(i)
-        end do
-        do j = 1, self%m
-            probe = probe + 0.0_wp*self%r(j)
-            do i = 1, self%m
-                probe = probe + 0.0_wp*self%gb(i, j)
-            end do
-        end do
+        call multiplier_pieces(n, self%m, self%gx, self%b, self%f, self%q, self%gb, self%r, probe)
         if (probe /= 0.0_wp) then
             stat = regdae_err_nonfinite
             self%message = 'NaN or Inf in f, B, g, G, g_t or c at t = '//format_real(t)
@@ -385,6 +367,40 @@ contains
         end if
     end subroutine report_failure
 
+    ! GB and r = q + G f from the evaluated pieces, by loops over explicit shapes (each
+    ! entry a sum in ascending index from the first term, the order of `add_matvec`:
+    ! GB from 0, r from q), and a probe that is 0 exactly when f, GB and r are finite: a
+    ! NaN or Inf in B, g, G, g_t or c reaches GB or r (0 * NaN and 0 * Inf are NaN).
+    pure subroutine multiplier_pieces(n, m, gx, b, f, q, gb, r, probe)
+        integer, intent(in) :: n, m
+        real(wp), intent(in) :: gx(m, n), b(n, m), f(n), q(m)
+        real(wp), intent(out) :: gb(m, m), r(m), probe
+        integer :: i, j, k
+        real(wp) :: s
+        probe = 0.0_wp
+        do i = 1, n
+            probe = probe + 0.0_wp*f(i)
+        end do
+        do j = 1, m
+            do i = 1, m
+                s = 0.0_wp
+                do k = 1, n
+                    s = s + gx(i, k)*b(k, j)
+                end do
+                gb(i, j) = s
+                probe = probe + 0.0_wp*s
+            end do
+        end do
+        do i = 1, m
+            s = q(i)
+            do k = 1, n
+                s = s + gx(i, k)*f(k)
+            end do
+            r(i) = s
+            probe = probe + 0.0_wp*s
+        end do
+    end subroutine multiplier_pieces
+
     ! q = r - G f = w0 g + w1 g_t + sum_{k=1}^{m-1} w_k G x^(k) [+ c] (order 1: g_t with weight 1).
     subroutine constraint_terms(self, z, q)
         class(regularized_dae), intent(in) :: self
@@ -394,6 +410,9 @@ contains
         n = self%n
         if (self%order == 1) then
             q(:) = self%w(1)*self%g + self%gt
+        else if (self%order == 2) then
+            call velocity_terms(n, self%m, self%w(1), self%w(2), self%g, self%gt, self%gx, z(n + 1:2*n), &
+                                self%curvature, self%curv, q)
         else
             q(:) = self%w(1)*self%g + self%w(2)*self%gt
             do k = 1, self%order - 1
@@ -402,6 +421,25 @@ contains
             if (self%curvature) q = q + self%curv
         end if
     end subroutine constraint_terms
+
+    ! Order 2: q = w0 g + w1 g_t + w1 G v [+ c], the operations of the general case in
+    ! its order, by loops over explicit shapes.
+    pure subroutine velocity_terms(n, m, w0, w1, g, gt, gx, v, curvature, curv, q)
+        integer, intent(in) :: n, m
+        real(wp), intent(in) :: w0, w1, g(m), gt(m), gx(m, n), v(n), curv(m)
+        logical, intent(in) :: curvature
+        real(wp), intent(out) :: q(m)
+        integer :: i
+        do i = 1, m
+            q(i) = w0*g(i) + w1*gt(i)
+        end do
+        call add_matvec(m, n, gx, v, w1, q)
+        if (curvature) then
+            do i = 1, m
+                q(i) = q(i) + curv(i)
+            end do
+        end if
+    end subroutine velocity_terms
 
     !> The multiplier of the chosen regularization from the last `evaluate`.
     !! Failures: `regdae_err_not_psd` (direct, GB not symmetric PSD),

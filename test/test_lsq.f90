@@ -11,6 +11,7 @@ module test_lsq
                       lsq_normal, lsq_stacked, lsq_checked, regdae_success, regdae_err_singular, regdae_err_not_psd, &
                       regdae_err_bad_input
     use regdae_testing, only: checker, test_case, new_test
+    use regdae_lapack, only: dgesvd
     implicit none
     private
     public :: lsq_tests
@@ -32,7 +33,8 @@ contains
                  new_test('shifted_spd', shifted_spd), &
                  new_test('square', square), &
                  new_test('bad_input', bad_input), &
-                 new_test('checked_switches_by_conditioning', checked_switches)]
+                 new_test('checked_switches_by_conditioning', checked_switches), &
+                 new_test('smallest_singular_value_2x2', singular_2x2)]
     end function lsq_tests
 
     ! lsq=auto (lsq_checked): the normal equations where A^T A + eps I is well
@@ -192,6 +194,54 @@ contains
         call chk%close_rel(ys, damped_reference(s, 0.0_wp), 1.0e-13_wp, 'stacked minimum-norm solution')
         call chk%equal(sn, regdae_err_singular, 'normal equations report the singular matrix')
     end subroutine eps_zero_rank_deficient
+
+    ! sigma_min of 2 x 2 matrices (regdae_damped_lsq writes dgesvd's arithmetic out for
+    ! them): against dgesvd itself on rotated diagonals, triangular and rank-one matrices,
+    ! signed zeros and a tiny scale (where dgesvd scales and the written-out path defers to
+    ! it); a fresh workspace per matrix (no structural rank deficiency carried over), and
+    ! one that has seen only rank-one matrices (sigma on the structural rank: sigma_1).
+    subroutine singular_2x2(chk)
+        type(checker), intent(inout) :: chk
+        type(damped_lsq_workspace) :: ws
+        real(wp) :: a(2, 2), sv(2), work(64), dummy(1, 1), ca, sa, cb, sb, sigma, expected
+        integer :: k, info
+        character(len=2) :: tag
+        do k = 1, 12
+            ca = cos(0.7_wp*k)
+            sa = sin(0.7_wp*k)
+            cb = cos(1.9_wp*k + 0.3_wp)
+            sb = sin(1.9_wp*k + 0.3_wp)
+            a = matmul(reshape([ca, sa, -sa, ca], [2, 2]), &
+                       matmul(diag2(3.0_wp, 10.0_wp**(-k)), reshape([cb, -sb, sb, cb], [2, 2])))
+            select case (k)
+            case (9); a(2, 1) = 0.0_wp
+            case (10); a(1, 2) = 0.0_wp
+            case (11); a(:, 2) = 2*a(:, 1)
+            case (12); a = reshape([-0.0_wp, 1.0e-300_wp, 0.0_wp, 2.0e-300_wp], [2, 2])
+            end select
+            call ws%init(2, 2)
+            sigma = ws%smallest_singular_value(a)
+            call dgesvd('N', 'N', 2, 2, a, 2, sv, dummy, 1, dummy, 1, work, size(work), info)
+            write (tag, '(i2)') k
+            call chk%equal(info, 0, 'dgesvd '//tag)
+            ! a first rank-deficient sample sets the structural deficiency: sigma_1 then
+            expected = sv(2)
+            if (sv(2) <= 2*u*sv(1)) expected = sv(1)
+            call chk%true(abs(sigma - expected) <= 8*u*sv(1), 'sigma_min as dgesvd''s '//tag)
+        end do
+        call ws%init(2, 2)
+        do k = 1, 3
+            a = reshape([1.0_wp*k, 2.0_wp, -2.0_wp*k, -4.0_wp], [2, 2])   ! rank one
+            sigma = ws%smallest_singular_value(a)
+        end do
+        call chk%true(abs(sigma - norm2(a)) <= 8*u*norm2(a), 'rank one throughout: sigma on the structural rank')
+    contains
+        pure function diag2(d1, d2) result(d)
+            real(wp), intent(in) :: d1, d2
+            real(wp) :: d(2, 2)
+            d = reshape([d1, 0.0_wp, 0.0_wp, d2], [2, 2])
+        end function diag2
+    end subroutine singular_2x2
 
     subroutine shifted_spd(chk)
         type(checker), intent(inout) :: chk

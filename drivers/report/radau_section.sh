@@ -130,7 +130,23 @@ solved by plain Cholesky loops (regdae_small_cholesky, shared with the mass matr
 constraint Jacobian and shifted positions live in local buffers instead of the heap: the whole
 process at tol 1e-6 (`valgrind --tool=callgrind build/bin/car_axis config=radau tol_from=6 tol_to=6
 check=no reps=1 min_time=0`) 94.1M -> 73.2M instructions (-22%), config=defaults 47.2M -> 37.2M
-(-21%), with the same steps and errors.
+(-21%), with the same steps and errors. On 2026-12-06 (809e6a8 ... ed93ea1) the slope's small pieces
+went to loops over explicit shapes (GB, r and the constraint terms; the damped least squares'
+normal equations without matmul's temporaries, written out for two constraints), sigma_min(GB) of
+a 2 x 2 GB to dgesvd's own arithmetic written out (the monitor's samples and the explicit
+method's pass probes called dgesvd: a quarter of config=defaults), Radau's small LU solves to
+scalar swaps instead of vector-subscript temporaries and its hot array assignments to no
+reallocation checks, F's finiteness to one probe sum; every result bitwise unchanged
+(`tools/check_unchanged.sh`: 67 of 67 identical). The car axis problem itself
+(drivers/problems/car_axis_problem.f90) keeps its road for the last t: five callbacks per
+evaluation computed it at the same t. The whole process at tol 1e-6: config=radau 68.9M -> 50.1M
+(-27%; Radau's advance 61.0M -> 44.3M; one evaluation of the slope 3840 -> 2380 instructions, of
+which the problem's callbacks 1550 -> 850 and regdae's 2280 -> 1540), config=defaults 37.3M ->
+21.6M (-42%). The slider crank (one constraint, a mass matrix: its slope is the callbacks, the
+mass matrix's factor and the calls) gains less: `build/bin/bench problem=crank_radau tol_from=6
+tol_to=6 reps=1 min_time=0` 118.7M -> 115.2M, regdae's run 64.3M -> 60.8M (-5%);
+`drivers/report/cost_of_trust.sh` (ex52 defaults) 14.9 / 14.2 / 15.5 / 18.9 / 29.2M -> 14.4 /
+13.7 / 15.0 / 18.2 / 28.0M at rtol 1e-4 ... 1e-8 (-4%).
 
 ### The slider crank against the Dormand-Prince oracle
 
