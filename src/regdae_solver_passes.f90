@@ -134,7 +134,8 @@ contains
         type(solver_options) :: opts
         type(augmented_system), pointer :: sys
         real(wp) :: eps, zs(size(z)), ratio
-        integer :: nx, pstat
+        integer :: nx
+        logical :: do_project
         stat = regdae_err_not_initialized
         if (.not. associated(self%core)) return
         associate (core => self%core)
@@ -151,7 +152,7 @@ contains
             opts%resolution_tol = 0.0_wp
             opts%ic_tol = huge(1.0_wp)
             opts%check_jacobians = .false.
-            opts%h_init = 0.0_wp
+            opts%h_init = companion_first_step(core, kappa)
             opts%integrator = core%active   ! the integrator in charge (dopri5, ida or radau)
             opts%formulation = core%formulation
             opts%linear_solver = merge(core%linear_solver, linear_solver_auto, core%augmented)
@@ -179,19 +180,15 @@ contains
                 opts%eps = eps*ratio
             end if
             if (present(eps_scale)) opts%eps = opts%eps*eps_scale
-            ! the start projected onto the constraints: the solution's drift is within its
-            ! tolerance, not within the companion's (with a thinner layer it can bounce off the branch)
+            ! the start projected onto the constraints (engine_project_start), once per pass
             zs = z
+            do_project = .true.
+            if (present(projected)) do_project = .not. projected
+            if (do_project) call self%project_start(t, zs)
             if (core%augmented) then
-                if (sys%st%declared) then
-                    call project_structured(sys%problem, sys%st%constraint, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                else
-                    call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                end if
                 call other%init(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
                                 atol_vector=core%atol_z/kappa)
             else if (allocated(core%model%second)) then
-                call project_second_order(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
                 call other%init(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
                                 atol_vector=core%atol_z/kappa)
             else if (allocated(core%model%higher)) then
@@ -199,15 +196,58 @@ contains
             else
                 select type (p => core%model%first)
                 type is (velocity_index2_problem)
-                    call project_second_order(p%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
                     call other%init(p%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, atol_vector=core%atol_z/kappa)
                 class default
-                    call project_first_order(p, t, zs(1:nx), pstat)
                     call other%init(p, t, zs(1:nx), opts, stat, atol_vector=core%atol_z/kappa)
                 end select
             end if
         end associate
     end procedure engine_start_companion
+
+    ! A companion's first step: with dopri5 in charge, the solution's last step scaled to the
+    ! companion's tolerance (kappa^(-1/5), the step of a method of order 5); else 0, the
+    ! integrator's own choice.
+    real(wp) function companion_first_step(core, kappa) result(h0)
+        type(solver_core), intent(in), target :: core
+        real(wp), intent(in) :: kappa
+        class(integrator), pointer :: stepper
+        h0 = 0.0_wp
+        if (core%active /= integrator_dopri5) return
+        stepper => active_integrator(core)
+        if (.not. associated(stepper)) return
+        if (.not. stepper%ready()) return
+        h0 = max(stepper%last_step(), 0.0_wp)*kappa**(-0.2_wp)
+    end function companion_first_step
+
+    ! The start projected onto the constraints: the solution's drift is within its tolerance,
+    ! not within the companion's (with a thinner layer it can bounce off the branch).
+    module procedure engine_project_start
+        type(augmented_system), pointer :: sys
+        integer :: nx, pstat
+        if (.not. associated(self%core)) return
+        associate (core => self%core)
+            nx = core%nx
+            if (core%augmented) then
+                sys => core%stiff%augmented()
+                if (sys%st%declared) then
+                    call project_structured(sys%problem, sys%st%constraint, t, z(1:nx), z(nx + 1:2*nx), pstat)
+                else
+                    call project_second_order(sys%problem, t, z(1:nx), z(nx + 1:2*nx), pstat)
+                end if
+            else if (allocated(core%model%second)) then
+                call project_second_order(core%model%second, t, z(1:nx), z(nx + 1:2*nx), pstat)
+            else if (allocated(core%model%higher)) then
+                return
+            else
+                select type (p => core%model%first)
+                type is (velocity_index2_problem)
+                    call project_second_order(p%second, t, z(1:nx), z(nx + 1:2*nx), pstat)
+                class default
+                    call project_first_order(p, t, z(1:nx), pstat)
+                end select
+            end if
+        end associate
+    end procedure engine_project_start
 
     module procedure engine_limit_steps
         if (associated(self%core)) self%core%opts%max_steps = max(1, steps)

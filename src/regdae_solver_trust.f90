@@ -65,7 +65,8 @@ module regdae_solver_trust
     ! the checkpoint (t_start, z_start).
     type :: pass_ladder
         type(engine_slot) :: level(max_levels)
-        type(engine_slot) :: probe(2)  ! the eps probes: level probe_level's tolerance, eps_probe^j x its eps
+        type(engine_slot) :: probe(0:2)  ! the eps probes: level probe_level's tolerance, eps_probe^j x its eps
+                                         ! (probe(0), x(eps), for level 0 only)
         integer :: probe_level = -1
         real(wp) :: d_probe = 0.0_wp   ! the estimated regularization error at the level's eps
         real(wp) :: d_probes(2) = 0.0_wp   ! |x(10 eps) - x(eps)|, |x(100 eps) - x(10 eps)|
@@ -438,7 +439,7 @@ contains
             other = self%ladder%level(k)%engine%statistics()
             st%companion_steps = st%companion_steps + other%steps
         end do
-        do k = 1, 2
+        do k = 0, 2
             if (.not. associated(self%ladder%probe(k)%engine)) cycle
             other = self%ladder%probe(k)%engine%statistics()
             st%companion_steps = st%companion_steps + other%steps
