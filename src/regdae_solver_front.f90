@@ -236,11 +236,11 @@ module regdae_solver_front
             class(solver_engine), intent(inout) :: self
         end function engine_take_pass_end
 
-        module subroutine engine_checkpoint(self, t, z, frozen, valid)
+        module subroutine engine_checkpoint(self, t, frozen, valid, z)
             class(solver_engine), intent(in) :: self
             real(wp), intent(out) :: t
-            real(wp), allocatable, intent(out) :: z(:)
             logical, intent(out) :: frozen, valid
+            real(wp), allocatable, intent(out), optional :: z(:)   !! the state (not copied if absent)
         end subroutine engine_checkpoint
 
         module subroutine engine_release_checkpoint(self, t, z)

@@ -37,7 +37,7 @@ contains
             frozen = mon%checkpoint_frozen
             if (.not. valid) return
             t = mon%checkpoint_t
-            z = mon%checkpoint_z
+            if (present(z)) z = mon%checkpoint_z
         end associate
     end procedure engine_checkpoint
 

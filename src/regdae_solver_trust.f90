@@ -331,7 +331,6 @@ contains
         real(wp), allocatable :: xe(:)
         logical :: ended, frozen, valid
         real(wp) :: tc
-        real(wp), allocatable :: zc(:)
         integer(int64) :: steps0
         type(solver_stats) :: st
         warn = regdae_success
@@ -361,7 +360,7 @@ contains
             t_now = self%main%time()
             if (self%verify) then
                 ended = self%main%take_pass_end()
-                call self%main%checkpoint(tc, zc, frozen, valid)
+                call self%main%checkpoint(tc, frozen, valid)
                 if (frozen .and. valid) call check_pass(self, t_now, ended, x, y, v, a, warn, warn_text)
             end if
             if (.not. (t_now < tout) .or. stat == regdae_root_found .or. self%each_step) exit

@@ -27,7 +27,7 @@ contains
         n = self%main%state_size()
         associate (lad => self%ladder)
             if (.not. lad%active) then
-                call self%main%checkpoint(tc, zc, frozen, valid)
+                call self%main%checkpoint(tc, frozen, valid, zc)
                 lad%active = .true.
                 lad%warned = .false.
                 lad%regularized = .false.
