@@ -152,7 +152,7 @@ contains
             opts%resolution_tol = 0.0_wp
             opts%ic_tol = huge(1.0_wp)
             opts%check_jacobians = .false.
-            opts%h_init = companion_first_step(core, kappa)
+            opts%h_init = 0.0_wp
             opts%integrator = core%active   ! the integrator in charge (dopri5, ida or radau)
             opts%formulation = core%formulation
             opts%linear_solver = merge(core%linear_solver, linear_solver_auto, core%augmented)
@@ -203,21 +203,6 @@ contains
             end if
         end associate
     end procedure engine_start_companion
-
-    ! A companion's first step: with dopri5 in charge, the solution's last step scaled to the
-    ! companion's tolerance (kappa^(-1/5), the step of a method of order 5); else 0, the
-    ! integrator's own choice.
-    real(wp) function companion_first_step(core, kappa) result(h0)
-        type(solver_core), intent(in), target :: core
-        real(wp), intent(in) :: kappa
-        class(integrator), pointer :: stepper
-        h0 = 0.0_wp
-        if (core%active /= integrator_dopri5) return
-        stepper => active_integrator(core)
-        if (.not. associated(stepper)) return
-        if (.not. stepper%ready()) return
-        h0 = max(stepper%last_step(), 0.0_wp)*kappa**(-0.2_wp)
-    end function companion_first_step
 
     ! The start projected onto the constraints: the solution's drift is within its tolerance,
     ! not within the companion's (with a thinner layer it can bounce off the branch).

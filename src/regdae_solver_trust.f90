@@ -88,6 +88,8 @@ module regdae_solver_trust
         integer :: over_budget = 0         ! the level that exceeded its step budget (0: none)
         integer :: dead_level = max_levels + 1   ! the lowest level that failed in this pass: not restarted
         logical :: probes_failed = .false.       ! the eps probes failed in this pass: not restarted
+        logical :: fine_probes = .false.         ! the probes at the answer's tolerance found the regularization
+                                                 ! error above pass_tol: those at the next level's decide
     end type pass_ladder
 
     !> A regularized DAE solver (doc/api.md): `init`, `advance`, `statistics`, ...

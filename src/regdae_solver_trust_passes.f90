@@ -38,6 +38,7 @@ contains
                 lad%over_budget = 0
                 lad%dead_level = max_levels + 1
                 lad%probes_failed = .false.
+                lad%fine_probes = .false.
                 lad%levels = 0
                 lad%t_start = tc
                 lad%z_start = zc
@@ -87,11 +88,20 @@ contains
             lad%regularized = lad%regularized .or. self%main%regularized()
             if (.not. agreed) answer = merge(lad%levels, 0, lad%regularized)
             if (agreed .and. answer < lad%levels) then
-                ! the answer and the next level share the eps floor: probes at 10 and 100 eps (at
-                ! the answer's tolerance, against x(eps) at that tolerance from the same start)
-                ! tell whether the regularization error is within the tolerance
+                ! the answer and the next level share the eps floor: probes at 10 and 100 eps tell
+                ! whether the regularization error is within the tolerance: first at the answer's
+                ! tolerance (against x(eps) at that tolerance from the same start); where those
+                ! find it above pass_tol, at the next level's tolerance (where the integration
+                ! error is 10 times smaller), which give the verdict for the rest of the pass
                 if (self%main%eps_floored(kappa**answer, kappa**(answer + 1))) then
-                    call probe_regularization(self, t, answer, lstat)
+                    if (.not. lad%fine_probes) then
+                        call probe_regularization(self, t, answer, lstat)
+                        if (lstat == regdae_success .and. lad%d_probe > self%pass_tol) then
+                            lad%fine_probes = .true.
+                            call retire_probe(self)
+                        end if
+                    end if
+                    if (lad%fine_probes) call probe_regularization(self, t, answer + 1, lstat)
                     if (lstat == regdae_success .and. lad%d_probe > self%pass_tol) agreed = .false.
                 end if
             end if
@@ -127,7 +137,7 @@ contains
                 end if
                 if (lad%over_budget > 0) text = text//'; the level at rtol/'//format_real(kappa**lad%over_budget)// &
                     ' failed or exceeded its step budget (50 times the solution''s step density)'
-                if (lad%probe_level == answer) then
+                if (lad%probe_level == answer .or. lad%probe_level == answer + 1) then
                     text = text//'; the regularization error at its eps is about '//format_real(lad%d_probe)// &
                            ' (10 eps moves x by '//format_real(lad%d_probes(1))
                     if (lad%d_probes(2) >= 0.0_wp) text = text//', 100 eps by '//format_real(lad%d_probes(2))//' more'
