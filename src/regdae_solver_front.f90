@@ -129,6 +129,9 @@ module regdae_solver_front
         !> Start `other` on the same problem from (t, z) with the tolerances divided by
         !! kappa (eps too when automatic), the weights in force, no checks.
         procedure :: start_companion => engine_start_companion
+        !> A companion's start: z at t projected onto the constraints (start_companion does it
+        !! unless told that z is projected already).
+        procedure :: project_start => engine_project_start
         !> Does the automatic eps of companions at rtol/kappa_a and rtol/kappa_b coincide (the
         !! rule's floor)? False if eps is the user's.
         procedure :: eps_floored => engine_eps_floored
@@ -233,11 +236,11 @@ module regdae_solver_front
             class(solver_engine), intent(inout) :: self
         end function engine_take_pass_end
 
-        module subroutine engine_checkpoint(self, t, z, frozen, valid)
+        module subroutine engine_checkpoint(self, t, frozen, valid, z)
             class(solver_engine), intent(in) :: self
             real(wp), intent(out) :: t
-            real(wp), allocatable, intent(out) :: z(:)
             logical, intent(out) :: frozen, valid
+            real(wp), allocatable, intent(out), optional :: z(:)   !! the state (not copied if absent)
         end subroutine engine_checkpoint
 
         module subroutine engine_release_checkpoint(self, t, z)
@@ -276,15 +279,22 @@ module regdae_solver_front
             integer, intent(out) :: stat
         end subroutine engine_restart_at
 
-        module subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale)
+        module subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale, projected)
             class(solver_engine), intent(in) :: self
             class(solver_engine), intent(inout) :: other
-            real(wp), intent(in) :: kappa       !! the tolerances' divisor (> 1)
+            real(wp), intent(in) :: kappa       !! the tolerances' divisor (>= 1)
             real(wp), intent(in) :: t, z(:)     !! the start: a state of self (x, v)
             integer, intent(out) :: stat
             real(wp), intent(in), optional :: eps_scale   !! the companion's eps times this (a probe of the
                                                           !! regularization error)
+            logical, intent(in), optional :: projected    !! z is projected already (project_start)
         end subroutine engine_start_companion
+
+        module subroutine engine_project_start(self, t, z)
+            class(solver_engine), intent(in) :: self
+            real(wp), intent(in) :: t
+            real(wp), intent(inout) :: z(:)     !! a state of self (x, v), projected in place
+        end subroutine engine_project_start
 
         module subroutine engine_limit_steps(self, steps)
             class(solver_engine), intent(inout) :: self

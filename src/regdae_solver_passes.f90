@@ -37,7 +37,7 @@ contains
             frozen = mon%checkpoint_frozen
             if (.not. valid) return
             t = mon%checkpoint_t
-            z = mon%checkpoint_z
+            if (present(z)) z = mon%checkpoint_z
         end associate
     end procedure engine_checkpoint
 
@@ -134,7 +134,8 @@ contains
         type(solver_options) :: opts
         type(augmented_system), pointer :: sys
         real(wp) :: eps, zs(size(z)), ratio
-        integer :: nx, pstat
+        integer :: nx
+        logical :: do_project
         stat = regdae_err_not_initialized
         if (.not. associated(self%core)) return
         associate (core => self%core)
@@ -179,19 +180,15 @@ contains
                 opts%eps = eps*ratio
             end if
             if (present(eps_scale)) opts%eps = opts%eps*eps_scale
-            ! the start projected onto the constraints: the solution's drift is within its
-            ! tolerance, not within the companion's (with a thinner layer it can bounce off the branch)
+            ! the start projected onto the constraints (engine_project_start), once per pass
             zs = z
+            do_project = .true.
+            if (present(projected)) do_project = .not. projected
+            if (do_project) call self%project_start(t, zs)
             if (core%augmented) then
-                if (sys%st%declared) then
-                    call project_structured(sys%problem, sys%st%constraint, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                else
-                    call project_second_order(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
-                end if
                 call other%init(sys%problem, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
                                 atol_vector=core%atol_z/kappa)
             else if (allocated(core%model%second)) then
-                call project_second_order(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
                 call other%init(core%model%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, &
                                 atol_vector=core%atol_z/kappa)
             else if (allocated(core%model%higher)) then
@@ -199,15 +196,43 @@ contains
             else
                 select type (p => core%model%first)
                 type is (velocity_index2_problem)
-                    call project_second_order(p%second, t, zs(1:nx), zs(nx + 1:2*nx), pstat)
                     call other%init(p%second, t, zs(1:nx), zs(nx + 1:2*nx), opts, stat, atol_vector=core%atol_z/kappa)
                 class default
-                    call project_first_order(p, t, zs(1:nx), pstat)
                     call other%init(p, t, zs(1:nx), opts, stat, atol_vector=core%atol_z/kappa)
                 end select
             end if
         end associate
     end procedure engine_start_companion
+
+    ! The start projected onto the constraints: the solution's drift is within its tolerance,
+    ! not within the companion's (with a thinner layer it can bounce off the branch).
+    module procedure engine_project_start
+        type(augmented_system), pointer :: sys
+        integer :: nx, pstat
+        if (.not. associated(self%core)) return
+        associate (core => self%core)
+            nx = core%nx
+            if (core%augmented) then
+                sys => core%stiff%augmented()
+                if (sys%st%declared) then
+                    call project_structured(sys%problem, sys%st%constraint, t, z(1:nx), z(nx + 1:2*nx), pstat)
+                else
+                    call project_second_order(sys%problem, t, z(1:nx), z(nx + 1:2*nx), pstat)
+                end if
+            else if (allocated(core%model%second)) then
+                call project_second_order(core%model%second, t, z(1:nx), z(nx + 1:2*nx), pstat)
+            else if (allocated(core%model%higher)) then
+                return
+            else
+                select type (p => core%model%first)
+                type is (velocity_index2_problem)
+                    call project_second_order(p%second, t, z(1:nx), z(nx + 1:2*nx), pstat)
+                class default
+                    call project_first_order(p, t, z(1:nx), pstat)
+                end select
+            end if
+        end associate
+    end procedure engine_project_start
 
     module procedure engine_limit_steps
         if (associated(self%core)) self%core%opts%max_steps = max(1, steps)

@@ -27,7 +27,7 @@ contains
         n = self%main%state_size()
         associate (lad => self%ladder)
             if (.not. lad%active) then
-                call self%main%checkpoint(tc, zc, frozen, valid)
+                call self%main%checkpoint(tc, frozen, valid, zc)
                 lad%active = .true.
                 lad%warned = .false.
                 lad%regularized = .false.
@@ -38,9 +38,11 @@ contains
                 lad%over_budget = 0
                 lad%dead_level = max_levels + 1
                 lad%probes_failed = .false.
+                lad%fine_probes = .false.
                 lad%levels = 0
                 lad%t_start = tc
                 lad%z_start = zc
+                call self%main%project_start(tc, lad%z_start)   ! once for all the pass's companions
                 if (allocated(lad%z)) deallocate (lad%z)
                 allocate (lad%z(n, 0:max_levels))
                 lad%d = 0.0_wp
@@ -54,7 +56,8 @@ contains
                 if (k > lad%levels) then
                     allocate (lad%level(k)%engine)
                     lad%levels = k
-                    call self%main%start_companion(lad%level(k)%engine, kappa**k, lad%t_start, lad%z_start, lstat)
+                    call self%main%start_companion(lad%level(k)%engine, kappa**k, lad%t_start, lad%z_start, lstat, &
+                                                   projected=.true.)
                     if (lstat < 0) then
                         lad%dead_level = k
                         call retire(self, k)
@@ -85,11 +88,20 @@ contains
             lad%regularized = lad%regularized .or. self%main%regularized()
             if (.not. agreed) answer = merge(lad%levels, 0, lad%regularized)
             if (agreed .and. answer < lad%levels) then
-                ! the answer and the next level share the eps floor: probes at 10 and 100 eps (at
-                ! the next level's tolerance, where the integration error is 10 times smaller)
-                ! tell whether the regularization error is within the tolerance
+                ! the answer and the next level share the eps floor: probes at 10 and 100 eps tell
+                ! whether the regularization error is within the tolerance: first at the answer's
+                ! tolerance (against x(eps) at that tolerance from the same start); where those
+                ! find it above pass_tol, at the next level's tolerance (where the integration
+                ! error is 10 times smaller), which give the verdict for the rest of the pass
                 if (self%main%eps_floored(kappa**answer, kappa**(answer + 1))) then
-                    call probe_regularization(self, t, answer + 1, lstat)
+                    if (.not. lad%fine_probes) then
+                        call probe_regularization(self, t, answer, lstat)
+                        if (lstat == regdae_success .and. lad%d_probe > self%pass_tol) then
+                            lad%fine_probes = .true.
+                            call retire_probe(self)
+                        end if
+                    end if
+                    if (lad%fine_probes) call probe_regularization(self, t, answer + 1, lstat)
                     if (lstat == regdae_success .and. lad%d_probe > self%pass_tol) agreed = .false.
                 end if
             end if
@@ -125,7 +137,7 @@ contains
                 end if
                 if (lad%over_budget > 0) text = text//'; the level at rtol/'//format_real(kappa**lad%over_budget)// &
                     ' failed or exceeded its step budget (50 times the solution''s step density)'
-                if (lad%probe_level == answer + 1) then
+                if (lad%probe_level == answer .or. lad%probe_level == answer + 1) then
                     text = text//'; the regularization error at its eps is about '//format_real(lad%d_probe)// &
                            ' (10 eps moves x by '//format_real(lad%d_probes(1))
                     if (lad%d_probes(2) >= 0.0_wp) text = text//', 100 eps by '//format_real(lad%d_probes(2))//' more'
@@ -208,13 +220,16 @@ contains
         warn_text = text
     end subroutine warn_unresolved
 
-    ! The eps probes of level `level` (started from the checkpoint if they are not running
-    ! for that level) brought to t: the regularization error at the level's eps, estimated
-    ! from x(eps), x(10 eps), x(100 eps) for an error C eps^p (p from the ratio of the two
-    ! changes d1, d2: 10^p = d2/d1, the error d1/(10^p - 1); where the changes do not shrink
-    ! by 1.3 at least, 4 d1, the error of p = 0.1), in lad%d_probe. Every estimate is at most
-    ! 4 d1: where 4 d1 is within pass_tol, the 100 eps probe cannot change the verdict and is not
-    ! run (d_probe = 4 d1; d_probes(2) = -1). ex52 (paper case, 1000 outputs): the same outputs, the
+    ! The eps probes at the tolerance of level `level` (started from the checkpoint if they are
+    ! not running for that level) brought to t: the regularization error at the level's eps,
+    ! estimated from x(eps), x(10 eps), x(100 eps) for an error C eps^p (p from the ratio of the
+    ! two changes d1, d2: 10^p = d2/d1, the error d1/(10^p - 1); where the changes do not shrink
+    ! by 1.3 at least, 4 d1, the error of p = 0.1), in lad%d_probe. x(eps) is the level's own
+    ! (level >= 1: a companion from the same checkpoint) or, for level 0 (the solution, which did
+    ! not start from the checkpoint), the reference probe probe(0) at eps: the probes then differ
+    ! from it by the regularization and not by the restart. Every estimate is at most 4 d1: where
+    ! 4 d1 is within pass_tol, the 100 eps probe cannot change the verdict and is not run
+    ! (d_probe = 4 d1; d_probes(2) = -1). ex52 (paper case, 1000 outputs): the same outputs, the
     ! solve 40.6M -> 32.6M instructions at rtol 1e-8, 22.9M -> 20.5M at 1e-7 (callgrind).
     subroutine probe_regularization(self, t, level, stat)
         type(regdae_solver), intent(inout) :: self
@@ -224,17 +239,18 @@ contains
         real(wp), allocatable :: zp(:, :)
         real(wp) :: ratio
         integer :: j
-        allocate (zp(self%main%state_size(), 2))
+        allocate (zp(self%main%state_size(), 0:2))
         associate (lad => self%ladder)
             stat = regdae_err_integration
             if (lad%probes_failed) return   ! not started again from the pass's start at each output
             if (lad%probe_level /= level) call retire_probe(self)
-            do j = 1, 2
+            lad%probe_level = level
+            if (level > 0) zp(:, 0) = lad%z(:, level)
+            do j = merge(1, 0, level > 0), 2
                 if (.not. associated(lad%probe(j)%engine)) then
                     allocate (lad%probe(j)%engine)
-                    lad%probe_level = level
                     call self%main%start_companion(lad%probe(j)%engine, kappa**level, lad%t_start, lad%z_start, &
-                                                   stat, eps_scale=eps_probe**j)
+                                                   stat, eps_scale=eps_probe**j, projected=.true.)
                     if (stat < 0) then
                         lad%probes_failed = .true.
                         call retire_probe(self)
@@ -249,7 +265,7 @@ contains
                     return
                 end if
                 if (j == 1) then
-                    lad%d_probes(1) = self%main%state_distance(lad%z(:, level), zp(:, 1))
+                    lad%d_probes(1) = self%main%state_distance(zp(:, 0), zp(:, 1))
                     if (4.0_wp*lad%d_probes(1) <= self%pass_tol) then
                         lad%d_probe = 4.0_wp*lad%d_probes(1)
                         lad%d_probes(2) = -1.0_wp
@@ -273,7 +289,7 @@ contains
         type(solver_stats) :: st
         integer :: j
         self%ladder%probe_level = -1
-        do j = 1, 2
+        do j = 0, 2
             engine => self%ladder%probe(j)%engine
             if (.not. associated(engine)) cycle
             st = engine%statistics()
