@@ -53,7 +53,8 @@
 !!              [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]
 !! (option.KEY=VALUE: that solver option in every cell's run instead of its default, for diagnosing a
 !! cell; the header says which; the grids' figures are from the defaults)
-!! (th1=A, w1=W: the crank family at that start only, one cell per R, case th00)
+!! (th1=A, w1=W: the crank family at that start only, one cell per R, case th00; with rtol=R off
+!! the grid's R, e.g. 1e-10, the one cell at that R)
 !! (part=k/K: only the cells whose number I has mod(I, K) = k - 1; rtol=R: only the cells of that
 !! R; cell=I: only cell I of the family, for reproducing one; budget: the wall budget in seconds
 !! per regdae run, default 30, chains 120.)
@@ -516,6 +517,12 @@ contains
             'refm = the reference method: ok, diverged (err_ref over the outputs before a NaN/Inf), timeout '// &
             '(no result in '//itext(oracle_timeout)//' s: err_ref = 0), failed'
         cell = 0
+        if (start_th1 >= 0.0_wp .and. filter%rtol > 0.0_wp .and. all(mech_rtols /= filter%rtol)) then
+            ! one start at an R off the grid's (e.g. 1e-10): one cell
+            call crank_cell(counts, 1, 0, start_th1, start_w1, filter%rtol, times)
+            write (*, '(a)') counts%summary('crank')
+            return
+        end if
         if (start_th1 >= 0.0_wp) then   ! one start of the caller's (the reproducers of issue 19)
             do ir = 1, size(mech_rtols)
                 cell = cell + 1

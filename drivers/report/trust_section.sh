@@ -242,6 +242,59 @@ one left is the slider chain of 16 links at R = 1e-3, which has no reference met
 changes by 1.15 against a unit of 0.074 (15.5 units), none leaves the branch or raises a false
 alarm.
 
+**Fast spins against the reference method** (issue 19's last silent cells; at 63bcca4, the library of 8e737d6, by hand,
+\`sh drivers/report/spin_grid.sh build/bin\`: 6 th1 uniform in (0.05, pi - 0.05) times w1 = 2 ... 30
+rad/s log-spaced (8) times R = 1e-5 ... 1e-10, 288 cells, the trust grids' weighted error against
+CVODE at 1e-13; \`trust family=crank th1=A w1=W rtol=R\` runs one cell at any R). regdae's explicit
+path is not systematically less accurate than Dormand-Prince on the reduced ODE at the same R: the
+ratio err/err_ref has a geometric mean of 0.83 (median 0.89, 90th percentile 2.3, largest 36), per
+R 0.50, 0.89, 1.14, 2.56, 0.33, 0.75 (R = 1e-5 ... 1e-10); the 4 silent cells and every ratio
+above 3.0 are at R = 1e-8. There the reference is lucky: both methods' global (phase) errors
+change sign as R falls, Dormand-Prince on the reduced ODE near R = 7e-9 ... 1e-8, regdae near 3e-9
+... 5e-9. At 13 R from 1e-7 to 1e-9 (th1 = 1.573, w1 = 20.4; th1 = 0.169, w1 = 13.8; th1 = 3.141493,
+w1 = 10) the reference has 97-162 error weights at 1e-7, 2.0-20 at 6.8e-9 ... 1e-8 and 89-194 at
+1e-9, regdae 106-194, 32-131 and 3.4-49: smooth in R but for its own zero, and 0.02-1.5 times the
+reference (mostly below 0.5) from 3.2e-9 down. Every silent cell at R = 1e-8 of the crank grids at 8e737d6 (fixed 4; seeds
+31, 4242, 77, 9090, 6161, 7171: 10, 6, 4, 5, 8, 5 of 10, 6, 5, 5, 9, 7 silent; 42 cells, 39 of them
+at w1 >= 5, the others w1 = 0.5 and 1e-5 from th1 = 2.01 ... 2.69) has an err_ref of 1.5-8.4 weights, 10-60
+times below the reference's own error at the neighbouring R. Nothing in the regularization moves
+regdae's error (th1 = 1.573, w1 = 20.4 and th1 = 0.169, w1 = 13.8 at R = 1e-7 and 1e-8: eps = 1e-12
+... 1e-16, gamma1 = 20 or 500, pass_check=no, stop_at_output=yes all within a factor 1.8 of the
+defaults' 56-194 weights; eps = 1e-18 takes 8x the steps); the velocities w1, w2 have the largest
+weighted local error in 94% of the accepted steps (th1 = 1.573, w1 = 20.4, R = 1e-8), and regdae
+takes 3-13% more steps than Dormand-Prince on the reduced ODE (1069-2419 at R = 1e-7, 1e-8) with
+about as many rejections (21% of the tries against 24-27%: the error constant grows fast on the
+approach to each dead point). Radau (\`integrator=radau\`) is 340-2900x more accurate there at
+3.8-5.1x the steps. **Tried and not kept**: the explicit steps' local tolerance at rtol/2 (every level
+of the pass checks and the error estimate's companion alike). The spin grid's ratio falls to a
+geometric mean of 0.38 (largest 12.9, 1 silent cell: th1 = 0.170, w1 = 13.8, R = 1e-8, 44 against
+34); classes ok/warned/silent/false alarm/failed before -> after: fixed crank 1713/226/4/1/6 ->
+1729/218/0/0/3 (the four cells 2.1-9.1 weights; 1897's false alarm and the w1 = 20 failures 91,
+1729, 1885 at R = 1e-3 ok); seed 31 1788/149/10/0/3 -> 1796/146/5/0/3, of which 5 NEW silent
+(th1 = 2.689 at w1 = 0 ... 1e-3, R = 1e-8: 19-34 against bounds of 14.7-18.3, 5.6-14.2 before: the
+same lucky reference, err_ref 1.47; regdae's own error at that start moves between 3 and 160 weights
+from R = 3e-8 to 5e-9 either way); seed 4242 1863/80/6/0/1 -> 1870/79/1/0/0 (cell 1559, err_ref 1.8:
+38 against 18; at a margin of 3 still 23); seed 77 1868/75/5/0/2 -> 1875/73/0/0/2; seed 9090
+1784/158/5/0/3 -> 1789/154/2/0/5 (the two new failures are the wall budget, 30 s, of two w1 = 20
+runs at R = 1e-8 that took 11-18 s before, under a load of 12 on this 2-core machine: 2.6 s of CPU);
+seed 6161 (new) 1776/160/9/0/4 -> 1789/154/2/0/5 (one NEW silent cell, 932: th1 = 1.386, w1 = 1,
+R = 1e-8, 6.1 -> 123 against 21.4, but 1.4 with pass_check=no and 1.8 with stop_at_output=yes: the
+pass checks' restart or outputs, not the integration; 2.9 at 8e737d6 with pass_check=no; one more
+wall-budget failure); seed 7171 (new) 1843/93/7/1/6 -> 1859/87/0/0/4; fourbar 106/0/2/0/0 ->
+107/0/1/0/0 (cell 9 ok); linear 8/32/0/0/8 -> 7/34/0/0/7 (cell 22 ok -> warned, 41 failed -> warned). Its cost (\`sh drivers/report/cost_of_trust.sh\`, paper case, rtol 1e-4 ... 1e-8): 16.1M,
+15.6M, 16.5M, 20.5M, 32.0M instructions against 14.9M, 14.2M, 15.5M, 18.9M, 29.2M (1.06-1.10x at
+the same rtol), errors 5.0e-4, 3.4e-5, 3.2e-6, 2.5e-7, 2.5e-8 against 1.1e-3, 9.3e-5, 5.1e-6,
+5.1e-7, 6.5e-8, so at matched accuracy 1.71, 1.45, 1.33, 1.27, 1.54 times the baseline against 1.65,
+1.38, 1.32, 1.27, 1.56 today (a margin of 3: 1.90, 1.51, 1.32, 1.15, 1.56). Not kept because it
+moves the cells the judge's lucky reference picks rather than removing them (new silent cells on
+seed 31), and it changes verdicts the tests pin: \`unit.defaults\` (the explicit run that went off
+the branch without checks at rtol 1e-4 stays on it), \`unit.api\` (acceleration_on_request: a pass
+warning), \`unit.radau_solver\` (the 33-link chain is no longer handed to IDA), \`example.ex51_f77\`
+(an unresolved pass, levels 3.5 weights apart against pass_tol 3), \`driver.trust_reproducers\`.
+A cell-wise bound that a method of the reference's own order and tolerance meets needs a judge
+that does not take the reference's zero crossings as its error level (e.g. the largest err_ref
+over the neighbouring R), which is the issue's to decide.
+
 **Seeded grids of the four-bar, the linear DAEs and another crank seed** (run by hand at e50c07a,
 seconds each but the crank's 1.5 minutes; not part of \`trust_grids.sh\`). \`build/bin/trust
 family=fourbar seed=S\`: 3 slow swings near a fold (th1 = 0 or pi +- 10^u, u in [-6, -1], w1 =
