@@ -35,7 +35,11 @@
 !! estimate is not small against the allowance by `interval_work` on the integrator's motion
 !! inside it), against work_tol S plus the quadratures' estimates and the energy the state's
 !! tolerance leaves open (`alarm_kind = alarm_work`); tested outside the regularization layers
-!! (the damped multiplier exchanges energy with the motion there for a moment).
+!! (the damped multiplier exchanges energy with the motion there for a moment). A pass check's
+!! new start (`rebase_work`) closes a stretch: its defect at its last tested sample is carried, and
+!! once the carried defects plus the open stretch's exceed work_tol S plus the quadratures'
+!! estimates and 3 times the root of the defects' squares (a drift through the passes, not a random
+!! walk), the monitor warns once (`unresolved_new`, regdae_warn_unresolved); the run goes on.
 !!
 !! Resolution (problems of order 1 and 2, dense formulations): the constraint
 !! residual g of the integrated solution, made at each step at the scale of the
@@ -150,6 +154,11 @@ module regdae_monitor
         real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
                              t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
         integer, private :: work_samples = 0
+        ! the balance across pass checks: the defect, the quadratures' estimates (E) and the
+        ! unresolved steps' (U) of the stretches closed by a pass check's new start, summed; and
+        ! those of the current stretch at its last tested sample (what a new start closes)
+        real(wp), private :: carried(4) = 0.0_wp, stretch(3) = 0.0_wp   ! carried(4): the defects' squares
+        logical, private :: carried_warned = .false.   ! the carried balance warned (once per run)
         real(wp), allocatable, private :: work_z(:), work_dz(:)   ! the last sample's (q, v) and slope (or none)
         real(wp), private :: layer_threshold = 0.05_wp   ! max(threshold, 3 sqrt(eps)): J's end samples lie above
         real(wp), private :: layer_eps = 0.0_wp

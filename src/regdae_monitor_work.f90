@@ -25,6 +25,9 @@ contains
             self%quadrature_error = 0.0_wp
             self%unresolved_error = 0.0_wp
             self%work_samples = 1
+            self%carried = 0.0_wp
+            self%stretch = 0.0_wp
+            self%carried_warned = .false.
             self%have_work = .true.
             call keep_state()
             return
@@ -78,6 +81,7 @@ contains
         ! stiff a regularization), not for the integrator's own energy drift
         if (present(energy_tol)) self%tolerance_energy = self%tolerance_energy + energy_tol**2
         allowed = self%work_tol*self%work_scale + self%quadrature_error + 3.0_wp*sqrt(self%tolerance_energy)
+        call carried_balance()
         if (abs(defect) + self%unresolved_error > allowed .and. .not. self%alarm) then
             self%alarm = .true.
             self%alarm_kind = alarm_work
@@ -91,6 +95,29 @@ contains
         end if
         call settle_alarm(self)
     contains
+        ! The balance carried across the pass checks (module doc): the stretches' defects summed
+        ! against work_tol S and their quadratures' estimates, without the tolerance's energy
+        subroutine carried_balance()
+            real(wp) :: total, open_error
+            self%stretch = [defect, self%quadrature_error, self%unresolved_error]
+            if (self%carried_warned .or. .not. (self%carried(1) /= 0.0_wp .or. self%carried(2) > 0.0_wp)) return
+            total = self%carried(1) + defect
+            open_error = self%carried(3) + self%unresolved_error
+            if (.not. (abs(total) + open_error > self%work_tol*self%work_scale + self%carried(2) + &
+                       self%quadrature_error)) return
+            ! a drift, not a random walk: the sum beyond 3 times the root of the squares
+            if (.not. (abs(total) > 3.0_wp*sqrt(self%carried(4) + defect**2))) return
+            self%carried_warned = .true.
+            self%unresolved_new = .true.
+            self%unresolved_message = 'the work-energy balance carried across the pass checks is off at t = '// &
+                format_real(t)//': the stretches between them left a defect of '//format_real(total)// &
+                ' (the energy scale '//format_real(self%work_scale)//', work_tol = '//format_real(self%work_tol)// &
+                ', the quadratures'' estimates '//format_real(self%carried(2) + self%quadrature_error)// &
+                ') that grew like a drift, not a random walk: the motion gains or loses energy through the passes, '// &
+                'and x may be off beyond the tolerance; a smaller rtol and atol may resolve it; work_tol=0 turns '// &
+                'this warning off'
+        end subroutine carried_balance
+
         subroutine keep_state()   ! this sample's state and slope for the next interval's refinement
             if (.not. (present(problem) .and. present(z) .and. present(dz))) then
                 if (allocated(self%work_z)) deallocate (self%work_z, self%work_dz)
@@ -132,6 +159,9 @@ contains
 
     module procedure monitor_rebase_work
         if (.not. self%have_work) return
+        self%carried(1:3) = self%carried(1:3) + self%stretch   ! the closed stretch, at its last tested sample
+        self%carried(4) = self%carried(4) + self%stretch(1)**2
+        self%stretch = 0.0_wp
         ! the balance starts again from the verified state: D = 0 there (the path the
         ! solution took through the pass is not the one it goes on from)
         self%kinetic0 = kinetic
