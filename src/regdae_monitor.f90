@@ -131,8 +131,8 @@ module regdae_monitor
         character(len=:), allocatable :: unresolved_message   !! where and how much (the last one)
         logical :: pass_ended = .false.          !! a singular interval ended at the last sample (cleared by the caller)
         ! The checkpoint before a singular pass (regdae_solver_trust re-integrates the pass
-        ! from it): the last sample on the approach level (sigma_min(GB) >= approach_factor
-        ! x the threshold) before the pass, frozen from the pass's first sample until released.
+        ! from it): the last sample with sigma_min(GB) >= checkpoint_factor x the threshold
+        ! before the pass, frozen from the pass's first sample until released.
         real(wp), allocatable :: checkpoint_z(:) !! the state there
         real(wp) :: checkpoint_t = 0.0_wp        !! its time
         logical :: checkpoint_frozen = .false.   !! a pass began since the checkpoint
