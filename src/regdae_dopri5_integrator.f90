@@ -86,8 +86,7 @@ contains
                                  core%monitor, stop_when_stiff=core%switching, &
                                  stop_at_pass_end=core%stop_at_pass_end, stable_weights=core%follow_weights)
             t_stop = tout
-            msg = ''
-            outcome = outcome_reached
+            outcome = outcome_reached   ! (msg is set where the caller reads it: not at tout, no allocation)
             if (stat /= regdae_success) then
                 t_stop = self%rk%t
                 msg = self%rk%message
@@ -101,6 +100,7 @@ contains
                 t_stop = self%rk%t
                 outcome = outcome_stiff
             end if
+            if (outcome /= outcome_reached .and. .not. allocated(msg)) msg = ''
         end associate
     end subroutine dopri5_advance
 

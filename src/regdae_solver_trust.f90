@@ -335,8 +335,7 @@ contains
         real(wp) :: tc
         integer(int64) :: steps0
         type(solver_stats) :: st
-        warn = regdae_success
-        warn_text = ''
+        warn = regdae_success   ! (warn_text is set with it: no allocation on the usual call)
         call ensure_engine(self)
         st = self%main%statistics()
         steps0 = st%steps
@@ -389,6 +388,8 @@ contains
         end if
         if (stat == regdae_root_found) then
             call record(self, stat, self%main%message())
+        else if (warn == regdae_success) then
+            call record(self, warn, '', stat)
         else
             call record(self, warn, warn_text, stat)
         end if
