@@ -9,6 +9,7 @@
 !! a singular pass.
 module regdae_dopri5_integrator
     use, intrinsic :: iso_c_binding, only: c_double
+    use, intrinsic :: iso_fortran_env, only: int64
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success
     use regdae_solver_stats, only: solver_stats
@@ -37,6 +38,7 @@ module regdae_dopri5_integrator
         procedure :: stiffness => dopri5_stiffness
         procedure :: ready => dopri5_ready
         procedure :: free => dopri5_free
+        procedure :: steps_taken => dopri5_steps
     end type dopri5_integrator
 
 contains
@@ -137,6 +139,11 @@ contains
     end function dopri5_last_step
 
     !> Steps, slopes and rejected steps added to IDA's terms; the last step when active.
+    integer(int64) function dopri5_steps(self) result(n)
+        class(dopri5_integrator), intent(in) :: self
+        n = self%rk%steps
+    end function dopri5_steps
+
     subroutine dopri5_statistics(self, st, active)
         class(dopri5_integrator), intent(in) :: self
         type(solver_stats), intent(inout) :: st
