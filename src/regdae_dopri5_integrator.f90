@@ -9,6 +9,7 @@
 !! a singular pass.
 module regdae_dopri5_integrator
     use, intrinsic :: iso_c_binding, only: c_double
+    use, intrinsic :: iso_fortran_env, only: int64
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success
     use regdae_solver_stats, only: solver_stats
@@ -37,6 +38,7 @@ module regdae_dopri5_integrator
         procedure :: stiffness => dopri5_stiffness
         procedure :: ready => dopri5_ready
         procedure :: free => dopri5_free
+        procedure :: steps_taken => dopri5_steps
     end type dopri5_integrator
 
 contains
@@ -86,8 +88,7 @@ contains
                                  core%monitor, stop_when_stiff=core%switching, &
                                  stop_at_pass_end=core%stop_at_pass_end, stable_weights=core%follow_weights)
             t_stop = tout
-            msg = ''
-            outcome = outcome_reached
+            outcome = outcome_reached   ! (msg is set where the caller reads it: not at tout, no allocation)
             if (stat /= regdae_success) then
                 t_stop = self%rk%t
                 msg = self%rk%message
@@ -101,6 +102,7 @@ contains
                 t_stop = self%rk%t
                 outcome = outcome_stiff
             end if
+            if (outcome /= outcome_reached .and. .not. allocated(msg)) msg = ''
         end associate
     end subroutine dopri5_advance
 
@@ -137,6 +139,11 @@ contains
     end function dopri5_last_step
 
     !> Steps, slopes and rejected steps added to IDA's terms; the last step when active.
+    integer(int64) function dopri5_steps(self) result(n)
+        class(dopri5_integrator), intent(in) :: self
+        n = self%rk%steps
+    end function dopri5_steps
+
     subroutine dopri5_statistics(self, st, active)
         class(dopri5_integrator), intent(in) :: self
         type(solver_stats), intent(inout) :: st

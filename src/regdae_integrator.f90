@@ -39,6 +39,7 @@
 !!    at a time it last interpolated at; by default nothing to do).
 module regdae_integrator
     use, intrinsic :: iso_c_binding, only: c_double
+    use, intrinsic :: iso_fortran_env, only: int64
     use regdae_kinds, only: wp
     use regdae_solver_stats, only: solver_stats
     use regdae_augmented_system, only: augmented_system
@@ -87,6 +88,8 @@ module regdae_integrator
         !> The caller wrote into state(): an integrator that keeps its last interpolation
         !! (to skip interpolating at the same time again) forgets it (default: nothing to do).
         procedure :: state_written => nothing_kept
+        !> The steps taken (statistics' count; an integrator that keeps it at hand returns it cheaper).
+        procedure :: steps_taken => counted_steps
     end type integrator
 
     abstract interface
@@ -169,5 +172,12 @@ contains
     subroutine nothing_kept(self)
         class(integrator), intent(inout) :: self
     end subroutine nothing_kept
+
+    integer(int64) function counted_steps(self) result(n)
+        class(integrator), intent(in) :: self
+        type(solver_stats) :: st
+        call self%statistics(st, .false.)
+        n = st%steps
+    end function counted_steps
 
 end module regdae_integrator

@@ -150,6 +150,12 @@ module regdae_monitor
         real(wp), private :: step_t = -huge(1.0_wp), step_from = -huge(1.0_wp), step_work = 0.0_wp, step_error = 0.0_wp
         real(wp), allocatable, private :: step_z(:)
         logical, private :: step_unresolved = .false.   ! that step's balance stayed unresolved (taken as it is)
+        ! step_energy's sample of T, P and the tolerance's sums at (step_t, step_z) for the model's eps and
+        ! weights then: the sample at the accepted step's end reuses it (the same evaluation point)
+        real(wp), private :: cached_kinetic = 0.0_wp, cached_power = 0.0_wp, cached_sums(2) = 0.0_wp, &
+                             cached_eps = 0.0_wp
+        real(wp), allocatable, private :: cached_w(:)
+        logical, private :: have_cached = .false.
         real(wp), private :: unresolved_error = 0.0_wp   ! the quadrature estimates of such steps: against the balance
         real(wp), private :: kinetic0 = 0.0_wp, work = 0.0_wp, work_scale = 0.0_wp, power_last = 0.0_wp, &
                              t_work = 0.0_wp, power_before = 0.0_wp, t_before = 0.0_wp, quadrature_error = 0.0_wp
@@ -377,13 +383,35 @@ contains
             end if
         end if
         if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
-            call model%work_sample(t, z, kinetic, power, stat, sums)   ! and the energy the tolerance leaves open:
+            if (cached_sample(self, t, z, model)) then   ! step_energy's at this point
+                kinetic = self%cached_kinetic
+                power = self%cached_power
+                sums = self%cached_sums
+                stat = 0
+            else
+                call model%work_sample(t, z, kinetic, power, stat, sums)   ! and the energy the tolerance leaves open:
+            end if
+            self%have_cached = .false.
             energy = self%energy_tolerance(sums, z(1:model%n), z(model%n + 1:min(size(z), 2*model%n)))
             p => model%mechanical()   ! the problem, z = (q, v) and its slope for the refinement
             if (associated(p)) call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
         end if
         if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
     end subroutine monitor_sample
+
+    ! step_energy's sample of the work-energy balance is at (t, z) with the model's eps and weights
+    ! unchanged since (the same multiplier, T and P)
+    logical function cached_sample(self, t, z, model) result(same)
+        type(solution_monitor), intent(in) :: self
+        real(wp), intent(in) :: t, z(:)
+        type(regularized_dae), intent(in) :: model
+        same = .false.
+        if (.not. (self%have_cached .and. allocated(self%step_z) .and. allocated(self%cached_w))) return
+        if (t /= self%step_t .or. size(self%step_z) > size(z) .or. model%eps /= self%cached_eps) return
+        if (.not. allocated(model%w)) return
+        if (size(model%w) /= size(self%cached_w)) return
+        same = all(self%step_z == z(1:size(self%step_z))) .and. all(model%w == self%cached_w)
+    end function cached_sample
 
     subroutine monitor_follow_weights(self, nx, order2, rate, ell, t0)
         class(solution_monitor), intent(inout) :: self

@@ -134,6 +134,7 @@ contains
         class(mechanical_problem), pointer :: p
         unresolved = .false.
         self%step_unresolved = .false.
+        self%have_cached = .false.
         if (.not. (self%work_tol > 0.0_wp .and. self%have_work .and. allocated(self%work_z))) return
         if (self%in_layer .or. self%in_singular .or. .not. (t > self%t_work)) return
         if (.not. ((t - self%t_work)*self%work_rate > 0.3_wp)) return
@@ -151,6 +152,12 @@ contains
         self%step_z = z(1:2*n)
         self%step_work = work
         self%step_error = error
+        self%cached_kinetic = kinetic
+        self%cached_power = power
+        self%cached_sums = sums
+        self%cached_eps = model%eps
+        self%cached_w = model%w
+        self%have_cached = .true.
         allowed = max(step_energy_factor*self%energy_tolerance(sums, z(1:n), z(n + 1:2*n)), &
                       work_refine*self%work_tol*self%work_scale)
         unresolved = abs(kinetic - self%kinetic_last - work) + error > allowed

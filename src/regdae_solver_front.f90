@@ -30,6 +30,7 @@
 !! called again to start a new problem on the same object.
 module regdae_solver_front
     use, intrinsic :: iso_c_binding, only: c_double
+    use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
     use regdae_kinds, only: wp
     use regdae_status
@@ -147,6 +148,8 @@ module regdae_solver_front
         procedure :: state_size => engine_state_size
         !> The time reached.
         procedure :: time => engine_time
+        !> The steps taken so far (statistics()%steps without the rest).
+        procedure :: steps_taken => engine_steps_taken
         !> The size of x (0 before init).
         procedure :: x_size => engine_x_size
         !> Is this the same engine as `other` (both initialized, one state)?
@@ -263,6 +266,10 @@ module regdae_solver_front
         module real(wp) function engine_time(self) result(t)
             class(solver_engine), intent(in) :: self
         end function engine_time
+
+        module integer(int64) function engine_steps_taken(self) result(n)
+            class(solver_engine), intent(in) :: self
+        end function engine_steps_taken
 
         module integer function engine_state_size(self) result(n)
             class(solver_engine), intent(in) :: self

@@ -69,6 +69,13 @@ contains
         t = self%t
     end procedure engine_time
 
+    module procedure engine_steps_taken
+        n = 0
+        if (.not. associated(self%core)) return
+        if (allocated(self%core%stiff)) n = n + self%core%stiff%steps_taken()
+        if (allocated(self%core%nonstiff)) n = n + self%core%nonstiff%steps_taken()
+    end procedure engine_steps_taken
+
     module procedure engine_state_size
         n = 0
         if (associated(self%core)) n = self%core%n

@@ -39,48 +39,58 @@ contains
         real(wp), intent(in), optional :: path(:)    !! the velocity q' of the path q(t) when it is not v (an
                                                      !! interpolant's): P = q'^T f + v^T (dM/dt along q') v / 2 + y^T g_t
                                                      !! only (kinetic = 0, sums(1) = 0)
-        real(wp) :: f(size(q)), gt(problem%m), mv(size(q)), mdot_v(size(q)), d, vmax, u(size(q))
+        real(wp) :: d, vmax
         real(wp), allocatable :: dense(:, :), vals(:)   ! M at a point (one allocation for the three)
+        real(wp), allocatable, target :: work(:)         ! f, M v, dM/dt v, q', q shifted and g_t: one allocation
+        integer :: n                                     ! (a heap block each as automatic arrays: 1/4 of the cost)
         stat = 0
+        n = size(q)
         if (present(pattern)) then
             allocate (vals(pattern%nnz()))
         else
-            allocate (dense(size(q), size(q)))
+            allocate (dense(n, n))
         end if
-        kinetic = 0.0_wp
-        power = 0.0_wp
-        u = v
-        mv = 0.0_wp
-        if (present(path)) then   ! a point of an interpolant: its power only
-            u = path
-        else
-            call mass_times(q, t, v, mv)
+        allocate (work(5*n + problem%m))
+        associate (f => work(1:n), mv => work(n + 1:2*n), mdot_v => work(2*n + 1:3*n), u => work(3*n + 1:4*n), &
+                   qs => work(4*n + 1:5*n), gt => work(5*n + 1:5*n + problem%m))
+            kinetic = 0.0_wp
+            power = 0.0_wp
+            u = v
+            mv = 0.0_wp
+            if (present(path)) then   ! a point of an interpolant: its power only
+                u = path
+            else
+                call mass_times(q, t, v, mv)
+                if (stat /= 0) return
+                kinetic = 0.5_wp*dot_product(v, mv)
+            end if
+            vmax = maxval(abs(u))
+            mdot_v = 0.0_wp
+            if (vmax > 0.0_wp) then   ! (M(q + d u) - M(q - d u)) v / (2 d), u = q'
+                d = central_difference_step(max(maxval(abs(q)), abs(t)))/max(1.0_wp, vmax)
+                qs = q + d*u
+                call mass_times(qs, t, v, mdot_v)
+                if (stat /= 0) return
+                qs = q - d*u
+                call mass_times(qs, t, v, f)
+                if (stat /= 0) return
+                mdot_v = (mdot_v - f)/(2.0_wp*d)
+            end if
+            call problem%forces(t, q, v, f, stat)
             if (stat /= 0) return
-            kinetic = 0.5_wp*dot_product(v, mv)
-        end if
-        vmax = maxval(abs(u))
-        mdot_v = 0.0_wp
-        if (vmax > 0.0_wp) then   ! (M(q + d u) - M(q - d u)) v / (2 d), u = q'
-            d = central_difference_step(max(maxval(abs(q)), abs(t)))/max(1.0_wp, vmax)
-            call mass_times(q + d*u, t, v, mdot_v)
+            gt = 0.0_wp
+            if (problem%m > 0) call problem%constraint_dt(t, q, gt, stat)
             if (stat /= 0) return
-            call mass_times(q - d*u, t, v, f)
-            if (stat /= 0) return
-            mdot_v = (mdot_v - f)/(2.0_wp*d)
-        end if
-        call problem%forces(t, q, v, f, stat)
-        if (stat /= 0) return
-        gt = 0.0_wp
-        if (problem%m > 0) call problem%constraint_dt(t, q, gt, stat)
-        if (stat /= 0) return
-        power = dot_product(u, f) + 0.5_wp*dot_product(v, mdot_v) + dot_product(y, gt)
-        if (present(sums)) sums = [sum(abs(mv)), sum(abs(f))]
-        if (present(moving)) moving = any(gt /= 0.0_wp)
+            power = dot_product(u, f) + 0.5_wp*dot_product(v, mdot_v) + dot_product(y, gt)
+            if (present(sums)) sums = [sum(abs(mv)), sum(abs(f))]
+            if (present(moving)) moving = any(gt /= 0.0_wp)
+        end associate
     contains
         ! M(qq) x, dense or from the pattern's values
         subroutine mass_times(qq, tt, x, mx)
             real(wp), intent(in) :: qq(:), tt, x(:)
             real(wp), intent(out) :: mx(:)
+            integer :: i
             if (present(pattern)) then
                 call problem%mass_values(tt, qq, pattern, vals, stat)
                 if (stat /= 0) return
@@ -88,7 +98,9 @@ contains
             else
                 call problem%mass_matrix(tt, qq, dense, stat)
                 if (stat /= 0) return
-                mx = matmul(dense, x)
+                do i = 1, size(mx)   ! (matmul's sums, without its temporary)
+                    mx(i) = dot_product(dense(i, :), x)
+                end do
             end if
         end subroutine mass_times
     end subroutine kinetic_energy_and_power
