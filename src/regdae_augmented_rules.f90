@@ -11,7 +11,8 @@ module regdae_augmented_rules
     use regdae_kinds, only: wp
     use regdae_differences, only: central_difference_step
     use regdae_augmented_system, only: augmented_system
-    use regdae_auto_rules, only: motion_rate, constraint_length, rms, degenerate_row, predict_shift, generic_direction
+    use regdae_auto_rules, only: motion_rate, constraint_length, rms, degenerate_row, predict_shift, generic_direction, &
+                                 turning_length
     implicit none
     private
 
@@ -60,7 +61,7 @@ contains
         real(wp), intent(out) :: ell, rate, sigma_pred
         integer, intent(out) :: stat
         real(wp) :: g0(sys%st%constraint%nnz()), g1(sys%st%constraint%nnz()), dg(sys%st%constraint%nnz()), &
-                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, d, change, k_force
+                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, ell_g, d, change, k_force
         integer :: i, pass
         logical :: degenerate
         stat = 0
@@ -73,10 +74,7 @@ contains
         d = central_difference_step(maxval(abs(q)))
         associate (gp => sys%st%constraint)
             do pass = 1, 2
-                if (pass == 1) w = v
-                if (pass == 2) w = merge(acc, free, maxval(abs(acc)) > 0.0_wp)
-                if (.not. (maxval(abs(w)) > 0.0_wp .and. maxval(abs(w)) < huge(1.0_wp))) cycle
-                w = w/maxval(abs(w))
+                if (.not. motion_direction(pass)) cycle
                 call sys%problem%constraint_jacobian_values(t, q - d*w, gp, g0, stat)
                 if (stat == 0) call sys%problem%constraint_jacobian_values(t, q + d*w, gp, g1, stat)
                 if (stat /= 0) return
@@ -97,15 +95,23 @@ contains
             if (stiffness) k_force = force_stiffness()
             rate = motion_rate(.true., v, acc, free, ell, k_force)
             if (.not. predict .or. sys%m == 0) return
+            ell_g = -1.0_wp   ! the length over which G turns along the motion (dense_motion_scales)
+            do pass = 1, 2
+                if (.not. motion_direction(pass)) cycle
+                call turning_length(sparse_turning_rate, d, ell_g, stat)
+                if (stat /= 0) return
+                if (ell_g > 0.0_wp) exit
+            end do
+            if (.not. (ell_g > 0.0_wp)) ell_g = ell_x
             call sys%problem%constraint_jacobian_values(t, q, gp, g0, stat)
             if (stat /= 0) return
             call mass_diagonal(sys, mdiag)
             degenerate = .false.
             do i = 1, sys%m
-                if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
+                if (gnorm(i) < degenerate_row*hnorm(i)*ell_g) then
                     degenerate = .true.
                     g0(gp%row_start(i):gp%row_start(i + 1) - 1) = g0(gp%row_start(i):gp%row_start(i + 1) - 1) + &
-                        predict_shift*ell_x*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
+                        predict_shift*ell_g*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
                 end if
             end do
             if (.not. degenerate) return
@@ -115,6 +121,27 @@ contains
             end do
         end associate
     contains
+        ! w: the pass-th direction of the motion (v, then acc or free), of max-norm 1; false if it has none
+        logical function motion_direction(pass) result(ok)
+            integer, intent(in) :: pass
+            if (pass == 1) w = v
+            if (pass == 2) w = merge(acc, free, maxval(abs(acc)) > 0.0_wp)
+            ok = maxval(abs(w)) > 0.0_wp .and. maxval(abs(w)) < huge(1.0_wp)
+            if (ok) w = w/maxval(abs(w))
+        end function motion_direction
+        ! G's turning rate at distance s along w (turning_length)
+        subroutine sparse_turning_rate(s, f, g, st)
+            real(wp), intent(in) :: s
+            real(wp), intent(out) :: f, g
+            integer, intent(out) :: st
+            f = 0.0_wp
+            g = 0.0_wp
+            call sys%problem%constraint_jacobian_values(t, q - s*w, sys%st%constraint, g0, st)
+            if (st == 0) call sys%problem%constraint_jacobian_values(t, q + s*w, sys%st%constraint, g1, st)
+            if (st /= 0) return
+            f = norm2(g1 - g0)/(2.0_wp*s)
+            g = 0.5_wp*norm2(g1 + g0)
+        end subroutine sparse_turning_rate
         ! |d (M_kk^-1 f)/dq| along the generic direction (central differences of the forces)
         real(wp) function force_stiffness() result(k)
             real(wp) :: fp(sys%n), fm(sys%n), md(sys%n), wg(sys%n), dq
