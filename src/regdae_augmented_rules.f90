@@ -12,7 +12,7 @@ module regdae_augmented_rules
     use regdae_differences, only: central_difference_step
     use regdae_augmented_system, only: augmented_system
     use regdae_auto_rules, only: motion_rate, constraint_length, rms, degenerate_row, predict_shift, generic_direction, &
-                                 turning_length
+                                 turning_ladder, turning_values
     implicit none
     private
 
@@ -61,7 +61,9 @@ contains
         real(wp), intent(out) :: ell, rate, sigma_pred
         integer, intent(out) :: stat
         real(wp) :: g0(sys%st%constraint%nnz()), g1(sys%st%constraint%nnz()), dg(sys%st%constraint%nnz()), &
-                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, ell_g, d, change, k_force
+                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, ell_g, d, change, k_force, &
+                    f_turn, g_turn
+        type(turning_ladder) :: ladder
         integer :: i, pass
         logical :: degenerate
         stat = 0
@@ -98,8 +100,15 @@ contains
             ell_g = -1.0_wp   ! the length over which G turns along the motion (dense_motion_scales)
             do pass = 1, 2
                 if (.not. motion_direction(pass)) cycle
-                call turning_length(sparse_turning_rate, d, ell_g, stat)
-                if (stat /= 0) return
+                call ladder%start(d)
+                do while (.not. ladder%done)
+                    call sys%problem%constraint_jacobian_values(t, q - ladder%s*w, gp, g0, stat)
+                    if (stat == 0) call sys%problem%constraint_jacobian_values(t, q + ladder%s*w, gp, g1, stat)
+                    if (stat /= 0) return
+                    call turning_values(ladder%s, g0, g1, f_turn, g_turn)
+                    call ladder%take(f_turn, g_turn)
+                end do
+                ell_g = ladder%length
                 if (ell_g > 0.0_wp) exit
             end do
             if (.not. (ell_g > 0.0_wp)) ell_g = ell_x
@@ -129,19 +138,6 @@ contains
             ok = maxval(abs(w)) > 0.0_wp .and. maxval(abs(w)) < huge(1.0_wp)
             if (ok) w = w/maxval(abs(w))
         end function motion_direction
-        ! G's turning rate at distance s along w (turning_length)
-        subroutine sparse_turning_rate(s, f, g, st)
-            real(wp), intent(in) :: s
-            real(wp), intent(out) :: f, g
-            integer, intent(out) :: st
-            f = 0.0_wp
-            g = 0.0_wp
-            call sys%problem%constraint_jacobian_values(t, q - s*w, sys%st%constraint, g0, st)
-            if (st == 0) call sys%problem%constraint_jacobian_values(t, q + s*w, sys%st%constraint, g1, st)
-            if (st /= 0) return
-            f = norm2(g1 - g0)/(2.0_wp*s)
-            g = 0.5_wp*norm2(g1 + g0)
-        end subroutine sparse_turning_rate
         ! |d (M_kk^-1 f)/dq| along the generic direction (central differences of the forces)
         real(wp) function force_stiffness() result(k)
             real(wp) :: fp(sys%n), fm(sys%n), md(sys%n), wg(sys%n), dq

@@ -27,14 +27,16 @@ module regdae_auto_rules
 
     !> gamma1 = weight_factor x the rate of the motion (doc/methods.md).
     real(wp), parameter, public :: weight_factor = 8.0_wp
-    !> A row of G whose norm is below degenerate_row |H_i| l_x vanishes here: a
+    !> A row of G whose norm is below degenerate_row |H_i| l vanishes here (l: rms(x) for the
+    !! constraint length, the turning length for a singular start's prediction): a
     !! singular configuration of that row, whose distance to it is no length of the mechanism.
     real(wp), parameter, public :: degenerate_row = 1.0e-4_wp
     !> At a singular start a vanishing row of G is moved by this fraction of the length over
-    !! which G turns along the motion (`turning_length`) along its curvature, for the
-    !! prediction of the regular sigma_min(GB): 1.11 rad on the slider crank (1.895 rad), the
-    !! shift of the rule it replaced (rms(x)/2 at the crank's singular start (0, pi)).
-    real(wp), parameter, public :: predict_shift = 0.585_wp
+    !! which G turns along the motion (`turning_ladder`) along its curvature, for the
+    !! prediction of the regular sigma_min(GB): 1.111 rad on the slider crank (0.586 x 1.8955
+    !! rad), the shift of the rule it replaced at the crank's singular starts (0, pi) and
+    !! (pi, 0), rms(x)/2 = pi/(2 sqrt 2), where that rule was chosen.
+    real(wp), parameter, public :: predict_shift = 0.586_wp
     !> Along the run the weights change when the rate has grown by this factor.
     real(wp), parameter, public :: weight_hysteresis = 2.0_wp
     !> Along the run eps changes when its target has moved by this factor.
@@ -45,19 +47,31 @@ module regdae_auto_rules
     real(wp), parameter, public :: eps_round = 1.0e3_wp
 
     public :: constraint_length, motion_rate, baumgarte_weights, automatic_eps_factor, automatic_eps, rms
-    public :: dense_motion_scales, row_curvatures, generic_direction, constraint_mode_step, turning_length
+    public :: dense_motion_scales, row_curvatures, generic_direction, constraint_mode_step, turning_values
 
-    !> The turning rate of G at distance s along a direction: |G(x + s w) - G(x - s w)| / (2 s)
-    !! (f; stat /= 0: the user's constraint Jacobian failed), for `turning_length`.
-    abstract interface
-        subroutine turning_rate(s, f, g, stat)
-            import :: wp
-            real(wp), intent(in) :: s
-            real(wp), intent(out) :: f, g   !! the turning rate, and |G(x + s w) + G(x - s w)| / 2
-            integer, intent(out) :: stat
-        end subroutine turning_rate
-    end interface
-    public :: turning_rate
+    !> The length over which G turns along a direction (the scale of a singular start's
+    !! prediction), by reverse communication (no procedure argument: an internal one would
+    !! need an executable stack): the distance s at which the turning rate f(s) =
+    !! |G(x + s w) - G(x - s w)| / (2 s), |H w| at s -> 0, has fallen to half its value at s0
+    !! (the difference step), found on a ladder s0 4^k (k <= 40), refined by 12 geometric
+    !! bisections (0.03%) and interpolated in log s. Invariant under a translation of x and
+    !! proportional to a change of its units, unlike |x|: the slider crank's single row
+    !! (sin th1, sin th2) turns in 1.8955 rad at any th1 + 2 pi k. Use: `start(s0)`, then
+    !! while not `done`, evaluate f and g = |G(x + s w) + G(x - s w)| / 2 at `s` (turning_values)
+    !! and `take` them; `length` = -1: G does not curve along w (f(s0) s0 within 1e3
+    !! roundoffs of g, as in row_curvatures) or does not turn before s0 4^40.
+    type, public :: turning_ladder
+        real(wp) :: s = 0.0_wp          !! the next distance to evaluate
+        real(wp) :: length = -1.0_wp    !! the result, once done
+        logical :: done = .true.
+        real(wp), private :: f0 = 0.0_wp, lo = 0.0_wp, hi = 0.0_wp, f_lo = 0.0_wp, f_hi = 0.0_wp
+        integer, private :: stage = 0, k = 0
+    contains
+        !> Begin at the difference step s0.
+        procedure :: start => ladder_start
+        !> The values f, g at s: the next s, or done.
+        procedure :: take => ladder_take
+    end type turning_ladder
 
     !> The explicit Dormand-Prince method's stable step on the constraint modes:
     !! h |s| within this radius (its stability boundary is 3.3 on the negative real axis
@@ -264,7 +278,8 @@ contains
         integer, intent(out) :: stat
         logical, intent(in), optional :: stiffness   !! the forces' frequency counts (at t0; along the run
                                                      !! the weights follow the motion alone)
-        real(wp) :: x(nx), vel(nx), acc(nx), free(nx), ell_x, ell_g, stiff
+        real(wp) :: x(nx), vel(nx), acc(nx), free(nx), ell_x, ell_g, stiff, f, g
+        type(turning_ladder) :: ladder
         real(wp), allocatable :: dirs(:, :), gnorm(:), hnorm(:), dg(:, :), gx(:, :), gx1(:, :)
         integer :: ndir, i, k
         logical :: degenerate
@@ -302,8 +317,15 @@ contains
                 ell_g = -1.0_wp
                 allocate (gx(model%m, nx), gx1(model%m, nx))
                 do k = 1, ndir
-                    call turning_length(dense_turning_rate, central_difference_step(maxval(abs(x))), ell_g, stat)
-                    if (stat /= 0) return
+                    call ladder%start(central_difference_step(maxval(abs(x))))
+                    do while (.not. ladder%done)
+                        call model%position_jacobian(t, x - ladder%s*dirs(:, k), gx, stat)
+                        if (stat == 0) call model%position_jacobian(t, x + ladder%s*dirs(:, k), gx1, stat)
+                        if (stat /= 0) return
+                        call turning_values(ladder%s, reshape(gx, [size(gx)]), reshape(gx1, [size(gx1)]), f, g)
+                        call ladder%take(f, g)
+                    end do
+                    ell_g = ladder%length
                     if (ell_g > 0.0_wp) exit
                 end do
                 if (.not. (ell_g > 0.0_wp)) ell_g = ell_x
@@ -329,19 +351,6 @@ contains
         end if
         rate = motion_rate(order2, vel, acc, free, ell, stiff)
     contains
-        ! G's turning rate at distance s along dirs(:, k) (turning_length)
-        subroutine dense_turning_rate(s, f, g, st)
-            real(wp), intent(in) :: s
-            real(wp), intent(out) :: f, g
-            integer, intent(out) :: st
-            f = 0.0_wp
-            g = 0.0_wp
-            call model%position_jacobian(t, x - s*dirs(:, k), gx, st)
-            if (st == 0) call model%position_jacobian(t, x + s*dirs(:, k), gx1, st)
-            if (st /= 0) return
-            f = norm2(gx1 - gx)/(2.0_wp*s)
-            g = 0.5_wp*norm2(gx1 + gx)
-        end subroutine dense_turning_rate
         ! |d free/dx| along the generic direction (central differences of the model's f)
         real(wp) function force_stiffness() result(k)
             real(wp) :: fp(size(model%f)), fm(size(model%f)), zp(size(z)), w(nx), d
@@ -368,56 +377,68 @@ contains
         end subroutine add_direction
     end subroutine dense_motion_scales
 
-    !> The length over which G turns along a direction (the scale of a singular start's
-    !! prediction): the distance s at which the turning rate f(s) = |G(x + s w) - G(x - s w)|
-    !! / (2 s), |H w| at s -> 0, has fallen to half its value at s0 (the difference step),
-    !! found on a ladder s0 4^k, refined by 12 geometric bisections (0.03%) and interpolated
-    !! in log s. Invariant under a translation of x and proportional to a change of its
-    !! units, unlike |x|: the slider crank's single
-    !! row (sin th1, sin th2) turns in 1.9 rad at any th1 + 2 pi k. length = -1: G does not
-    !! curve along w (f(s0) s0 within 1e3 roundoffs of |G|, as in row_curvatures) or does not
-    !! turn before s0 4^40.
-    subroutine turning_length(rate_at, s0, length, stat)
-        procedure(turning_rate) :: rate_at
+    subroutine ladder_start(self, s0)
+        class(turning_ladder), intent(inout) :: self
         real(wp), intent(in) :: s0
-        real(wp), intent(out) :: length
-        integer, intent(out) :: stat
-        real(wp) :: f0, f, g, lo, hi, mid, f_lo, f_hi
-        integer :: k
-        length = -1.0_wp
-        call rate_at(s0, f0, g, stat)
-        if (stat /= 0 .or. .not. (f0 < huge(1.0_wp))) return
-        if (.not. (f0*s0 > 1.0e3_wp*epsilon(1.0_wp)*g)) return   ! no change beyond G's rounding
-        lo = s0
-        f_lo = f0
-        hi = -1.0_wp
-        do k = 1, 40
-            call rate_at(4.0_wp*lo, f, g, stat)
-            if (stat /= 0) return
-            if (.not. (f > 0.5_wp*f0)) then
-                hi = 4.0_wp*lo
-                f_hi = f
-                exit
-            end if
-            lo = 4.0_wp*lo
-            f_lo = f
-        end do
-        if (hi < 0.0_wp) return
-        do k = 1, 12
-            mid = sqrt(lo*hi)
-            call rate_at(mid, f, g, stat)
-            if (stat /= 0) return
-            if (f > 0.5_wp*f0) then
-                lo = mid
-                f_lo = f
+        self%s = s0
+        self%length = -1.0_wp
+        self%done = .false.
+        self%stage = 0
+        self%k = 0
+    end subroutine ladder_start
+
+    subroutine ladder_take(self, f, g)
+        class(turning_ladder), intent(inout) :: self
+        real(wp), intent(in) :: f, g
+        select case (self%stage)
+        case (0)   ! f(s0)
+            self%done = .not. (f < huge(1.0_wp) .and. f*self%s > 1.0e3_wp*epsilon(1.0_wp)*g)
+            self%f0 = f
+            self%lo = self%s
+            self%f_lo = f
+            self%stage = 1
+            self%s = 4.0_wp*self%lo
+        case (1)   ! the ladder
+            self%k = self%k + 1
+            if (.not. (f > 0.5_wp*self%f0)) then
+                self%hi = self%s
+                self%f_hi = f
+                self%stage = 2
+                self%k = 0
+                self%s = sqrt(self%lo*self%hi)
             else
-                hi = mid
-                f_hi = f
+                self%lo = self%s
+                self%f_lo = f
+                self%s = 4.0_wp*self%lo
+                self%done = self%k >= 40
             end if
-        end do
-        ! the crossing interpolated in log s: smooth in s0 (the ladder's points)
-        length = lo*(hi/lo)**min(1.0_wp, max(0.0_wp, (f_lo - 0.5_wp*f0)/max(f_lo - f_hi, tiny(1.0_wp))))
-    end subroutine turning_length
+        case default   ! the bisections
+            self%k = self%k + 1
+            if (f > 0.5_wp*self%f0) then
+                self%lo = self%s
+                self%f_lo = f
+            else
+                self%hi = self%s
+                self%f_hi = f
+            end if
+            self%s = sqrt(self%lo*self%hi)
+            if (self%k >= 12) then
+                ! the crossing interpolated in log s: smooth in s0 (the ladder's points)
+                self%length = self%lo*(self%hi/self%lo)**min(1.0_wp, max(0.0_wp, (self%f_lo - 0.5_wp*self%f0)/ &
+                                                                          max(self%f_lo - self%f_hi, tiny(1.0_wp))))
+                self%done = .true.
+            end if
+        end select
+    end subroutine ladder_take
+
+    !> A turning_ladder's values from G at x - s w (minus) and x + s w (plus), the entries
+    !! in any order: f = |plus - minus| / (2 s), g = |plus + minus| / 2.
+    pure subroutine turning_values(s, minus, plus, f, g)
+        real(wp), intent(in) :: s, minus(:), plus(:)
+        real(wp), intent(out) :: f, g
+        f = norm2(plus - minus)/(2.0_wp*s)
+        g = 0.5_wp*norm2(plus + minus)
+    end subroutine turning_values
 
     !> Root mean square of a vector (0 if empty).
     pure real(wp) function rms(a)

@@ -172,7 +172,7 @@ contains
 
     ! The slider crank's start with th1 shifted by 2 pi k (k = 0, 10, 100: the same
     ! physical state): the scale of x in the automatic rules is the length over which G
-    ! turns along the motion (turning_length: 1.9 rad), not |x|, so eps and the weights
+    ! turns along the motion (turning_ladder: 1.9 rad), not |x|, so eps and the weights
     ! come out the same at a singular start (th1 = 1e-8, fast: w1 = 20; |x| made eps
     ! 3.8e-5, 22 and 2.4e5 there) and at a regular one (th1 = 1), in the eliminated and
     ! the augmented formulation (the ladder's start is the difference step, which grows
