@@ -11,8 +11,7 @@ module regdae_augmented_rules
     use regdae_kinds, only: wp
     use regdae_differences, only: central_difference_step
     use regdae_augmented_system, only: augmented_system
-    use regdae_auto_rules, only: motion_rate, constraint_length, rms, degenerate_row, predict_shift, generic_direction, &
-                                 turning_ladder, turning_values
+    use regdae_auto_rules, only: motion_rate, constraint_length, rms, degenerate_row, predict_shift, generic_direction
     implicit none
     private
 
@@ -61,9 +60,7 @@ contains
         real(wp), intent(out) :: ell, rate, sigma_pred
         integer, intent(out) :: stat
         real(wp) :: g0(sys%st%constraint%nnz()), g1(sys%st%constraint%nnz()), dg(sys%st%constraint%nnz()), &
-                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, ell_g, d, change, k_force, &
-                    f_turn, g_turn
-        type(turning_ladder) :: ladder
+                    gnorm(sys%m), hnorm(sys%m), mdiag(sys%n), w(sys%n), ell_x, d, change, k_force
         integer :: i, pass
         logical :: degenerate
         stat = 0
@@ -76,7 +73,10 @@ contains
         d = central_difference_step(maxval(abs(q)))
         associate (gp => sys%st%constraint)
             do pass = 1, 2
-                if (.not. motion_direction(pass)) cycle
+                if (pass == 1) w = v
+                if (pass == 2) w = merge(acc, free, maxval(abs(acc)) > 0.0_wp)
+                if (.not. (maxval(abs(w)) > 0.0_wp .and. maxval(abs(w)) < huge(1.0_wp))) cycle
+                w = w/maxval(abs(w))
                 call sys%problem%constraint_jacobian_values(t, q - d*w, gp, g0, stat)
                 if (stat == 0) call sys%problem%constraint_jacobian_values(t, q + d*w, gp, g1, stat)
                 if (stat /= 0) return
@@ -97,30 +97,15 @@ contains
             if (stiffness) k_force = force_stiffness()
             rate = motion_rate(.true., v, acc, free, ell, k_force)
             if (.not. predict .or. sys%m == 0) return
-            ell_g = -1.0_wp   ! the length over which G turns along the motion (dense_motion_scales)
-            do pass = 1, 2
-                if (.not. motion_direction(pass)) cycle
-                call ladder%start(d)
-                do while (.not. ladder%done)
-                    call sys%problem%constraint_jacobian_values(t, q - ladder%s*w, gp, g0, stat)
-                    if (stat == 0) call sys%problem%constraint_jacobian_values(t, q + ladder%s*w, gp, g1, stat)
-                    if (stat /= 0) return
-                    call turning_values(ladder%s, g0, g1, f_turn, g_turn)
-                    call ladder%take(f_turn, g_turn)
-                end do
-                ell_g = ladder%length
-                if (ell_g > 0.0_wp) exit
-            end do
-            if (.not. (ell_g > 0.0_wp)) ell_g = ell_x
             call sys%problem%constraint_jacobian_values(t, q, gp, g0, stat)
             if (stat /= 0) return
             call mass_diagonal(sys, mdiag)
             degenerate = .false.
             do i = 1, sys%m
-                if (gnorm(i) < degenerate_row*hnorm(i)*ell_g) then
+                if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
                     degenerate = .true.
                     g0(gp%row_start(i):gp%row_start(i + 1) - 1) = g0(gp%row_start(i):gp%row_start(i + 1) - 1) + &
-                        predict_shift*ell_g*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
+                        predict_shift*ell_x*dg(gp%row_start(i):gp%row_start(i + 1) - 1)
                 end if
             end do
             if (.not. degenerate) return
@@ -130,14 +115,6 @@ contains
             end do
         end associate
     contains
-        ! w: the pass-th direction of the motion (v, then acc or free), of max-norm 1; false if it has none
-        logical function motion_direction(pass) result(ok)
-            integer, intent(in) :: pass
-            if (pass == 1) w = v
-            if (pass == 2) w = merge(acc, free, maxval(abs(acc)) > 0.0_wp)
-            ok = maxval(abs(w)) > 0.0_wp .and. maxval(abs(w)) < huge(1.0_wp)
-            if (ok) w = w/maxval(abs(w))
-        end function motion_direction
         ! |d (M_kk^-1 f)/dq| along the generic direction (central differences of the forces)
         real(wp) function force_stiffness() result(k)
             real(wp) :: fp(sys%n), fm(sys%n), md(sys%n), wg(sys%n), dq

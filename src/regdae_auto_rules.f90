@@ -27,16 +27,12 @@ module regdae_auto_rules
 
     !> gamma1 = weight_factor x the rate of the motion (doc/methods.md).
     real(wp), parameter, public :: weight_factor = 8.0_wp
-    !> A row of G whose norm is below degenerate_row |H_i| l vanishes here (l: rms(x) for the
-    !! constraint length, the turning length for a singular start's prediction): a
+    !> A row of G whose norm is below degenerate_row |H_i| l_x vanishes here: a
     !! singular configuration of that row, whose distance to it is no length of the mechanism.
     real(wp), parameter, public :: degenerate_row = 1.0e-4_wp
-    !> At a singular start a vanishing row of G is moved by this fraction of the length over
-    !! which G turns along the motion (`turning_ladder`) along its curvature, for the
-    !! prediction of the regular sigma_min(GB): 1.111 rad on the slider crank (0.586 x 1.8955
-    !! rad), the shift of the rule it replaced at the crank's singular starts (0, pi) and
-    !! (pi, 0), rms(x)/2 = pi/(2 sqrt 2), where that rule was chosen.
-    real(wp), parameter, public :: predict_shift = 0.586_wp
+    !> At a singular start a vanishing row of G is moved by this fraction of the scale
+    !! of x along its curvature, for the prediction of the regular sigma_min(GB).
+    real(wp), parameter, public :: predict_shift = 0.5_wp
     !> Along the run the weights change when the rate has grown by this factor.
     real(wp), parameter, public :: weight_hysteresis = 2.0_wp
     !> Along the run eps changes when its target has moved by this factor.
@@ -47,31 +43,7 @@ module regdae_auto_rules
     real(wp), parameter, public :: eps_round = 1.0e3_wp
 
     public :: constraint_length, motion_rate, baumgarte_weights, automatic_eps_factor, automatic_eps, rms
-    public :: dense_motion_scales, row_curvatures, generic_direction, constraint_mode_step, turning_values
-
-    !> The length over which G turns along a direction (the scale of a singular start's
-    !! prediction), by reverse communication (no procedure argument: an internal one would
-    !! need an executable stack): the distance s at which the turning rate f(s) =
-    !! |G(x + s w) - G(x - s w)| / (2 s), |H w| at s -> 0, has fallen to half its value at s0
-    !! (the difference step), found on a ladder s0 4^k (k <= 40), refined by 12 geometric
-    !! bisections (0.03%) and interpolated in log s. Invariant under a translation of x and
-    !! proportional to a change of its units, unlike |x|: the slider crank's single row
-    !! (sin th1, sin th2) turns in 1.8955 rad at any th1 + 2 pi k. Use: `start(s0)`, then
-    !! while not `done`, evaluate f and g = |G(x + s w) + G(x - s w)| / 2 at `s` (turning_values)
-    !! and `take` them; `length` = -1: G does not curve along w (f(s0) s0 within 1e3
-    !! roundoffs of g, as in row_curvatures) or does not turn before s0 4^40.
-    type, public :: turning_ladder
-        real(wp) :: s = 0.0_wp          !! the next distance to evaluate
-        real(wp) :: length = -1.0_wp    !! the result, once done
-        logical :: done = .true.
-        real(wp), private :: f0 = 0.0_wp, lo = 0.0_wp, hi = 0.0_wp, f_lo = 0.0_wp, f_hi = 0.0_wp
-        integer, private :: stage = 0, k = 0
-    contains
-        !> Begin at the difference step s0.
-        procedure :: start => ladder_start
-        !> The values f, g at s: the next s, or done.
-        procedure :: take => ladder_take
-    end type turning_ladder
+    public :: dense_motion_scales, row_curvatures, generic_direction, constraint_mode_step
 
     !> The explicit Dormand-Prince method's stable step on the constraint modes:
     !! h |s| within this radius (its stability boundary is 3.3 on the negative real axis
@@ -278,10 +250,9 @@ contains
         integer, intent(out) :: stat
         logical, intent(in), optional :: stiffness   !! the forces' frequency counts (at t0; along the run
                                                      !! the weights follow the motion alone)
-        real(wp) :: x(nx), vel(nx), acc(nx), free(nx), ell_x, ell_g, stiff, f, g
-        type(turning_ladder) :: ladder
-        real(wp), allocatable :: dirs(:, :), gnorm(:), hnorm(:), dg(:, :), gx(:, :), gx1(:, :)
-        integer :: ndir, i, k
+        real(wp) :: x(nx), vel(nx), acc(nx), free(nx), ell_x, stiff
+        real(wp), allocatable :: dirs(:, :), gnorm(:), hnorm(:), dg(:, :), gx(:, :)
+        integer :: ndir, i
         logical :: degenerate
         stat = 0
         sigma_pred = -1.0_wp
@@ -294,6 +265,8 @@ contains
             vel = dz(1:nx)
             acc = 0.0_wp
         end if
+        ell_x = rms(x)
+        if (.not. (ell_x > 0.0_wp)) ell_x = 1.0_wp
         allocate (dirs(nx, 2))
         ndir = 0
         call add_direction(vel)
@@ -302,8 +275,6 @@ contains
         else
             call add_direction(free)
         end if
-        ell_x = rms(x)
-        if (.not. (ell_x > 0.0_wp)) ell_x = 1.0_wp
         ell = huge(1.0_wp)
         if (model%m > 0 .and. ndir > 0) then
             allocate (gnorm(model%m), hnorm(model%m), dg(model%m, nx))
@@ -311,30 +282,13 @@ contains
             if (stat /= 0) return
             ell = constraint_length(gnorm, hnorm, ell_x)
             if (predict) then
-                ! the length over which G turns along the motion (invariant under a translation of
-                ! x): along v if G turns along it (at a singular start the acceleration's direction
-                ! is the rounding's), else along a; rms(x) if G turns along neither
-                ell_g = -1.0_wp
-                allocate (gx(model%m, nx), gx1(model%m, nx))
-                do k = 1, ndir
-                    call ladder%start(central_difference_step(maxval(abs(x))))
-                    do while (.not. ladder%done)
-                        call model%position_jacobian(t, x - ladder%s*dirs(:, k), gx, stat)
-                        if (stat == 0) call model%position_jacobian(t, x + ladder%s*dirs(:, k), gx1, stat)
-                        if (stat /= 0) return
-                        call turning_values(ladder%s, reshape(gx, [size(gx)]), reshape(gx1, [size(gx1)]), f, g)
-                        call ladder%take(f, g)
-                    end do
-                    ell_g = ladder%length
-                    if (ell_g > 0.0_wp) exit
-                end do
-                if (.not. (ell_g > 0.0_wp)) ell_g = ell_x
                 degenerate = .false.
+                allocate (gx(model%m, nx))
                 call model%position_jacobian(t, x, gx, stat)
                 if (stat /= 0) return
                 do i = 1, model%m
-                    if (gnorm(i) < degenerate_row*hnorm(i)*ell_g) then
-                        gx(i, :) = gx(i, :) + predict_shift*ell_g*dg(i, :)
+                    if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
+                        gx(i, :) = gx(i, :) + predict_shift*ell_x*dg(i, :)
                         degenerate = .true.
                     end if
                 end do
@@ -376,69 +330,6 @@ contains
             dirs(:, ndir) = w/big
         end subroutine add_direction
     end subroutine dense_motion_scales
-
-    subroutine ladder_start(self, s0)
-        class(turning_ladder), intent(inout) :: self
-        real(wp), intent(in) :: s0
-        self%s = s0
-        self%length = -1.0_wp
-        self%done = .false.
-        self%stage = 0
-        self%k = 0
-    end subroutine ladder_start
-
-    subroutine ladder_take(self, f, g)
-        class(turning_ladder), intent(inout) :: self
-        real(wp), intent(in) :: f, g
-        select case (self%stage)
-        case (0)   ! f(s0)
-            self%done = .not. (f < huge(1.0_wp) .and. f*self%s > 1.0e3_wp*epsilon(1.0_wp)*g)
-            self%f0 = f
-            self%lo = self%s
-            self%f_lo = f
-            self%stage = 1
-            self%s = 4.0_wp*self%lo
-        case (1)   ! the ladder
-            self%k = self%k + 1
-            if (.not. (f > 0.5_wp*self%f0)) then
-                self%hi = self%s
-                self%f_hi = f
-                self%stage = 2
-                self%k = 0
-                self%s = sqrt(self%lo*self%hi)
-            else
-                self%lo = self%s
-                self%f_lo = f
-                self%s = 4.0_wp*self%lo
-                self%done = self%k >= 40
-            end if
-        case default   ! the bisections
-            self%k = self%k + 1
-            if (f > 0.5_wp*self%f0) then
-                self%lo = self%s
-                self%f_lo = f
-            else
-                self%hi = self%s
-                self%f_hi = f
-            end if
-            self%s = sqrt(self%lo*self%hi)
-            if (self%k >= 12) then
-                ! the crossing interpolated in log s: smooth in s0 (the ladder's points)
-                self%length = self%lo*(self%hi/self%lo)**min(1.0_wp, max(0.0_wp, (self%f_lo - 0.5_wp*self%f0)/ &
-                                                                          max(self%f_lo - self%f_hi, tiny(1.0_wp))))
-                self%done = .true.
-            end if
-        end select
-    end subroutine ladder_take
-
-    !> A turning_ladder's values from G at x - s w (minus) and x + s w (plus), the entries
-    !! in any order: f = |plus - minus| / (2 s), g = |plus + minus| / 2.
-    pure subroutine turning_values(s, minus, plus, f, g)
-        real(wp), intent(in) :: s, minus(:), plus(:)
-        real(wp), intent(out) :: f, g
-        f = norm2(plus - minus)/(2.0_wp*s)
-        g = 0.5_wp*norm2(plus + minus)
-    end subroutine turning_values
 
     !> Root mean square of a vector (0 if empty).
     pure real(wp) function rms(a)

@@ -57,7 +57,6 @@ contains
                  new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented), &
                  new_test('rate_continuous_at_rest', rate_continuous_at_rest), &
                  new_test('eps_at_singular_start', eps_at_singular_start), &
-                 new_test('rules_are_translation_free', rules_are_translation_free), &
                  new_test('constraint_mode_step', constraint_mode_step_values), &
                  new_test('taylor_layer_growth', taylor_layer_growth)]
     end function defaults_tests
@@ -169,46 +168,6 @@ contains
         call chk%true(size(solver%singular_intervals(), 2) == 1, 'the start is a singular interval')
         call solver%destroy()
     end subroutine eps_at_singular_start
-
-    ! The slider crank's start with th1 shifted by 2 pi k (k = 0, 10, 100: the same
-    ! physical state): the scale of x in the automatic rules is the length over which G
-    ! turns along the motion (turning_ladder: 1.9 rad), not |x|, so eps and the weights
-    ! come out the same at a singular start (th1 = 1e-8, fast: w1 = 20; |x| made eps
-    ! 3.8e-5, 22 and 2.4e5 there) and at a regular one (th1 = 1), in the eliminated and
-    ! the augmented formulation (the ladder's start is the difference step, which grows
-    ! with |x|; the interpolated crossing is the same to 1e-4, measured 5e-5).
-    subroutine rules_are_translation_free(chk)
-        type(checker), intent(inout) :: chk
-        real(wp), parameter :: starts(2) = [1.0e-8_wp, 1.0_wp]
-        integer, parameter :: shifts(3) = [0, 10, 100]
-        type(regdae_solver) :: solver
-        type(solver_options) :: opts, resolved(3)
-        integer :: stat, i, k, f
-        character(len=80) :: label
-        do f = 1, 2
-            do i = 1, size(starts)
-                do k = 1, size(shifts)
-                    opts = solver_options()
-                    opts%rtol = 1.0e-3_wp
-                    opts%atol = 1.0e-3_wp
-                    if (f == 2) opts%formulation = formulation_augmented
-                    call solver%init(new_slider_crank(9.8_wp), 0.0_wp, &
-                                     [starts(i) + 2.0_wp*pi*shifts(k), pi - starts(i)], [20.0_wp, -20.0_wp], opts, stat)
-                    call chk%equal(stat, regdae_success, 'init')
-                    resolved(k) = solver%options()
-                    call solver%destroy()
-                end do
-                write (label, '(a,es8.1,a,i0)') ' at th1 = ', starts(i), ' + 2 pi k, formulation ', f
-                write (*, '(a,3es12.4)') '    eps'//trim(label)//': ', resolved(:)%eps
-                call chk%close_rel(resolved(2:)%eps, [resolved(1)%eps, resolved(1)%eps], 1.0e-4_wp, &
-                                   'the same eps'//trim(label))
-                call chk%close_rel(resolved(2:)%gamma1, [resolved(1)%gamma1, resolved(1)%gamma1], 1.0e-4_wp, &
-                                   'the same gamma1'//trim(label))
-                call chk%close_rel(resolved(2:)%gamma0, [resolved(1)%gamma0, resolved(1)%gamma0], 1.0e-4_wp, &
-                                   'the same gamma0'//trim(label))
-            end do
-        end do
-    end subroutine rules_are_translation_free
 
     ! Example 5.2 in Cartesian coordinates (the chain of 2 links with the slider: two
     ! singular passes on [0, 2]) with every option at its default but the tolerances,
