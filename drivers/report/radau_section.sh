@@ -17,7 +17,7 @@ run)
     bindir=${2:?BINDIR}
     raw=${3:?RAWDIR}
     mkdir -p "$raw"
-    "$bindir/car_axis" reps=5 >"$raw/radau_car_axis.txt.new" && mv "$raw/radau_car_axis.txt.new" "$raw/radau_car_axis.txt"
+    "$bindir/car_axis" reps=5 min_time=0.2 >"$raw/radau_car_axis.txt.new" && mv "$raw/radau_car_axis.txt.new" "$raw/radau_car_axis.txt"
     "$bindir/bench" problem=crank_radau reps=5 tol_from=4 tol_to=10 >"$raw/radau_crank.txt.new" &&
         mv "$raw/radau_crank.txt.new" "$raw/radau_crank.txt"
     # the chain: one summary line per run, prefixed by 'run config=C tol=R'
@@ -57,11 +57,11 @@ and instruction counts do not).
 The car axis of the Test Set for IVP Solvers (Mazzia, Magherini et al.): 4 coordinates, 2
 constraints, light wheels (mass M eps^2 / 2 = 5e-4) on stiff springs, one of them driven over a bump
 of the road, on [0, 3] (drivers/problems/car_axis_problem.f90, written from the test set's
-description). `build/bin/car_axis reps=5`: every option at its default but rtol = atol = R and
+description). `build/bin/car_axis reps=5 min_time=0.2`: every option at its default but rtol = atol = R and
 `integrator=radau` or `integrator=ida`; error max |x_i - x_i,ref| on the 4 positions at t = 3
 against the test set's published solution; digits: the test set's mixed significant digits on the
 positions, -log10 max |err_i| / (1 + |ref_i|); time: the solve alone (`init` with its consistent
-start and one `advance` to t = 3, stopping there), median of at least 5 runs in one process. The
+start and one `advance` to t = 3, stopping there), median of at least 5 runs and 0.2 s in one process (the rows below 1 ms varied up to 2x between runs at the 0.05 s default). The
 reference point is RADAU5 (Hairer's, on the index-3 form) measured on this machine through its
 public API (issue 21): 99 / 201 / 416 steps, 4 / 6 / 8 digits, 0.37 / 0.96 / 2.4 ms at 1e-4 / 1e-6 /
 1e-8; the last two columns are the ratios to it.
