@@ -138,12 +138,13 @@ contains
         dopri5_last_step = self%rk%h_last
     end function dopri5_last_step
 
-    !> Steps, slopes and rejected steps added to IDA's terms; the last step when active.
+    !> The steps taken (the Runge-Kutta core's count, at hand: no statistics record).
     integer(int64) function dopri5_steps(self) result(n)
         class(dopri5_integrator), intent(in) :: self
         n = self%rk%steps
     end function dopri5_steps
 
+    !> Steps, slopes and rejected steps added to IDA's terms; the last step when active.
     subroutine dopri5_statistics(self, st, active)
         class(dopri5_integrator), intent(in) :: self
         type(solver_stats), intent(inout) :: st
