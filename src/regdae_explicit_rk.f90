@@ -60,8 +60,9 @@ contains
     subroutine slope(self, model, t, z, f, stat, recoverable)
         class(rk_integrator), intent(inout) :: self
         type(regularized_dae), intent(inout) :: model
-        real(wp), intent(in) :: t, z(:)
-        real(wp), intent(out) :: f(:)
+        real(wp), intent(in) :: t
+        real(wp), intent(in), contiguous :: z(:)    ! contiguous: the slope's loops without stride cases
+        real(wp), intent(out), contiguous :: f(:)
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable
         call model%slope_eliminated(t, z, f, self%y_work, stat, recoverable)
@@ -395,7 +396,9 @@ contains
         real(wp), intent(out) :: t_landing   !! > t_old: a pass begins inside the step, at least a tenth of it
                                              !! in, at this time; nothing is sampled (the caller takes the
                                              !! step back and lands there)
-        real(wp) :: z_probe(size(self%z)), k_probe(size(self%z)), tp(9), sp(9), t_found, t_probe
+        ! the probes' state and slope: allocated at the first probe (most steps have none)
+        real(wp), allocatable :: z_probe(:), k_probe(:)
+        real(wp) :: tp(9), sp(9), t_found, t_probe, sigma_end
         integer :: probes, known, quarter
         logical :: recoverable_probe, moved, approach
         stat = regdae_success
@@ -409,7 +412,8 @@ contains
                 call add(self%t_seen(1), self%sigma_seen(1))
             call add(self%t_seen(2), self%sigma_seen(2))
         end if
-        call add(self%t, model%sigma_min_gb())
+        sigma_end = model%sigma_min_gb()
+        call add(self%t, sigma_end)
         ! a step that ends, or starts, on the approach (sigma below approach_factor x the
         ! threshold) may hold a whole pass between its samples (the crank from rest at th1 = 2.1,
         ! rtol 1e-4: a 0.28 s step over a 0.05 s pass, which neither the secant nor the parabola
@@ -428,6 +432,7 @@ contains
                     t_probe = self%t_old + 0.25_wp*quarter*(self%t - self%t_old)
                 end if
                 if (.not. (t_probe > self%t_old .and. t_probe < self%t)) exit
+                if (.not. allocated(z_probe)) allocate (z_probe(size(self%z)), k_probe(size(self%z)))
                 call continuous_extension(self, t_probe, z_probe)
                 call model%evaluate(t_probe, z_probe, stat, recoverable_probe)
                 probes = probes + 1
@@ -457,8 +462,10 @@ contains
         if (moved) then
             call slope(self, model, self%t, self%z, k_probe, stat, recoverable_probe)
             if (stat /= regdae_success) return
+            call monitor%sample(self%t, model, self%z, self%k1)
+        else   ! the model still at the step's end, as sigma_end was taken: not computed again
+            call monitor%sample(self%t, model, self%z, self%k1, sigma_now=sigma_end)
         end if
-        call monitor%sample(self%t, model, self%z, self%k1)
         call remember(self, self%t, monitor%sigma_last)
     contains
         subroutine add(t_point, sigma_point)
@@ -480,7 +487,9 @@ contains
                 return
             end if
             if (known < 3) return
-            order(1:known) = [(k, k=1, known)]
+            do k = 1, known
+                order(k) = k
+            end do
             do a = 2, known   ! by time (insertion sort of at most 9)
                 k = order(a)
                 b = a - 1
