@@ -381,7 +381,10 @@ contains
         do i = 1, n
             probe = probe + 0.0_wp*f(i)
         end do
-        if (m == 2) then
+        if (m == 1) then
+            call pieces_one(n, gx, b, f, q, gb, r, probe)
+            return
+        else if (m == 2) then
             call pieces_two(n, gx, b, f, q, gb, r, probe)
             return
         end if
@@ -404,6 +407,26 @@ contains
             probe = probe + 0.0_wp*s
         end do
     end subroutine multiplier_pieces
+
+    ! multiplier_pieces for one constraint: GB and r in one pass over k, as pieces_two.
+    pure subroutine pieces_one(n, gx, b, f, q, gb, r, probe)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: gx(1, n), b(n, 1), f(n), q(1)
+        real(wp), intent(out) :: gb(1, 1), r(1)
+        real(wp), intent(inout) :: probe
+        real(wp) :: s11, r1
+        integer :: k
+        s11 = 0.0_wp
+        r1 = q(1)
+        do k = 1, n
+            s11 = s11 + gx(1, k)*b(k, 1)
+            r1 = r1 + gx(1, k)*f(k)
+        end do
+        gb(1, 1) = s11
+        r(1) = r1
+        probe = probe + 0.0_wp*s11
+        probe = probe + 0.0_wp*r1
+    end subroutine pieces_one
 
     ! multiplier_pieces for two constraints: the six sums in one pass over k, each in the
     ! general loops' order (from 0 or q, ascending k), so the same numbers; the probe's
