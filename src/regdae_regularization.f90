@@ -279,38 +279,40 @@ contains
                 return
             end if
         else
-            call self%second%rhs(t, z(1:n), z(n + 1:2*n), self%f, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'rhs', t, ustat, stat, recoverable)
-                return
-            end if
-            call self%second%constraint_jacobian(t, z(1:n), self%gx, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'constraint_jacobian', t, ustat, stat, recoverable)
-                return
-            end if
-            call self%second%matrix_b_from_jacobian(t, z(1:n), z(n + 1:2*n), self%gx, self%b, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'matrix_b', t, ustat, stat, recoverable)
-                return
-            end if
-            call self%second%constraint(t, z(1:n), self%g, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'constraint', t, ustat, stat, recoverable)
-                return
-            end if
-            call self%second%constraint_dt(t, z(1:n), self%gt, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'constraint_dt', t, ustat, stat, recoverable)
-                return
-            end if
-            if (self%curvature) then
-                call self%second%constraint_curvature(t, z(1:n), z(n + 1:2*n), self%curv, ustat)
+            associate (x => z(1:n), v => z(n + 1:2*n))   ! the sections built once for the six calls
+                call self%second%rhs(t, x, v, self%f, ustat)
                 if (ustat /= 0) then
-                    call report_failure(self, 'constraint_curvature', t, ustat, stat, recoverable)
+                    call report_failure(self, 'rhs', t, ustat, stat, recoverable)
                     return
                 end if
-            end if
+                call self%second%constraint_jacobian(t, x, self%gx, ustat)
+                if (ustat /= 0) then
+                    call report_failure(self, 'constraint_jacobian', t, ustat, stat, recoverable)
+                    return
+                end if
+                call self%second%matrix_b_from_jacobian(t, x, v, self%gx, self%b, ustat)
+                if (ustat /= 0) then
+                    call report_failure(self, 'matrix_b', t, ustat, stat, recoverable)
+                    return
+                end if
+                call self%second%constraint(t, x, self%g, ustat)
+                if (ustat /= 0) then
+                    call report_failure(self, 'constraint', t, ustat, stat, recoverable)
+                    return
+                end if
+                call self%second%constraint_dt(t, x, self%gt, ustat)
+                if (ustat /= 0) then
+                    call report_failure(self, 'constraint_dt', t, ustat, stat, recoverable)
+                    return
+                end if
+                if (self%curvature) then
+                    call self%second%constraint_curvature(t, x, v, self%curv, ustat)
+                    if (ustat /= 0) then
+                        call report_failure(self, 'constraint_curvature', t, ustat, stat, recoverable)
+                        return
+                    end if
+                end if
+            end associate
         end if
         call self%constraint_terms(z, self%q)
         call multiplier_pieces(n, self%m, self%gx, self%b, self%f, self%q, self%gb, self%r, probe)
