@@ -333,25 +333,37 @@ contains
         if (allocated(self%singular)) deallocate (self%singular)
     end subroutine monitor_reset
 
-    subroutine monitor_sample(self, t, model, z, dz)
+    subroutine monitor_sample(self, t, model, z, dz, sigma_now)
         class(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: t
         type(regularized_dae), intent(inout), target :: model   !! a target: its mechanical problem is used by pointer
         real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
         real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
-        real(wp) :: drift, invariant, kinetic, power, gb, g, sigma, ell, rate, sigma_pred, sums(2), energy
+        real(wp), intent(in), optional :: sigma_now   !! model%sigma_min_gb() just taken at this point by the
+                                                      !! caller, with no other call since (not taken again)
+        real(wp) :: drift, invariant, kinetic, power, gb, g, g_min, row, sigma, ell, rate, sigma_pred, sums(2), energy
         integer :: stat, invariant_stat, i
+        logical :: have_g_min
         class(mechanical_problem), pointer :: p
         invariant = 0.0_wp
         invariant_stat = 0
-        sigma = model%sigma_min_gb()
+        if (present(sigma_now)) then
+            sigma = sigma_now
+        else
+            sigma = model%sigma_min_gb()
+        end if
+        have_g_min = .false.
         if (self%scales%eps_factor > 0.0_wp .or. self%drift_auto) then
             gb = 0.0_wp
             g = 0.0_wp
+            g_min = huge(1.0_wp)
             do i = 1, model%m
                 gb = max(gb, abs(model%gb(i, i)))
-                g = max(g, norm2(model%gx(i, :)))
+                row = norm2(model%gx(i, :))
+                g = max(g, row)
+                g_min = min(g_min, row)
             end do
+            have_g_min = .true.
             if (self%observe_scales(t, gb, g, maxval(abs(z(1:model%n))), sigma)) then
                 model%eps = self%scales%eps
                 self%model_changed = .true.
@@ -396,7 +408,13 @@ contains
             p => model%mechanical()   ! the problem, z = (q, v) and its slope for the refinement
             if (associated(p)) call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
         end if
-        if (self%resolution_tol > 0.0_wp) call resolution_sample(self, t, model)   ! after sample_values too
+        if (self%resolution_tol > 0.0_wp) then   ! after sample_values too; G unchanged since the rows' norms
+            if (have_g_min) then
+                call resolution_sample(self, t, model, g_min)
+            else
+                call resolution_sample(self, t, model)
+            end if
+        end if
     end subroutine monitor_sample
 
     ! step_energy's sample of the work-energy balance is at (t, z) with the model's eps and weights
@@ -528,17 +546,22 @@ contains
 
     ! The resolution check at a sample (the model's last evaluation is at (t, z)):
     ! the memory of sigma_G, and R on the approach to a layer (module doc).
-    subroutine resolution_sample(self, t, model)
+    subroutine resolution_sample(self, t, model, row_norm_min)
         type(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: t
         type(regularized_dae), intent(inout) :: model
+        real(wp), intent(in), optional :: row_norm_min   !! min_i |G(i, :)|, if the caller has it
         real(wp) :: sigma, sigma_g, rate, ratio, disc
         integer :: i
         if (model%m == 0 .or. model%order > 2 .or. model%method == method_baumgarte) return
-        sigma_g = huge(1.0_wp)
-        do i = 1, model%m
-            sigma_g = min(sigma_g, norm2(model%gx(i, :)))
-        end do
+        if (present(row_norm_min)) then
+            sigma_g = row_norm_min
+        else
+            sigma_g = huge(1.0_wp)
+            do i = 1, model%m
+                sigma_g = min(sigma_g, norm2(model%gx(i, :)))
+            end do
+        end if
         if (.not. (sigma_g == sigma_g)) return
         if (model%order == 1) then
             rate = model%w(1)

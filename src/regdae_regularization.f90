@@ -279,38 +279,40 @@ contains
                 return
             end if
         else
-            call self%second%rhs(t, z(1:n), z(n + 1:2*n), self%f, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'rhs', t, ustat, stat, recoverable)
-                return
-            end if
-            call self%second%constraint_jacobian(t, z(1:n), self%gx, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'constraint_jacobian', t, ustat, stat, recoverable)
-                return
-            end if
-            call self%second%matrix_b_from_jacobian(t, z(1:n), z(n + 1:2*n), self%gx, self%b, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'matrix_b', t, ustat, stat, recoverable)
-                return
-            end if
-            call self%second%constraint(t, z(1:n), self%g, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'constraint', t, ustat, stat, recoverable)
-                return
-            end if
-            call self%second%constraint_dt(t, z(1:n), self%gt, ustat)
-            if (ustat /= 0) then
-                call report_failure(self, 'constraint_dt', t, ustat, stat, recoverable)
-                return
-            end if
-            if (self%curvature) then
-                call self%second%constraint_curvature(t, z(1:n), z(n + 1:2*n), self%curv, ustat)
+            associate (x => z(1:n), v => z(n + 1:2*n))   ! the sections built once for the six calls
+                call self%second%rhs(t, x, v, self%f, ustat)
                 if (ustat /= 0) then
-                    call report_failure(self, 'constraint_curvature', t, ustat, stat, recoverable)
+                    call report_failure(self, 'rhs', t, ustat, stat, recoverable)
                     return
                 end if
-            end if
+                call self%second%constraint_jacobian(t, x, self%gx, ustat)
+                if (ustat /= 0) then
+                    call report_failure(self, 'constraint_jacobian', t, ustat, stat, recoverable)
+                    return
+                end if
+                call self%second%matrix_b_from_jacobian(t, x, v, self%gx, self%b, ustat)
+                if (ustat /= 0) then
+                    call report_failure(self, 'matrix_b', t, ustat, stat, recoverable)
+                    return
+                end if
+                call self%second%constraint(t, x, self%g, ustat)
+                if (ustat /= 0) then
+                    call report_failure(self, 'constraint', t, ustat, stat, recoverable)
+                    return
+                end if
+                call self%second%constraint_dt(t, x, self%gt, ustat)
+                if (ustat /= 0) then
+                    call report_failure(self, 'constraint_dt', t, ustat, stat, recoverable)
+                    return
+                end if
+                if (self%curvature) then
+                    call self%second%constraint_curvature(t, x, v, self%curv, ustat)
+                    if (ustat /= 0) then
+                        call report_failure(self, 'constraint_curvature', t, ustat, stat, recoverable)
+                        return
+                    end if
+                end if
+            end associate
         end if
         call self%constraint_terms(z, self%q)
         call multiplier_pieces(n, self%m, self%gx, self%b, self%f, self%q, self%gb, self%r, probe)
@@ -381,6 +383,13 @@ contains
         do i = 1, n
             probe = probe + 0.0_wp*f(i)
         end do
+        if (m == 1) then
+            call pieces_one(n, gx, b, f, q, gb, r, probe)
+            return
+        else if (m == 2) then
+            call pieces_two(n, gx, b, f, q, gb, r, probe)
+            return
+        end if
         do j = 1, m
             do i = 1, m
                 s = 0.0_wp
@@ -400,6 +409,65 @@ contains
             probe = probe + 0.0_wp*s
         end do
     end subroutine multiplier_pieces
+
+    ! multiplier_pieces for one constraint: GB and r in one pass over k, as pieces_two.
+    pure subroutine pieces_one(n, gx, b, f, q, gb, r, probe)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: gx(1, n), b(n, 1), f(n), q(1)
+        real(wp), intent(out) :: gb(1, 1), r(1)
+        real(wp), intent(inout) :: probe
+        real(wp) :: s11, r1
+        integer :: k
+        s11 = 0.0_wp
+        r1 = q(1)
+        do k = 1, n
+            s11 = s11 + gx(1, k)*b(k, 1)
+            r1 = r1 + gx(1, k)*f(k)
+        end do
+        gb(1, 1) = s11
+        r(1) = r1
+        probe = probe + 0.0_wp*s11
+        probe = probe + 0.0_wp*r1
+    end subroutine pieces_one
+
+    ! multiplier_pieces for two constraints: the six sums in one pass over k, each in the
+    ! general loops' order (from 0 or q, ascending k), so the same numbers; the probe's
+    ! terms in the general order too (a quarter of the car axis's evaluation went to the
+    ! general loops' setup for these 24 products).
+    pure subroutine pieces_two(n, gx, b, f, q, gb, r, probe)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: gx(2, n), b(n, 2), f(n), q(2)
+        real(wp), intent(out) :: gb(2, 2), r(2)
+        real(wp), intent(inout) :: probe
+        real(wp) :: s11, s21, s12, s22, r1, r2
+        integer :: k
+        s11 = 0.0_wp
+        s21 = 0.0_wp
+        s12 = 0.0_wp
+        s22 = 0.0_wp
+        r1 = q(1)
+        r2 = q(2)
+        do k = 1, n
+            s11 = s11 + gx(1, k)*b(k, 1)
+            s21 = s21 + gx(2, k)*b(k, 1)
+            s12 = s12 + gx(1, k)*b(k, 2)
+            s22 = s22 + gx(2, k)*b(k, 2)
+            r1 = r1 + gx(1, k)*f(k)
+            r2 = r2 + gx(2, k)*f(k)
+        end do
+        gb(1, 1) = s11
+        gb(2, 1) = s21
+        gb(1, 2) = s12
+        gb(2, 2) = s22
+        r(1) = r1
+        r(2) = r2
+        probe = probe + 0.0_wp*s11
+        probe = probe + 0.0_wp*s21
+        probe = probe + 0.0_wp*s12
+        probe = probe + 0.0_wp*s22
+        probe = probe + 0.0_wp*r1
+        probe = probe + 0.0_wp*r2
+    end subroutine pieces_two
 
     ! q = r - G f = w0 g + w1 g_t + sum_{k=1}^{m-1} w_k G x^(k) [+ c] (order 1: g_t with weight 1).
     subroutine constraint_terms(self, z, q)
@@ -482,7 +550,6 @@ contains
         real(wp), intent(in) :: t, z(:)   !! the last evaluated point
         integer, intent(out) :: stat      !! the user routine's status (index 2)
         real(wp) :: drift
-        real(wp) :: g(self%m)
         stat = 0
         drift = -1.0_wp
         if (self%order >= 2) then
@@ -490,8 +557,11 @@ contains
         else if (allocated(self%first)) then
             select type (p => self%first)
             type is (velocity_index2_problem)
-                call p%second%constraint(t, z(1:p%second%n), g, stat)
-                if (stat == 0) drift = maxval(abs(g), 1)
+                block
+                    real(wp) :: g(self%m)
+                    call p%second%constraint(t, z(1:p%second%n), g, stat)
+                    if (stat == 0) drift = maxval(abs(g), 1)
+                end block
             end select
         end if
         if (self%m == 0) drift = max(drift, 0.0_wp)
@@ -692,11 +762,15 @@ contains
         class(regularized_dae), intent(in) :: self
         real(wp), intent(in) :: z(:), y(:)
         real(wp), intent(out) :: dz(:)
-        integer :: n, last
+        integer :: n, last, i
         n = self%n
         last = (self%order - 1)*n
-        dz(1:last) = z(n + 1:last + n)
-        dz(last + 1:last + n) = self%f
+        do i = 1, last   ! loops: a few entries, not worth memcpy's call
+            dz(i) = z(n + i)
+        end do
+        do i = 1, n
+            dz(last + i) = self%f(i)
+        end do
         call add_matvec(n, self%m, self%b, y, -1.0_wp, dz(last + 1:last + n))
     end subroutine dynamics_slope
 
