@@ -11,7 +11,7 @@ contains
     ! ended there if `ended`): the ladder started or continued from the
     ! checkpoint, its levels brought to t, the answer level's values into the
     ! outputs; at the end of the pass the engine continues from the answer.
-    module subroutine check_pass(self, t, ended, x, y, v, a, warn, warn_text)
+    module subroutine check_pass(self, t, ended, x, y, v, a, warn, warn_text, pending)
         type(regdae_solver), intent(inout) :: self
         real(wp), intent(in) :: t
         logical, intent(in) :: ended
@@ -19,6 +19,7 @@ contains
         real(wp), intent(inout), optional :: y(:), v(:), a(:)
         integer, intent(inout) :: warn
         character(len=:), allocatable, intent(inout) :: warn_text
+        logical, intent(inout) :: pending
         integer :: k, n, answer, adopt, lstat
         real(wp) :: tc
         real(wp), allocatable :: zc(:)
@@ -110,7 +111,15 @@ contains
             ! goes on from its higher order), so that the passes' errors, each within pass_tol
             ! for the answer, do not add up over many passes at the answer's size.
             adopt = merge(min(answer + 1, lad%levels), answer, agreed)
-            if (adopt > 0) call lad%level(adopt)%engine%advance(t, x, y, lstat, v, a)
+            if (adopt > 0) then
+                call lad%level(adopt)%engine%advance(t, x, y, lstat, v, a)
+                ! (y and a are the level's: so is a warning that the multiplier is undefined)
+                if (pending .and. lstat > 0 .and. warn == regdae_success) then
+                    warn = lstat
+                    warn_text = lad%level(adopt)%engine%message()
+                end if
+                pending = .false.
+            end if
             ! the solution itself farther from level 1 than a finer tolerance moves a state (another
             ! branch, or caught at the fold: the pass does not end, and the outputs would come from
             ! a companion without checks of its own to the end): it goes on from the adopted level
