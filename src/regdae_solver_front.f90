@@ -286,7 +286,7 @@ module regdae_solver_front
             integer, intent(out) :: stat
         end subroutine engine_restart_at
 
-        module subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale, projected, own_step)
+        module subroutine engine_start_companion(self, other, kappa, t, z, stat, eps_scale, projected)
             class(solver_engine), intent(in) :: self
             class(solver_engine), intent(inout) :: other
             real(wp), intent(in) :: kappa       !! the tolerances' divisor (>= 1)
@@ -295,8 +295,6 @@ module regdae_solver_front
             real(wp), intent(in), optional :: eps_scale   !! the companion's eps times this (a probe of the
                                                           !! regularization error)
             logical, intent(in), optional :: projected    !! z is projected already (project_start)
-            logical, intent(in), optional :: own_step     !! dopri5: the first step is self's last one times
-                                                          !! kappa^(-1/5) (default: the integrator's own)
         end subroutine engine_start_companion
 
         module subroutine engine_project_start(self, t, z)

@@ -140,7 +140,6 @@ contains
     module procedure engine_start_companion
         type(solver_options) :: opts
         type(augmented_system), pointer :: sys
-        class(integrator), pointer :: stepper
         real(wp) :: eps, zs(size(z)), ratio
         integer :: nx
         logical :: do_project
@@ -161,12 +160,6 @@ contains
             opts%ic_tol = huge(1.0_wp)
             opts%check_jacobians = .false.
             opts%h_init = 0.0_wp
-            if (present(own_step)) then
-                if (own_step .and. core%active == integrator_dopri5) then
-                    stepper => active_integrator(core)
-                    if (stepper%ready()) opts%h_init = stepper%last_step()*kappa**(-0.2_wp)
-                end if
-            end if
             opts%integrator = core%active   ! the integrator in charge (dopri5, ida or radau)
             opts%formulation = core%formulation
             opts%linear_solver = merge(core%linear_solver, linear_solver_auto, core%augmented)

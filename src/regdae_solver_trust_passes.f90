@@ -259,8 +259,7 @@ contains
                 if (.not. associated(lad%probe(j)%engine)) then
                     allocate (lad%probe(j)%engine)
                     call self%main%start_companion(lad%probe(j)%engine, kappa**level, lad%t_start, lad%z_start, &
-                                                   stat, eps_scale=eps_probe**j, projected=.true., &
-                                                   own_step=(level == 0))
+                                                   stat, eps_scale=eps_probe**j, projected=.true.)
                     if (stat < 0) then
                         lad%probes_failed = .true.
                         call retire_probe(self)
