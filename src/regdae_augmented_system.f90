@@ -76,6 +76,10 @@ module regdae_augmented_system
         real(wp), allocatable :: kband(:, :), kwork(:)
         ! the last estimate's singular vector: the next estimate starts from it
         real(wp), allocatable :: sigma_vector(:)
+        ! the last plain estimate (< 0: none to reuse) and G M^{-1/2} where it was made (M diagonal)
+        real(wp) :: sigma_estimate = -1.0_wp
+        real(wp), allocatable :: sigma_scaled_g(:)
+        logical :: mass_diagonal = .false.   !! M's pattern is its diagonal: sigma_min_gb may reuse an estimate
         ! GB's structural rank deficiency: the smallest numerical one over the estimates (-1: none yet)
         integer :: deficiency = -1
     contains
@@ -94,7 +98,8 @@ module regdae_augmented_system
         procedure :: unpack => augmented_unpack
         !> max |g(q, t)| at IDA's u (stat: the user routine's).
         procedure :: drift => augmented_drift
-        !> sigma_min(GB) at IDA's u, by inverse iteration (stat: the user routines').
+        !> sigma_min(GB) at IDA's u, by inverse iteration (stat: the user routines'); optionally
+        !! the diagonal_scales of M and G there.
         procedure :: sigma_min_gb => augmented_sigma_min
         !> max_i (GB)_ii (with M's diagonal) and max_i |G_i| of the M and G of the last
         !! sigma_min_gb (the automatic eps and drift bound, regdae_scales).
@@ -320,12 +325,20 @@ contains
         self%knew(self%kperm) = [(k, k=1, nk)]
         allocate (self%kband(2*self%kl + self%ku + 1, nk))
         self%deficiency = -1
+        self%sigma_estimate = -1.0_wp
+        associate (mp => self%st%mass)
+            self%mass_diagonal = (mp%nnz() == self%n)
+            if (self%mass_diagonal) self%mass_diagonal = all(mp%row_start == [(k, k=1, self%n + 1)]) .and. &
+                                                         all(mp%cols(1:self%n) == [(k, k=1, self%n)])
+        end associate
     end subroutine prepare_saddle_point
 
-    real(wp) function augmented_sigma_min(self, t, u, stat) result(sigma)
+    real(wp) function augmented_sigma_min(self, t, u, stat, gb, g, far) result(sigma)
         class(augmented_system), intent(inout) :: self
         real(wp), intent(in) :: t, u(:)
         integer, intent(out) :: stat
+        real(wp), intent(out), optional :: gb, g   !! diagonal_scales at q (set when stat = 0)
+        real(wp), intent(in), optional :: far      !! present: the last estimate may stand where sigma >= far
         ! Inverse iteration on the symmetric positive definite G M^{-1} G^T (= GB), from a
         ! fixed generic vector plus the last call's singular vector (the last vector alone
         ! misses a new smallest mode: 400x too large at a 512-link chain's fold): stops when
@@ -350,14 +363,25 @@ contains
         ! would otherwise cost an m x (m - 1) array and thousands of iterations per sample
         ! (issue 20: memory O(nonzeros)); more redundant constraints than that are not
         ! recognized as such.
+        !
+        ! With `far`, the last plain estimate sigma_e stands (no factorization, no solve) where a
+        ! rigorous bound shows that sigma_min(GB) cannot have moved by more than `settled` (the
+        ! iteration's own resolution) since it was made, nor below `far`: with M diagonal,
+        ! GB = A A^T for A = G M^{-1/2}, whose m-th singular value moves by at most
+        ! ||A - A_e||_2 <= ||A - A_e||_F =: d (Weyl), A_e the A of the estimate; so
+        ! sqrt(sigma_min(GB)) is within d of its value there, and d <= (sqrt(1 + settled) - 1)
+        ! sqrt(sigma_e) with (sqrt(sigma_e) - d)^2 >= far is the test.
         integer, parameter :: iterations = 8, min_iterations = 3, max_deflation = 8
         real(wp), parameter :: settled = 1.0e-3_wp
         real(wp) :: q(self%n), x(self%m), z(self%m), znorm, previous, scale, null_tol, shift, diag_gb, gs
+        real(wp) :: scaled_g(self%st%constraint%nnz()), d
         real(wp), allocatable :: nullv(:, :)
         integer :: i, k, nk, info, it, found, limit
         logical :: ok
         stat = 0
         sigma = huge(1.0_wp)
+        if (present(gb)) gb = 0.0_wp
+        if (present(g)) g = 0.0_wp
         if (self%m == 0) return
         nk = self%n + self%m
         call self%unpack(u, u, q=q)
@@ -366,6 +390,18 @@ contains
         call self%problem%constraint_jacobian_values(t, q, self%st%constraint, self%gvals, stat)
         if (stat /= 0) return
         call self%diagonal_scales(diag_gb, gs)
+        if (present(gb)) gb = diag_gb
+        if (present(g)) g = gs
+        if (present(far) .and. self%deficiency == 0 .and. self%mass_diagonal .and. self%sigma_estimate >= 0.0_wp) then
+            call scale_constraint_jacobian(scaled_g)
+            d = norm2(scaled_g - self%sigma_scaled_g)
+            if (d <= (sqrt(1.0_wp + settled) - 1.0_wp)*sqrt(self%sigma_estimate) .and. &
+                (sqrt(self%sigma_estimate) - d)**2 >= far) then
+                sigma = self%sigma_estimate
+                return
+            end if
+        end if
+        self%sigma_estimate = -1.0_wp
         scale = diag_gb
         null_tol = real(nk, wp)*epsilon(1.0_wp)*scale
         shift = 0.0_wp
@@ -378,6 +414,11 @@ contains
                 self%deficiency = 0
                 self%sigma_vector = x
                 sigma = max(0.0_wp, sigma)
+                if (self%mass_diagonal) then   ! the estimate a later call may reuse
+                    call scale_constraint_jacobian(scaled_g)
+                    self%sigma_scaled_g = scaled_g
+                    self%sigma_estimate = sigma
+                end if
                 return
             end if
             if (self%deficiency == 0) then   ! K singular at a sample of a full-rank GB: singular here
@@ -420,6 +461,18 @@ contains
         self%sigma_vector = x
         sigma = max(0.0_wp, sigma)
     contains
+        ! A = G M^{-1/2} in G's pattern order (M diagonal; a diagonal entry <= 0 gives NaN: no reuse)
+        subroutine scale_constraint_jacobian(a)
+            real(wp), intent(out) :: a(:)
+            associate (gp => self%st%constraint)
+                do i = 1, self%m
+                    do k = gp%row_start(i), gp%row_start(i + 1) - 1
+                        a(k) = self%gvals(k)/sqrt(self%mvals(gp%cols(k)))
+                    end do
+                end do
+            end associate
+        end subroutine scale_constraint_jacobian
+
         ! K = [M G^T; G -shift I] in band storage, factored (info: dgbtrf's)
         subroutine assemble(sh, info)
             real(wp), intent(in) :: sh
@@ -511,7 +564,11 @@ contains
             do i = 1, self%m
                 row = 0.0_wp
                 do k = gp%row_start(i), gp%row_start(i + 1) - 1
-                    j = mp%position(gp%cols(k), gp%cols(k))
+                    if (self%mass_diagonal) then   ! M(j, j) is entry j
+                        j = gp%cols(k)
+                    else
+                        j = mp%position(gp%cols(k), gp%cols(k))
+                    end if
                     diag = 1.0_wp
                     if (j > 0) diag = self%mvals(j)
                     if (diag > 0.0_wp) row = row + self%gvals(k)**2/diag

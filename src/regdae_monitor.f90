@@ -223,6 +223,10 @@ module regdae_monitor
         !> Does a sample at t need the full sample (`sample`), or do the work-energy
         !! balance's energies (`sample_work`) do: is a singular interval near?
         procedure :: full_sample_due => monitor_full_sample_due
+        !> The near level: sigma_min(GB) below it, a singular interval may be near
+        !! (`near_factor` times the singular threshold and the layer's); huge before the
+        !! first full sample (a relative threshold is not known yet).
+        procedure :: near_level => monitor_near_level
     end type solution_monitor
 
     ! The work-energy balance (submodule regdae_monitor_work).
@@ -499,7 +503,7 @@ contains
         due = .true.
         if (.not. (self%sigma_before >= 0.0_wp)) return   ! no full sample yet (or its sigma was NaN)
         if (self%in_singular .or. self%in_layer .or. self%weights_due(t)) return
-        near = near_factor*max(self%threshold, self%layer_threshold)
+        near = self%near_level()
         if (.not. (self%sigma_last >= near .and. self%sigma_before >= near)) return
         if (.not. (self%motion_time() < huge(1.0_wp))) return   ! no time scale: every sample full
         since = t - self%t_sigma_before
@@ -511,6 +515,12 @@ contains
         end if
         due = .false.
     end function monitor_full_sample_due
+
+    pure real(wp) function monitor_near_level(self) result(near)
+        class(solution_monitor), intent(in) :: self
+        near = huge(1.0_wp)
+        if (self%sigma_before >= 0.0_wp) near = near_factor*max(self%threshold, self%layer_threshold)
+    end function monitor_near_level
 
     logical function monitor_new_rate(self, t, rate) result(change)
         class(solution_monitor), intent(inout) :: self

@@ -147,9 +147,9 @@ contains
                 call sys%unpack(u, up, q=q, v=v, a=a)
                 drift = sys%drift(t, u, dstat)
                 if (dstat /= 0) drift = huge(1.0_wp)
-                sigma = sys%sigma_min_gb(t, u, dstat)   ! also leaves M and G at q in sys%mvals, sys%gvals
+                ! (also leaves M and G at q in sys%mvals, sys%gvals)
+                sigma = sys%sigma_min_gb(t, u, dstat, gb, g, far=core%monitor%near_level())
                 if (dstat == 0 .and. (core%eps_factor > 0.0_wp .or. core%drift_factor > 0.0_wp)) then
-                    call sys%diagonal_scales(gb, g)
                     if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
                 end if
                 if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
