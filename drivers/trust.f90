@@ -54,7 +54,8 @@
 !! (option.KEY=VALUE: that solver option in every cell's run instead of its default, for diagnosing a
 !! cell; the header says which; the grids' figures are from the defaults)
 !! (th1=A, w1=W: the crank family at that start only, one cell per R, case th00; with rtol=R off
-!! the grid's R, e.g. 1e-10, the one cell at that R)
+!! the grid's R, e.g. 1e-10, the one cell at that R; A outside [0, pi], e.g. A + 2 pi k, runs
+!! another representative of the same physical start)
 !! (part=k/K: only the cells whose number I has mod(I, K) = k - 1; rtol=R: only the cells of that
 !! R; cell=I: only cell I of the family, for reproducing one; budget: the wall budget in seconds
 !! per regdae run, default 30, chains 120.)
@@ -178,7 +179,7 @@ contains
                 if (.not. (filter%rtol > 0.0_wp)) call die_usage(prog, 'rtol must be > 0')
             case ('cell'); call read_count(prog, key, value, filter%cell, 1, 1000000)
             case ('th1'); call read_number(prog, key, value, start_th1)
-                if (.not. (start_th1 >= 0.0_wp .and. start_th1 <= pi)) call die_usage(prog, 'th1 must be in [0, pi]')
+                if (.not. (abs(start_th1) < huge(1.0_wp))) call die_usage(prog, 'th1 must be finite')
             case ('w1'); call read_number(prog, key, value, start_w1)
             case ('seed'); call read_seed(value)
             case ('budget'); call read_number(prog, key, value, budget)

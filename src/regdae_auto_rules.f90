@@ -31,7 +31,8 @@ module regdae_auto_rules
     !! singular configuration of that row, whose distance to it is no length of the mechanism.
     real(wp), parameter, public :: degenerate_row = 1.0e-4_wp
     !> At a singular start a vanishing row of G is moved by this fraction of the scale
-    !! of x along its curvature, for the prediction of the regular sigma_min(GB).
+    !! of x (rms of its representative, periodic_representative) along its curvature,
+    !! for the prediction of the regular sigma_min(GB).
     real(wp), parameter, public :: predict_shift = 0.5_wp
     !> Along the run the weights change when the rate has grown by this factor.
     real(wp), parameter, public :: weight_hysteresis = 2.0_wp
@@ -44,6 +45,7 @@ module regdae_auto_rules
 
     public :: constraint_length, motion_rate, baumgarte_weights, automatic_eps_factor, automatic_eps, rms
     public :: dense_motion_scales, row_curvatures, generic_direction, constraint_mode_step
+    public :: periodic_representative, same_geometry
 
     !> The explicit Dormand-Prince method's stable step on the constraint modes:
     !! h |s| within this radius (its stability boundary is 3.3 on the negative real axis
@@ -237,8 +239,9 @@ contains
     !! there: the constraint length `ell` (the largest of constraint_length here and
     !! ell_before), the rate of the motion, and, if some row of G vanishes here (a
     !! start on a singular configuration), `sigma_pred`: sigma_min(GB) with those rows
-    !! moved by the scale of x along their curvature (-1 if no row vanishes, or
-    !! predict is false). nx: the size of x; order2: z = (x, v, ...). With `stiffness`,
+    !! moved by the scale of x along their curvature, both measured at the angles'
+    !! representative periodic_representative(x) where G is the same there (-1 if no
+    !! row vanishes, or predict is false). nx: the size of x; order2: z = (x, v, ...). With `stiffness`,
     !! the rate counts the frequency of the applied forces too (motion_rate).
     subroutine dense_motion_scales(model, t, z, dz, nx, order2, ell_before, predict, ell, rate, sigma_pred, stat, &
                                    stiffness)
@@ -286,6 +289,12 @@ contains
                 allocate (gx(model%m, nx))
                 call model%position_jacobian(t, x, gx, stat)
                 if (stat /= 0) return
+                if (any(gnorm < degenerate_row*hnorm*ell_x)) then
+                    ! a singular start: its geometry and the scale of x from the angles'
+                    ! representative in (-pi, pi] where G is the same there
+                    call measure_at_representative()
+                    if (stat /= 0) return
+                end if
                 do i = 1, model%m
                     if (gnorm(i) < degenerate_row*hnorm(i)*ell_x) then
                         gx(i, :) = gx(i, :) + predict_shift*ell_x*dg(i, :)
@@ -305,6 +314,22 @@ contains
         end if
         rate = motion_rate(order2, vel, acc, free, ell, stiff)
     contains
+        ! gnorm, hnorm, dg, gx and ell_x at periodic_representative(x) if G is the same there
+        subroutine measure_at_representative()
+            real(wp) :: xr(nx)
+            real(wp), allocatable :: gr(:, :)
+            xr = periodic_representative(x)
+            if (all(xr == x)) return
+            allocate (gr(model%m, nx))
+            call model%position_jacobian(t, xr, gr, stat)
+            if (stat /= 0) return
+            if (.not. same_geometry(reshape(gx, [size(gx)]), reshape(gr, [size(gr)]), x, maxval(hnorm))) return
+            call row_curvatures(model, t, xr, dirs(:, 1:ndir), gnorm, hnorm, dg, stat)
+            if (stat /= 0) return
+            gx = gr
+            ell_x = rms(xr)
+            if (.not. (ell_x > 0.0_wp)) ell_x = 1.0_wp
+        end subroutine measure_at_representative
         ! |d free/dx| along the generic direction (central differences of the model's f)
         real(wp) function force_stiffness() result(k)
             real(wp) :: fp(size(model%f)), fm(size(model%f)), zp(size(z)), w(nx), d
@@ -330,6 +355,34 @@ contains
             dirs(:, ndir) = w/big
         end subroutine add_direction
     end subroutine dense_motion_scales
+
+    !> The representative of x in the period of an angle: each x_j beyond +-pi
+    !! measured from its nearest multiple of 2 pi (x_j itself where |x_j| <= pi). It is
+    !! the state a singular start's prediction measures when the constraint's G is the
+    !! same there (same_geometry): an angle's 2 pi representatives are one configuration,
+    !! and the scale of x (its rms) is then that of the representative, not of the winding.
+    pure function periodic_representative(x) result(xr)
+        real(wp), intent(in) :: x(:)
+        real(wp) :: xr(size(x))
+        real(wp), parameter :: two_pi = 6.283185307179586476925286766559_wp
+        integer :: j
+        xr = x
+        do j = 1, size(x)
+            if (abs(x(j)) > 0.5_wp*two_pi .and. abs(x(j)) < huge(1.0_wp)) &
+                xr(j) = x(j) - two_pi*anint(x(j)/two_pi)
+        end do
+    end function periodic_representative
+
+    !> True if the constraint Jacobian's values ga (at x) and gb (at another state
+    !! that should be the same configuration, e.g. periodic_representative(x)) agree
+    !! to the rounding of x: max |ga - gb| <= 1e3 u max(1, max|x|) max(max|ga|, slope),
+    !! slope the largest change of G per unit length (the rows' hnorm of row_curvatures).
+    pure logical function same_geometry(ga, gb, x, slope) result(same)
+        real(wp), intent(in) :: ga(:), gb(:), x(:), slope
+        same = .true.
+        if (size(ga) == 0 .or. size(x) == 0) return
+        same = maxval(abs(ga - gb)) <= 1.0e3_wp*epsilon(1.0_wp)*max(1.0_wp, maxval(abs(x)))*max(maxval(abs(ga)), slope)
+    end function same_geometry
 
     !> Root mean square of a vector (0 if empty).
     pure real(wp) function rms(a)

@@ -57,6 +57,7 @@ contains
                  new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented), &
                  new_test('rate_continuous_at_rest', rate_continuous_at_rest), &
                  new_test('eps_at_singular_start', eps_at_singular_start), &
+                 new_test('eps_is_translation_free', eps_is_translation_free), &
                  new_test('constraint_mode_step', constraint_mode_step_values), &
                  new_test('taylor_layer_growth', taylor_layer_growth)]
     end function defaults_tests
@@ -168,6 +169,43 @@ contains
         call chk%true(size(solver%singular_intervals(), 2) == 1, 'the start is a singular interval')
         call solver%destroy()
     end subroutine eps_at_singular_start
+
+    ! The slider crank's start with th1 shifted by 2 pi k (k = 0, 1, 10, 100; th2 = pi - th1
+    ! shifted with it, as ex52 starts it: the same physical state) resolves the same eps,
+    ! at a singular start (th1 = 1e-8, w1 = 20: a vanishing row's prediction measured
+    ! the scale of x by rms(x), and eps was 3.8e-5, 9.5e-4, 22 and 2.4e5; now from the
+    ! angles' representative in (-pi, pi]) and at a regular one (th1 = 1), in the
+    ! eliminated and the augmented formulation. The representative of th1 + 2 pi k is
+    ! th1 to the rounding of th1 + 2 pi k (1e-13 at k = 100): 1e-6 relative bounds it.
+    subroutine eps_is_translation_free(chk)
+        type(checker), intent(inout) :: chk
+        real(wp), parameter :: starts(2) = [1.0e-8_wp, 1.0_wp]
+        integer, parameter :: shifts(4) = [0, 1, 10, 100]
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts, resolved(size(shifts))
+        integer :: stat, i, k, f
+        real(wp) :: th1
+        character(len=80) :: label
+        do f = 1, 2
+            do i = 1, size(starts)
+                do k = 1, size(shifts)
+                    opts = solver_options()
+                    opts%rtol = 1.0e-3_wp
+                    opts%atol = 1.0e-3_wp
+                    if (f == 2) opts%formulation = formulation_augmented
+                    th1 = starts(i) + 2.0_wp*pi*shifts(k)
+                    call solver%init(new_slider_crank(9.8_wp), 0.0_wp, [th1, pi - th1], [20.0_wp, -20.0_wp], opts, stat)
+                    call chk%equal(stat, regdae_success, 'init')
+                    resolved(k) = solver%options()
+                    call solver%destroy()
+                end do
+                write (label, '(a,es8.1,a,i0)') ' at th1 = ', starts(i), ' + 2 pi k, formulation ', f
+                write (*, '(a,4es16.8)') '    eps'//trim(label)//': ', resolved(:)%eps
+                call chk%close_rel(resolved(2:)%eps, spread(resolved(1)%eps, 1, size(shifts) - 1), 1.0e-6_wp, &
+                                   'the same eps'//trim(label))
+            end do
+        end do
+    end subroutine eps_is_translation_free
 
     ! Example 5.2 in Cartesian coordinates (the chain of 2 links with the slider: two
     ! singular passes on [0, 2]) with every option at its default but the tolerances,
