@@ -69,6 +69,7 @@ module regdae_augmented_system
         ! workspace, natural numbering
         real(wp), allocatable :: un(:), upn(:), rn(:)
         real(wp), allocatable :: mvals(:), gvals(:), f(:), g(:), gt(:), c(:), w(:), gvals2(:), tmp_m(:)
+        real(wp), allocatable :: qshift(:)   ! q +- d v of the curvature's difference quotient
         ! the saddle-point matrix K = [M G^T; G 0] of the sigma_min estimate: its ordering
         ! (kperm(k): the natural index of K's unknown k), bandwidths, band storage, pivots
         integer, allocatable :: kperm(:), knew(:), kpiv(:)
@@ -176,7 +177,7 @@ contains
         allocate (self%un(neq), self%upn(neq), self%rn(neq), source=0.0_wp)
         allocate (self%mvals(self%st%mass%nnz()), self%gvals(self%st%constraint%nnz()), &
                   self%gvals2(self%st%constraint%nnz()), self%f(n), self%g(m), self%gt(m), self%c(m), self%w(m), &
-                  self%tmp_m(m), source=0.0_wp)
+                  self%tmp_m(m), self%qshift(n), source=0.0_wp)
         stat = regdae_success
     contains
         logical function sizes_fit(p, rows, cols, name)
@@ -653,8 +654,10 @@ contains
         recoverable = .true.
         n = self%n
         m = self%m
-        self%un(self%perm) = u
-        self%upn(self%perm) = up
+        do k = 1, self%neq   ! (a loop: the vector subscript on the left made a heap temporary)
+            self%un(self%perm(k)) = u(k)
+            self%upn(self%perm(k)) = up(k)
+        end do
         associate (q => self%un(self%iq + 1:self%iq + n), v => self%un(self%iv + 1:self%iv + n), &
                    qp => self%upn(self%iq + 1:self%iq + n), vp => self%upn(self%iv + 1:self%iv + n), &
                    y => self%un(self%iy + 1:self%iy + m), rn => self%rn, gp => self%st%constraint, &
@@ -679,9 +682,11 @@ contains
                     ! c = d/ds [G v + g_t](q + s v, t + s) at s = 0, central difference
                     ! with the sparse G (the rule of `curvature_difference`)
                     d = central_difference_step(max(maxval(abs(q)), abs(t)))/max(1.0_wp, maxval(abs(v)))
-                    call velocity_defect(t + d, q + d*v, v, self%c)
+                    self%qshift = q + d*v
+                    call velocity_defect(t + d, self%qshift, v, self%c)
                     if (ustat /= 0) return
-                    call velocity_defect(t - d, q - d*v, v, self%tmp_m)
+                    self%qshift = q - d*v
+                    call velocity_defect(t - d, self%qshift, v, self%tmp_m)
                     if (ustat /= 0) return
                     self%c = (self%c - self%tmp_m)/(2.0_wp*d)
                 end if

@@ -42,6 +42,8 @@ module regdae_mechanical_problem
         type(sparsity_pattern) :: force_v        !! n x n: df/dq'; not set: empty (velocity-free forces)
         logical :: curvature_supplied = .false.  !! the problem overrides `constraint_curvature` (used as is;
                                                  !! otherwise a difference quotient of the sparse G)
+        logical :: mass_constant = .false.       !! M depends on neither q nor t (the work-energy balance then
+                                                 !! takes dM/dt = 0 instead of a difference quotient of M)
     end type mechanical_structure
 
     !> Abstract constrained mechanical system.

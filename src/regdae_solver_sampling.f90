@@ -128,9 +128,12 @@ contains
         real(wp), intent(in) :: t
         real(c_double), pointer :: u(:), up(:)
         type(augmented_system), pointer :: sys
-        real(wp) :: q(core%nx), v(core%nx), a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g, &
-                    sums(2)
+        real(wp), target :: z(2*core%nx)   ! (q, v): one block instead of two and the constructor [q, v]
+        real(wp) :: a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g, sums(2)
+        real(wp), pointer :: q(:), v(:)
         integer :: dstat, istat, wstat
+        q => z(1:core%nx)
+        v => z(core%nx + 1:2*core%nx)
         u => core%stiff%state()
         up => core%stiff%slope()
         sys => core%stiff%augmented()
@@ -154,12 +157,13 @@ contains
                 end if
                 if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
             end if
-            call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, [q, v])
+            call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, z)
             if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
         end if
         if (core%monitor%work_tol > 0.0_wp .and. associated(sys)) then   ! after sample_values: it knows
             call sys%unpack(u, up, y=y)                                    ! whether t is in a layer
-            call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums)
+            call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums, &
+                                          constant=sys%st%mass_constant)
             call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v))
         end if
     end subroutine sample_augmented

@@ -27,7 +27,8 @@ contains
     !! with the multiplier y = -lambda. With `pattern`, M comes in pattern order
     !! from `mass_values` (O(nnz)); else dense from `mass_matrix`. stat: the user
     !! routines' (0 on success).
-    subroutine kinetic_energy_and_power(problem, t, q, v, y, kinetic, power, stat, pattern, sums, moving, path)
+    subroutine kinetic_energy_and_power(problem, t, q, v, y, kinetic, power, stat, pattern, sums, moving, path, &
+                                        constant)
         class(mechanical_problem), intent(inout) :: problem
         real(wp), intent(in) :: t, q(:), v(:), y(:)
         real(wp), intent(out) :: kinetic, power
@@ -39,7 +40,10 @@ contains
         real(wp), intent(in), optional :: path(:)    !! the velocity q' of the path q(t) when it is not v (an
                                                      !! interpolant's): P = q'^T f + v^T (dM/dt along q') v / 2 + y^T g_t
                                                      !! only (kinetic = 0, sums(1) = 0)
+        logical, intent(in), optional :: constant    !! .true.: M depends on neither q nor t (declared), dM/dt = 0
+                                                     !! without the difference quotient (which gives exactly 0 then)
         real(wp) :: d, vmax
+        logical :: quotient
         real(wp), allocatable :: dense(:, :), vals(:)   ! M at a point (one allocation for the three)
         real(wp), allocatable, target :: work(:)         ! f, M v, dM/dt v, q', q shifted and g_t: one allocation
         integer :: n                                     ! (a heap block each as automatic arrays: 1/4 of the cost)
@@ -66,7 +70,9 @@ contains
             end if
             vmax = maxval(abs(u))
             mdot_v = 0.0_wp
-            if (vmax > 0.0_wp) then   ! (M(q + d u) - M(q - d u)) v / (2 d), u = q'
+            quotient = (vmax > 0.0_wp)
+            if (present(constant)) quotient = quotient .and. .not. constant
+            if (quotient) then   ! (M(q + d u) - M(q - d u)) v / (2 d), u = q'
                 d = central_difference_step(max(maxval(abs(q)), abs(t)))/max(1.0_wp, vmax)
                 qs = q + d*u
                 call mass_times(qs, t, v, mdot_v)

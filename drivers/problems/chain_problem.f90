@@ -86,6 +86,7 @@ contains
         integer :: i, k
         st%declared = .true.
         st%curvature_supplied = .true.
+        st%mass_constant = .true.   ! every joint's mass, whatever q
         st%mass = diagonal_pattern(self%n)
         st%force_q = empty_pattern(self%n, self%n)
         st%force_v = empty_pattern(self%n, self%n)
