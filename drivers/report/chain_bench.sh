@@ -455,6 +455,20 @@ the saddle-point matrix and three to eight solves; by hand on 2026-11-29, rtol 1
 nout=1000 instead of 100 adds 2.8 ms to regdae's time and 0.3 ms to the peer's, about 5 ms before the
 estimate started from the last output's vector and stopped when it settled).
 
+Measured by hand on 2026-12-06 (not regenerated; the tables above are from the last full run,
+before these changes): where M is diagonal the monitor now keeps its last sigma_min(GB) estimate
+while Weyl's bound on G M^-1/2 holds it within 1e-3 (2 estimates per run instead of 117-185), and
+a mass matrix declared constant (`mechanical_structure%mass_constant`, which the chain sets)
+spares the work-energy balance its difference quotient of M (doc/methods.md). The solve's
+instructions (callgrind, regdae's init and advances against the peer's run, damping=10) at rtol
+1e-3 / 1e-6 / 1e-9: 11.40M / 19.65M / 42.19M before, 7.09M / 14.10M / 34.83M at e1d04d5, against
+the peer's 5.85M / 12.65M / 27.92M (1.95 / 1.55 / 1.51x -> 1.21 / 1.11 / 1.25x), errors
+identical; at matched accuracy 1e-7 ... 1e-11 by instructions 1.90 / 2.46 / 1.51 / 1.03 / 1.26x ->
+1.20 / 1.61 / 1.08 / 0.76 / 0.98x (issue 21's 1x: still missed at 1e-7 ... 1e-9). What is left:
+regdae's IDA step is cheaper than the peer's (109k against 145k instructions at rtol 1e-9), but
+the IDA path runs at the tighter internal tolerance of doc/methods.md and takes 278 steps against
+the peer's 193 there; the setup costs 1.34M (0.66M of it IDACalcIC, which factors twice).
+
 TXT
 # Issue 11: the small stiff chain, integrator=auto against hand-chosen configurations.
 awk -f "$(dirname "$0")/chain_errors.awk" "$raw/chain_switch.txt" >"$out/switch_rows.txt"
