@@ -244,7 +244,9 @@ contains
         integer :: i
 
         ! max(maxval(abs(x)), abs(t)) and max(1, maxval(abs(v))) by one loop: the same
-        ! maxima where x, v and t hold no NaN
+        ! maxima where x, v and t hold no NaN (a NaN in x or v, which maxval skips, makes d
+        ! NaN here; g or G v is NaN then too, and `evaluate` reports the state non-finite
+        ! either way)
         scale_x = abs(t)
         scale_v = 1.0_wp
         do i = 1, n
