@@ -245,8 +245,8 @@ contains
 
         ! max(maxval(abs(x)), abs(t)) and max(1, maxval(abs(v))) by one loop: the same
         ! maxima where x, v and t hold no NaN (a NaN in x or v, which maxval skips, makes d
-        ! NaN here; g or G v is NaN then too, and `evaluate` reports the state non-finite
-        ! either way)
+        ! and the curvature NaN here: `evaluate` then reports the state non-finite, as it
+        ! did unless G and g_t depend on no NaN entry)
         scale_x = abs(t)
         scale_v = 1.0_wp
         do i = 1, n
