@@ -202,15 +202,15 @@ contains
     ! Cholesky factor of M(q, t) (or of M^T M + mu I), reused while (t, q) is
     ! unchanged: `rhs` and `matrix_b` are evaluated at the same point.
     ! stat = regdae_err_mass_matrix if M is not symmetric positive definite (mu = 0).
-    subroutine factor_mass(self, t, q, stat)
+    subroutine factor_mass(self, t, n, q, stat)
         class(mechanical_problem), intent(inout) :: self
-        real(wp), intent(in) :: t, q(:)
+        integer, intent(in) :: n   !! size(q)
+        real(wp), intent(in) :: t, q(n)   ! (explicit shape: no strides in its loops)
         integer, intent(inout) :: stat
         real(wp), parameter :: symmetry_tol = 1.0e-12_wp
-        integer :: info, n, i, astat
+        integer :: info, i, astat
         logical :: ok
 
-        n = size(q)
         if (self%have_factor .and. self%factor_t == t) then
             if (same_point(n, self%factor_q, q)) return
         end if
@@ -252,7 +252,9 @@ contains
             return
         end if
         self%factor_t = t
-        self%factor_q(:) = q
+        do i = 1, n   ! (a loop: memcpy's call cost more than the few entries)
+            self%factor_q(i) = q(i)
+        end do
         self%have_factor = .true.
     end subroutine factor_mass
 
@@ -274,7 +276,7 @@ contains
         real(wp), intent(out) :: val(:)
         integer, intent(inout) :: stat
         integer :: info
-        call factor_mass(self, t, x, stat)
+        call factor_mass(self, t, size(x), x, stat)
         if (stat /= 0) return
         call self%forces(t, x, v, val, stat)
         if (stat /= 0) return
@@ -291,7 +293,7 @@ contains
         real(wp), intent(in) :: t, x(:), v(:)
         real(wp), intent(out) :: a(:, :)
         integer, intent(inout) :: stat
-        call factor_mass(self, t, x, stat)   ! allocates gx_work on first use
+        call factor_mass(self, t, size(x), x, stat)   ! allocates gx_work on first use
         if (stat /= 0) return
         call self%constraint_jacobian(t, x, self%gx_work, stat)
         if (stat /= 0) return
@@ -305,7 +307,7 @@ contains
         real(wp), intent(out) :: a(:, :)
         integer, intent(inout) :: stat
         integer :: info, j
-        call factor_mass(self, t, x, stat)
+        call factor_mass(self, t, size(x), x, stat)
         if (stat /= 0) return
         if (self%n <= small_n .and. .not. self%mass_damping > 0.0_wp) then
             ! B = M^-1 G^T column by column, directly in a.
@@ -341,6 +343,21 @@ contains
         logical, intent(out) :: ok
         integer :: i, j
         real(wp) :: amax, asym
+        if (n == 2) then
+            ! the loops below unrolled, in their order (the same maxima, NaN included)
+            l(1, 1) = a(1, 1)
+            l(2, 1) = a(2, 1)
+            l(1, 2) = a(1, 2)
+            l(2, 2) = a(2, 2)
+            amax = max(0.0_wp, abs(a(1, 1)), abs(a(1, 1)))
+            asym = max(0.0_wp, abs(a(1, 1) - a(1, 1)))
+            amax = max(amax, abs(a(2, 1)), abs(a(1, 2)))
+            asym = max(asym, abs(a(2, 1) - a(1, 2)))
+            amax = max(amax, abs(a(2, 2)), abs(a(2, 2)))
+            asym = max(asym, abs(a(2, 2) - a(2, 2)))
+            ok = (asym <= tol*amax)
+            return
+        end if
         l(:, :) = a
         amax = 0.0_wp
         asym = 0.0_wp

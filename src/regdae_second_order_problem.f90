@@ -231,17 +231,29 @@ contains
     end subroutine curvature_difference
 
     ! The difference of curvature_difference with the shifted positions, the backward value and G
-    ! in the caller's buffers (explicit shape: no descriptors built for them).
+    ! in the caller's buffers; every array of explicit shape (x, v and val too: their assumed
+    ! shapes' stride-general loops were 170 instructions a call).
     subroutine curvature_in(self, t, x, v, n, m, val, stat, shifted, minus, gx)
         class(second_order_problem), intent(inout) :: self
-        real(wp), intent(in) :: t, x(:), v(:)
         integer, intent(in) :: n, m
-        real(wp), intent(out) :: val(:)
+        real(wp), intent(in) :: t, x(n), v(n)
+        real(wp), intent(out) :: val(m)
         integer, intent(inout) :: stat
         real(wp), intent(out) :: shifted(n), minus(m), gx(self%m*self%n)
-        real(wp) :: d
+        real(wp) :: d, scale_x, scale_v
+        integer :: i
 
-        d = central_difference_step(max(maxval(abs(x)), abs(t)))/max(1.0_wp, maxval(abs(v)))
+        ! max(maxval(abs(x)), abs(t)) and max(1, maxval(abs(v))) by one loop: the same
+        ! maxima where x, v and t hold no NaN (a NaN in x or v, which maxval skips, makes d
+        ! and the curvature NaN here: `evaluate` then reports the state non-finite, as it
+        ! did unless G and g_t depend on no NaN entry)
+        scale_x = abs(t)
+        scale_v = 1.0_wp
+        do i = 1, n
+            scale_x = max(scale_x, abs(x(i)))
+            scale_v = max(scale_v, abs(v(i)))
+        end do
+        d = central_difference_step(scale_x)/scale_v
         shifted = x + d*v
         call jacobian_times_velocity(self, t + d, shifted, v, gx, val, stat)
         if (stat /= 0) return

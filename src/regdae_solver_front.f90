@@ -642,14 +642,21 @@ contains
 
         ! x (and v) from the integrator's state u (the augmented formulation's unpacked).
         subroutine copy_state()
+            integer :: i
             sys => stepper%augmented()
             if (associated(sys)) then
                 call sys%unpack(u, u, q=x)
                 if (present(v)) call sys%unpack(u, u, v=v)
                 return
             end if
-            x = u(1:nx)
-            if (present(v)) v = u(nx + 1:2*nx)
+            do i = 1, nx   ! (loops over the few entries: cheaper than the section assignments)
+                x(i) = u(i)
+            end do
+            if (present(v)) then
+                do i = 1, nx
+                    v(i) = u(nx + i)
+                end do
+            end if
         end subroutine copy_state
 
         subroutine fail(code, text)
