@@ -19,6 +19,8 @@
 !! The residuals IDA integrates are the eliminated form (y(z) solved inside) and
 !! the multiplier form with (z, y) as unknowns, whose algebraic rows are the
 !! regularized equations themselves (Baumgarte: r - G f with G v' in place of G f).
+!! What the monitor and the checks ask of the model (drift, invariant, sigma_min(GB),
+!! work): submodule `regdae_regularization_queries`.
 module regdae_regularization
     use regdae_kinds, only: wp
     use regdae_format, only: format_real, format_int
@@ -26,13 +28,11 @@ module regdae_regularization
                              regdae_err_not_psd, regdae_err_singular, regdae_err_mass_matrix, regdae_err_memory, &
                              status_message
     use regdae_problem, only: dae_problem
-    use regdae_velocity_index2, only: velocity_index2_problem
     use regdae_second_order_problem, only: second_order_problem
     use regdae_higher_order_problem, only: higher_order_problem, taylor_weights
     use regdae_options, only: solver_options, method_baumgarte, method_trust_region, method_direct, option_auto
     use regdae_damped_lsq, only: damped_lsq_workspace, damped_lsq_solve, shifted_spd_solve, square_solve
     use regdae_mechanical_problem, only: mechanical_problem
-    use regdae_work_energy, only: kinetic_energy_and_power
     implicit none
     private
 
@@ -115,6 +115,73 @@ module regdae_regularization
         !> F(z) at the last evaluated point for a given y: (x', ..., f - B y).
         procedure :: dynamics_slope
     end type regularized_dae
+
+    ! What the monitor and the checks ask of the model (submodule regdae_regularization_queries).
+    interface
+        module function position_drift(self, t, z, stat) result(drift)
+            class(regularized_dae), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)   !! the last evaluated point
+            integer, intent(out) :: stat      !! the user routine's status (index 2)
+            real(wp) :: drift
+        end function position_drift
+
+        module function invariant_value(self, t, z, stat) result(val)
+            class(regularized_dae), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)
+            integer, intent(out) :: stat
+            real(wp) :: val
+        end function invariant_value
+
+        !> G of the user's position constraint at (t, x) (for a second-order problem
+        !! integrated at index 2: of its g, not of the velocity constraint).
+        module subroutine position_jacobian(self, t, x, gx, stat)
+            class(regularized_dae), intent(inout) :: self
+            real(wp), intent(in) :: t, x(:)
+            real(wp), intent(out) :: gx(:, :)
+            integer, intent(out) :: stat
+        end subroutine position_jacobian
+
+        module subroutine free_slope(self, t, z, f, stat)
+            class(regularized_dae), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)
+            real(wp), intent(out) :: f(:)    !! length n (the model's f)
+            integer, intent(out) :: stat
+        end subroutine free_slope
+
+        module function conditioning_with(self, t, z, gx, stat) result(sigma)
+            class(regularized_dae), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)     !! the last evaluated point
+            real(wp), intent(in) :: gx(:, :)    !! a position Jacobian, m x n of the user's problem
+            integer, intent(out) :: stat
+            real(wp) :: sigma
+        end function conditioning_with
+
+        module logical function is_mechanical(self)
+            class(regularized_dae), intent(in) :: self
+        end function is_mechanical
+
+        !> The mechanical problem behind the model (order 2, or under the velocity form of
+        !! index 2), null for other problems. A pointer into the model: the caller's model
+        !! must be a target, and the pointer is not kept beyond the caller's use of it.
+        module function mechanical(self) result(problem)
+            class(regularized_dae), intent(in), target :: self
+            class(mechanical_problem), pointer :: problem
+        end function mechanical
+
+        module subroutine work_sample(self, t, z, kinetic, power, stat, sums)
+            class(regularized_dae), intent(inout), target :: self
+            real(wp), intent(in) :: t, z(:)     !! the last evaluated point
+            real(wp), intent(out) :: kinetic, power
+            integer, intent(out) :: stat
+            real(wp), intent(out), optional :: sums(2)   !! see kinetic_energy_and_power
+        end subroutine work_sample
+
+        !> sigma_min(GB) at the last evaluated point.
+        module function sigma_min_gb(self) result(sigma)
+            class(regularized_dae), intent(inout) :: self
+            real(wp) :: sigma
+        end function sigma_min_gb
+    end interface
 
 contains
 
@@ -544,180 +611,6 @@ contains
             self%message = status_message(stat)//' in the multiplier solve at t = '//format_real(t)
         end select
     end subroutine solve_multiplier
-
-    function position_drift(self, t, z, stat) result(drift)
-        class(regularized_dae), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)   !! the last evaluated point
-        integer, intent(out) :: stat      !! the user routine's status (index 2)
-        real(wp) :: drift
-        stat = 0
-        drift = -1.0_wp
-        if (self%order >= 2) then
-            drift = maxval(abs(self%g), 1)
-        else if (allocated(self%first)) then
-            select type (p => self%first)
-            type is (velocity_index2_problem)
-                block
-                    real(wp) :: g(self%m)
-                    call p%second%constraint(t, z(1:p%second%n), g, stat)
-                    if (stat == 0) drift = maxval(abs(g), 1)
-                end block
-            end select
-        end if
-        if (self%m == 0) drift = max(drift, 0.0_wp)
-    end function position_drift
-
-    function invariant_value(self, t, z, stat) result(val)
-        use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-        class(regularized_dae), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        integer, intent(out) :: stat
-        real(wp) :: val
-        integer :: n
-        stat = 0
-        val = ieee_value(1.0_wp, ieee_quiet_nan)
-        if (allocated(self%second)) then
-            n = self%n
-            call self%second%invariant(t, z(1:n), z(n + 1:2*n), val, stat)
-        else if (allocated(self%higher)) then
-            return
-        else if (allocated(self%first)) then
-            select type (p => self%first)
-            type is (velocity_index2_problem)
-                n = p%second%n
-                call p%second%invariant(t, z(1:n), z(n + 1:2*n), val, stat)
-            end select
-        end if
-    end function invariant_value
-
-    !> G of the user's position constraint at (t, x) (for a second-order problem
-    !! integrated at index 2: of its g, not of the velocity constraint).
-    subroutine position_jacobian(self, t, x, gx, stat)
-        class(regularized_dae), intent(inout) :: self
-        real(wp), intent(in) :: t, x(:)
-        real(wp), intent(out) :: gx(:, :)
-        integer, intent(out) :: stat
-        stat = 0
-        if (allocated(self%second)) then
-            call self%second%constraint_jacobian(t, x, gx, stat)
-        else if (allocated(self%higher)) then
-            call self%higher%constraint_jacobian(t, x, gx, stat)
-        else
-            select type (p => self%first)
-            type is (velocity_index2_problem)
-                call p%second%constraint_jacobian(t, x, gx, stat)
-            class default
-                call p%constraint_jacobian(t, x, gx, stat)
-            end select
-        end if
-    end subroutine position_jacobian
-
-    subroutine free_slope(self, t, z, f, stat)
-        class(regularized_dae), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        real(wp), intent(out) :: f(:)    !! length n (the model's f)
-        integer, intent(out) :: stat
-        stat = 0
-        if (allocated(self%second)) then
-            call self%second%rhs(t, z(1:self%n), z(self%n + 1:2*self%n), f, stat)
-        else if (allocated(self%higher)) then
-            call self%higher%rhs(t, reshape(z(1:self%order*self%n), [self%n, self%order]), f, stat)
-        else
-            call self%first%rhs(t, z, f, stat)
-        end if
-    end subroutine free_slope
-
-    function conditioning_with(self, t, z, gx, stat) result(sigma)
-        class(regularized_dae), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)     !! the last evaluated point
-        real(wp), intent(in) :: gx(:, :)    !! a position Jacobian, m x n of the user's problem
-        integer, intent(out) :: stat
-        real(wp) :: sigma
-        real(wp), allocatable :: b(:, :), gb(:, :)
-        integer :: n
-        stat = 0
-        n = size(gx, 2)
-        allocate (b(n, self%m), gb(self%m, self%m))
-        if (allocated(self%second)) then
-            call self%second%matrix_b_from_jacobian(t, z(1:n), z(n + 1:2*n), gx, b, stat)
-        else if (allocated(self%higher)) then
-            b = self%b
-        else
-            select type (p => self%first)
-            type is (velocity_index2_problem)
-                call p%second%matrix_b_from_jacobian(t, z(1:n), z(n + 1:2*n), gx, b, stat)
-            class default
-                b = self%b
-            end select
-        end if
-        sigma = -1.0_wp
-        if (stat /= 0) return
-        gb = matmul(gx, b)
-        sigma = self%lsq_ws%smallest_singular_value(gb)
-    end function conditioning_with
-
-    logical function is_mechanical(self)
-        class(regularized_dae), intent(in) :: self
-        class(mechanical_problem), allocatable :: mold   ! unallocated: its declared type
-        is_mechanical = .false.
-        if (allocated(self%second)) then
-            is_mechanical = extends_type_of(self%second, mold)
-        else if (allocated(self%first)) then
-            select type (p => self%first)
-            type is (velocity_index2_problem)
-                is_mechanical = extends_type_of(p%second, mold)
-            end select
-        end if
-    end function is_mechanical
-
-    !> The mechanical problem behind the model (order 2, or under the velocity form of
-    !! index 2), null for other problems. A pointer into the model: the caller's model
-    !! must be a target, and the pointer is not kept beyond the caller's use of it.
-    function mechanical(self) result(problem)
-        class(regularized_dae), intent(in), target :: self
-        class(mechanical_problem), pointer :: problem
-        problem => null()
-        if (allocated(self%second)) then
-            select type (p => self%second)
-            class is (mechanical_problem)
-                problem => p
-            end select
-        else if (allocated(self%first)) then
-            select type (p => self%first)
-            type is (velocity_index2_problem)
-                select type (pp => p%second)
-                class is (mechanical_problem)
-                    problem => pp
-                end select
-            end select
-        end if
-    end function mechanical
-
-    subroutine work_sample(self, t, z, kinetic, power, stat, sums)
-        class(regularized_dae), intent(inout), target :: self
-        real(wp), intent(in) :: t, z(:)     !! the last evaluated point
-        real(wp), intent(out) :: kinetic, power
-        integer, intent(out) :: stat
-        real(wp), intent(out), optional :: sums(2)   !! see kinetic_energy_and_power
-        real(wp) :: y(self%m)
-        class(mechanical_problem), pointer :: p
-        kinetic = 0.0_wp
-        power = 0.0_wp
-        stat = -1
-        if (.not. self%is_mechanical()) return
-        call self%solve_multiplier(t, y, stat)
-        if (stat /= 0) return
-        p => self%mechanical()
-        if (associated(p)) &
-            call kinetic_energy_and_power(p, t, z(1:p%n), z(p%n + 1:2*p%n), y, kinetic, power, stat, sums=sums)
-    end subroutine work_sample
-
-    !> sigma_min(GB) at the last evaluated point.
-    function sigma_min_gb(self) result(sigma)
-        class(regularized_dae), intent(inout) :: self
-        real(wp) :: sigma
-        sigma = self%lsq_ws%smallest_singular_value(self%gb)
-    end function sigma_min_gb
 
     !> Eliminated formulation: res = z' - (v, f - B y(z)) (order 2) or
     !! x' - f + B y(x) (order 1), y from `solve_multiplier`.

@@ -11,8 +11,9 @@
 !! in charge to the output time, the outcome acted on, the outputs and the
 !! diagnostics' status), the statistics and the events; and what
 !! regdae_solver_trust needs to verify singular passes (submodule
-!! `regdae_solver_passes`). The state of one problem is `regdae_solver_core`'s
-!! record; the monitor's start and samples are in `regdae_solver_sampling`.
+!! `regdae_solver_passes`); the queries in submodule `regdae_solver_reports`. The state of
+!! one problem is `regdae_solver_core`'s record; the monitor's start and samples are in
+!! `regdae_solver_sampling`.
 !!
 !! ```fortran
 !! type(solver_engine) :: solver
@@ -164,7 +165,53 @@ module regdae_solver_front
         final :: solver_finalize
     end type solver_engine
 
-    ! The init paths (submodule regdae_solver_init).
+    ! The queries and the monitor's alarm as a status (submodule regdae_solver_reports).
+    interface
+        module function solver_message(self) result(msg)
+            class(solver_engine), intent(in) :: self
+            character(len=:), allocatable :: msg
+        end function solver_message
+
+        module function solver_events(self) result(text)
+            class(solver_engine), intent(in) :: self
+            character(len=:), allocatable :: text
+        end function solver_events
+
+        module function solver_options_in_force(self) result(opts)
+            class(solver_engine), intent(in) :: self
+            type(solver_options) :: opts
+        end function solver_options_in_force
+
+        module integer function solver_formulation(self)
+            class(solver_engine), intent(in) :: self
+        end function solver_formulation
+
+        module integer function solver_linear_solver(self)
+            class(solver_engine), intent(in) :: self
+        end function solver_linear_solver
+
+        module integer function solver_lsq_method(self)
+            class(solver_engine), intent(in) :: self
+        end function solver_lsq_method
+
+        module real(wp) function solver_sigma_min(self)
+            class(solver_engine), intent(in) :: self
+        end function solver_sigma_min
+
+        module function solver_singular_intervals(self) result(intervals)
+            class(solver_engine), intent(in) :: self
+            real(wp), allocatable :: intervals(:, :)
+        end function solver_singular_intervals
+
+        ! The status and message of an advance that the monitor's alarm stops.
+        module subroutine alarm_status(core, code, msg)
+            type(solver_core), intent(in) :: core
+            integer, intent(out) :: code
+            character(len=:), allocatable, intent(out) :: msg
+        end subroutine alarm_status
+    end interface
+
+    ! The init paths and destroy (submodule regdae_solver_init).
     interface
         module subroutine solver_init_first(self, problem, t0, x0, opts, stat, atol_vector)
             class(solver_engine), intent(inout) :: self
@@ -225,6 +272,15 @@ module regdae_solver_front
             type(solver_options), intent(in) :: opts
             integer, intent(out) :: stat
         end subroutine solver_start
+
+        module subroutine solver_destroy(self)
+            class(solver_engine), intent(inout) :: self
+        end subroutine solver_destroy
+
+        module subroutine solver_assign(lhs, rhs)
+            class(solver_engine), intent(inout) :: lhs
+            class(solver_engine), intent(in) :: rhs
+        end subroutine solver_assign
     end interface
 
     ! What regdae_solver_trust needs to verify singular passes with companions
@@ -669,109 +725,14 @@ contains
         ! The monitor saw the velocity jump across a singular interval, or the
         ! position constraint drift: stop.
         logical function branch_alarm()
+            integer :: code
             branch_alarm = core%monitor%alarm
             if (.not. branch_alarm) return
             if (present(y)) y = ieee_value(1.0_wp, ieee_quiet_nan)
-            if (core%monitor%alarm_kind == alarm_jump) then
-                call fail(regdae_err_branch, core%monitor%alarm_message// &
-                          ': the solution probably changed branch there; x(tout) is returned but not trustworthy '// &
-                          '(a smaller rtol or eps'//trim(merge(', or index=3,', '             ', index2()))// &
-                          ' may help; jump_tol=0 turns this check off, at the risk of a run that leaves the '// &
-                          'physical branch with status ok)')
-            else if (core%monitor%alarm_kind == alarm_work) then
-                call fail(regdae_err_work, core%monitor%alarm_message// &
-                          ': x is returned but not trustworthy (the constraint forces did work: a drift, a '// &
-                          'branch change or too stiff a regularization; a smaller rtol or smaller Baumgarte '// &
-                          'weights may help; work_tol=0 turns this check off, at the risk of a wrong answer '// &
-                          'with status ok)')
-            else if (core%monitor%alarm_kind == alarm_invariant) then
-                call fail(regdae_err_invariant, core%monitor%alarm_message// &
-                          ': x(tout) is returned but not trustworthy (a smaller rtol, or smaller Baumgarte weights, '// &
-                          'may help; invariant_tol=0 turns this check off)')
-            else if (.not. core%opts%curvature .and. .not. index2()) then
-                call fail(regdae_err_drift, core%monitor%alarm_message// &
-                          ': x(tout) is returned but not trustworthy (with curvature=no the constraint error '// &
-                          'has a floor of about |g_xx(v, v)|/gamma0 whatever the tolerance: curvature=yes '// &
-                          'removes it; drift_tol=0 turns this check off, at the risk of positions that violate '// &
-                          'the constraint with status ok)')
-            else
-                call fail(regdae_err_drift, core%monitor%alarm_message// &
-                          ': x(tout) is returned but not trustworthy (a smaller rtol'// &
-                          trim(merge(', index=3,', '          ', index2()))//' or a larger gamma may help; '// &
-                          'drift_tol=0 turns this check off, at the risk of positions that violate the '// &
-                          'constraint with status ok)')
-            end if
+            call alarm_status(core, code, msg)
+            call fail(code, msg)
         end function branch_alarm
-
-        ! The problem is integrated at index 2 (the constraint on velocities only).
-        logical function index2()
-            index2 = core%second_order .and. core%opts%index == 2
-        end function index2
     end subroutine solver_advance
-
-    function solver_message(self) result(msg)
-        class(solver_engine), intent(in) :: self
-        character(len=:), allocatable :: msg
-        if (allocated(self%last_message)) then
-            msg = self%last_message
-        else
-            msg = status_message(self%last_stat)
-        end if
-    end function solver_message
-
-    function solver_events(self) result(text)
-        class(solver_engine), intent(in) :: self
-        character(len=:), allocatable :: text
-        text = ''
-        if (associated(self%core)) then
-            if (allocated(self%core%events)) text = self%core%events
-        end if
-    end function solver_events
-
-    function solver_options_in_force(self) result(opts)
-        class(solver_engine), intent(in) :: self
-        type(solver_options) :: opts
-        if (.not. associated(self%core)) return
-        opts = self%core%opts
-        ! integrator=auto: the integrator in charge now (it switches along the run)
-        if (opts%integrator == integrator_auto) opts%integrator = self%core%active
-    end function solver_options_in_force
-
-    integer function solver_formulation(self)
-        class(solver_engine), intent(in) :: self
-        solver_formulation = 0
-        if (associated(self%core)) solver_formulation = self%core%formulation
-    end function solver_formulation
-
-    integer function solver_linear_solver(self)
-        class(solver_engine), intent(in) :: self
-        solver_linear_solver = 0
-        if (associated(self%core)) solver_linear_solver = self%core%linear_solver
-    end function solver_linear_solver
-
-    integer function solver_lsq_method(self)
-        class(solver_engine), intent(in) :: self
-        solver_lsq_method = 0
-        if (associated(self%core)) then
-            if (.not. self%core%augmented) solver_lsq_method = self%core%model%lsq
-        end if
-    end function solver_lsq_method
-
-    real(wp) function solver_sigma_min(self)
-        class(solver_engine), intent(in) :: self
-        solver_sigma_min = ieee_value(1.0_wp, ieee_quiet_nan)
-        if (associated(self%core)) solver_sigma_min = self%core%monitor%sigma_last
-    end function solver_sigma_min
-
-    function solver_singular_intervals(self) result(intervals)
-        class(solver_engine), intent(in) :: self
-        real(wp), allocatable :: intervals(:, :)
-        if (associated(self%core)) then
-            intervals = self%core%monitor%intervals()
-        else
-            allocate (intervals(2, 0))
-        end if
-    end function solver_singular_intervals
 
     ! Set the status of a call and its message.
     subroutine solver_record(self, code, text, stat)
@@ -787,33 +748,6 @@ contains
             self%last_message = text
         end if
     end subroutine solver_record
-
-    subroutine solver_destroy(self)
-        class(solver_engine), intent(inout) :: self
-        type(solver_core), pointer :: core
-
-        core => self%core
-        if (.not. associated(core)) return
-        if (allocated(core%stiff)) call core%stiff%free()
-        if (allocated(core%nonstiff)) call core%nonstiff%free()
-        if (associated(core%model)) deallocate (core%model)
-        deallocate (self%core)
-        self%core => null()
-    end subroutine solver_destroy
-
-    subroutine solver_assign(lhs, rhs)
-        class(solver_engine), intent(inout) :: lhs
-        class(solver_engine), intent(in) :: rhs
-        integer :: stat
-        if (associated(lhs%core) .and. associated(rhs%core)) then
-            if (associated(lhs%core, rhs%core)) return   ! a = a
-        end if
-        call lhs%destroy()
-        lhs%t = rhs%t
-        lhs%assigned = .true.
-        call lhs%record(regdae_err_not_initialized, 'a regdae_solver cannot be copied by assignment (it owns '// &
-                        'IDA memory): this one is uninitialized; call init on it', stat)
-    end subroutine solver_assign
 
     subroutine solver_finalize(self)
         type(solver_engine), intent(inout) :: self

@@ -3,7 +3,8 @@
 !! (`regdae_auto_parameters`), the monitor started and the first integrator
 !! created in the core's slot: dopri5, Radau IIA or IDA on the eliminated or
 !! multiplier formulation (solver_start), IDA or Radau IIA on the augmented formulation of a
-!! mechanical problem (solver_start_augmented).
+!! mechanical problem (solver_start_augmented); and destroy, and the assignment that
+!! does not copy a solver.
 submodule (regdae_solver_front) regdae_solver_init
     use regdae_second_order_problem, only: velocity_constraint
     use regdae_mechanical_problem, only: mechanical_structure, structured_velocity_constraint
@@ -498,5 +499,30 @@ contains
         call self%record(code, text, stat)
         call self%destroy()
     end function start_failed
+
+
+    module procedure solver_destroy
+        type(solver_core), pointer :: core
+
+        core => self%core
+        if (.not. associated(core)) return
+        if (allocated(core%stiff)) call core%stiff%free()
+        if (allocated(core%nonstiff)) call core%nonstiff%free()
+        if (associated(core%model)) deallocate (core%model)
+        deallocate (self%core)
+        self%core => null()
+    end procedure solver_destroy
+
+    module procedure solver_assign
+        integer :: stat
+        if (associated(lhs%core) .and. associated(rhs%core)) then
+            if (associated(lhs%core, rhs%core)) return   ! a = a
+        end if
+        call lhs%destroy()
+        lhs%t = rhs%t
+        lhs%assigned = .true.
+        call lhs%record(regdae_err_not_initialized, 'a regdae_solver cannot be copied by assignment (it owns '// &
+                        'IDA memory): this one is uninitialized; call init on it', stat)
+    end procedure solver_assign
 
 end submodule regdae_solver_init
