@@ -157,6 +157,9 @@ contains
         nx = core%nx
         opts = core%opts
         opts%eps = core%model%eps   ! the automatic eps in force (raised along the run)
+        ! IDA's first step after a switch: the explicit method's last one (at its stability limit)
+        ! rather than IDA's own guess from the distance to the next output
+        if (.not. from_start .and. opts%h_init == 0.0_wp) opts%h_init = core%nonstiff%last_step()
         select type (problem => core%model%second)
         class is (mechanical_problem)
             call sys%setup(problem, opts, stat)

@@ -43,7 +43,8 @@ module regdae_mechanical_problem
         logical :: curvature_supplied = .false.  !! the problem overrides `constraint_curvature` (used as is;
                                                  !! otherwise a difference quotient of the sparse G)
         logical :: mass_constant = .false.       !! M depends on neither q nor t (the work-energy balance then
-                                                 !! takes dM/dt = 0 instead of a difference quotient of M)
+                                                 !! takes dM/dt = 0 instead of a difference quotient of M, and
+                                                 !! M is factored once per run)
     end type mechanical_structure
 
     !> Abstract constrained mechanical system.
@@ -56,6 +57,7 @@ module regdae_mechanical_problem
         real(wp), allocatable :: factor_q(:)
         real(wp) :: factor_t = 0.0_wp
         logical :: have_factor = .false.
+        logical :: factor_fixed = .false.       ! M declared constant: the factor is kept for every (q, t)
     contains
         !> M(q, t), n x n, symmetric positive definite.
         procedure(mass_matrix_iface), deferred :: mass_matrix
@@ -75,6 +77,9 @@ module regdae_mechanical_problem
         !> The entries of G(q, t) in the order of `pattern`; default: from
         !! `constraint_jacobian`, refusing a nonzero outside the pattern.
         procedure :: constraint_jacobian_values => default_constraint_jacobian_values
+        !> Forget M's factor, and keep the next one for every (q, t) if the declared
+        !! structure says M is constant (`mass_constant`); the solver calls it at init.
+        procedure :: reset_mass_factor
     end type mechanical_problem
 
     abstract interface
@@ -211,6 +216,7 @@ contains
         integer :: info, i, astat
         logical :: ok
 
+        if (self%have_factor .and. self%factor_fixed) return
         if (self%have_factor .and. self%factor_t == t) then
             if (same_point(n, self%factor_q, q)) return
         end if
@@ -257,6 +263,14 @@ contains
         end do
         self%have_factor = .true.
     end subroutine factor_mass
+
+    subroutine reset_mass_factor(self)
+        class(mechanical_problem), intent(inout) :: self
+        type(mechanical_structure) :: st
+        st = self%structure()
+        self%factor_fixed = st%declared .and. st%mass_constant
+        self%have_factor = .false.
+    end subroutine reset_mass_factor
 
     ! a == b entry by entry (a loop that stops at the first difference).
     pure logical function same_point(n, a, b)

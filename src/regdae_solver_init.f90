@@ -102,6 +102,7 @@ contains
                 call self%start_augmented(copy, t0, x0, v0, opts, stat)
                 return
             end if
+            call copy%reset_mass_factor()   ! M's factor once for a declared constant M
         end select
         if (opts%index == 3) then
             call self%core%model%init_second_order(copy, opts, lsq_normal, stat)
