@@ -10,7 +10,8 @@ module regdae_auto_parameters
     use regdae_options
     use regdae_regularization, only: regularized_dae
     use regdae_augmented_system, only: augmented_system, user_routine_failure
-    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, rms
+    use regdae_auto_rules, only: automatic_eps_factor, automatic_eps, baumgarte_weights, dense_motion_scales, rms, &
+                                 rest_in_equilibrium
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_scales, only: drift_rtol_min
     use regdae_format, only: format_real, format_int
@@ -103,6 +104,7 @@ contains
             sigma_pred = -1.0_wp
             rate = 0.0_wp
             core%ell0 = 0.0_wp
+            core%rest_start = .false.
             if (weights_auto .or. work_check .or. eps_auto) then
                 call model%solve_multiplier(t0, y, stat)
                 if (stat /= regdae_success) then
@@ -111,6 +113,12 @@ contains
                 end if
                 call model%dynamics_slope(z0, y, zp)
                 order2 = core%second_order .and. size(z0) >= 2*core%nx
+                ! at rest in an equilibrium the error test sees nothing but the damping's bias in
+                ! the constraint modes (doc/methods.md, "The stable step after a restart")
+                if (order2) core%rest_start = rest_in_equilibrium(z0(core%nx + 1:2*core%nx), &
+                                                                  zp(core%nx + 1:2*core%nx), &
+                                                                  model%f(size(model%f) - core%nx + 1:), &
+                                                                  model%eps, sigma0)
                 call dense_motion_scales(model, t0, z0, zp, core%nx, order2, 0.0_wp, eps_auto, ell, rate, &
                                          sigma_pred, stat, stiffness=.true.)
                 if (stat /= 0) then

@@ -45,7 +45,7 @@ module regdae_auto_rules
 
     public :: constraint_length, motion_rate, baumgarte_weights, automatic_eps_factor, automatic_eps, rms
     public :: dense_motion_scales, row_curvatures, generic_direction, constraint_mode_step
-    public :: periodic_representative, same_geometry
+    public :: periodic_representative, same_geometry, rest_in_equilibrium
 
     !> The explicit Dormand-Prince method's stable step on the constraint modes:
     !! h |s| within this radius (its stability boundary is 3.3 on the negative real axis
@@ -383,6 +383,26 @@ contains
         if (size(ga) == 0 .or. size(x) == 0) return
         same = maxval(abs(ga - gb)) <= 1.0e3_wp*epsilon(1.0_wp)*max(1.0_wp, maxval(abs(x)))*max(maxval(abs(ga)), slope)
     end function same_geometry
+
+    !> A start at rest in an equilibrium of the constrained motion: every velocity zero, a
+    !! load (f /= 0), and the constrained acceleration a at t0 no larger than 10 times the
+    !! damped least squares' bias, eps/sigma^2 of the applied acceleration f (with a floor
+    !! of 1e3 roundoffs), where that bias is small (eps < 1e-2 sigma^2, sigma = sigma_min(GB)):
+    !! the exact motion stays at rest, the regularized one only by that bias.
+    pure logical function rest_in_equilibrium(v, a, f, eps, sigma) result(rest)
+        real(wp), intent(in) :: v(:)      !! the velocities at t0
+        real(wp), intent(in) :: a(:)      !! the constrained (regularized) acceleration at t0
+        real(wp), intent(in) :: f(:)      !! the acceleration of the applied forces at t0
+        real(wp), intent(in) :: eps       !! the damping in force at a
+        real(wp), intent(in) :: sigma     !! sigma_min(GB) at t0
+        real(wp) :: bias
+        rest = .false.
+        if (size(v) == 0 .or. .not. (sigma > 0.0_wp)) return
+        if (any(v /= 0.0_wp) .or. .not. (rms(f) > 0.0_wp)) return
+        bias = max(eps, 0.0_wp)/sigma**2
+        if (.not. (bias < 1.0e-2_wp)) return
+        rest = (rms(a) <= 10.0_wp*max(bias, 1.0e3_wp*epsilon(1.0_wp))*rms(f))
+    end function rest_in_equilibrium
 
     !> Root mean square of a vector (0 if empty).
     pure real(wp) function rms(a)

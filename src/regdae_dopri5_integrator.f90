@@ -86,7 +86,8 @@ contains
             call self%rk%advance(core%model, tout, core%opts%rtol, core%atol_z, core%opts%h_max, &
                                  core%opts%max_steps, core%opts%stop_at_output, self%z, stat, &
                                  core%monitor, stop_when_stiff=core%switching, &
-                                 stop_at_pass_end=core%stop_at_pass_end, stable_weights=core%follow_weights)
+                                 stop_at_pass_end=core%stop_at_pass_end, stable_weights=core%follow_weights, &
+                                 stable_always=core%rest_start)
             t_stop = tout
             outcome = outcome_reached   ! (msg is set where the caller reads it: not at tout, no allocation)
             if (stat /= regdae_success) then

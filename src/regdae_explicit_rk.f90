@@ -116,7 +116,7 @@ contains
     !! accepted step's end, where `model` holds the evaluation of the
     !! first-same-as-last stage (no extra evaluation).
     subroutine rk_advance(self, model, tout, rtol, atol, h_max, max_steps, land_on_tout, zout, stat, monitor, &
-                          stop_when_stiff, stop_at_pass_end, stable_weights)
+                          stop_when_stiff, stop_at_pass_end, stable_weights, stable_always)
         class(rk_integrator), intent(inout) :: self
         type(regularized_dae), intent(inout) :: model
         real(wp), intent(in) :: tout, rtol, h_max
@@ -132,13 +132,17 @@ contains
         logical, intent(in), optional :: stable_weights    !! after a start from a given step, keep the first
                                                            !! steps within the constraint modes' stable step
                                                            !! (constraint_mode_step; the automatic weights)
+        logical, intent(in), optional :: stable_always     !! with stable_weights: every step within it
+                                                           !! (a start at rest in an equilibrium)
         real(wp) :: h, e, fac, t_landing
         integer :: taken, n, energy_tries
-        logical :: recoverable, cap, unresolved
+        logical :: recoverable, cap, unresolved, hold
 
         n = size(self%z)
         cap = .false.
         if (present(stable_weights)) cap = stable_weights
+        hold = .false.
+        if (present(stable_always)) hold = stable_always
         stat = regdae_success
         self%stiff_detected = .false.
         self%pass_stop = .false.
@@ -154,8 +158,11 @@ contains
             ! from a smooth restart the steps grow 5x per step, and one far beyond the stability
             ! of the constraint modes passes the error test while their amplitude is small, taken
             ! back only after it has grown: the crank after a pass check, a 0.55 s step at h |s| =
-            ! 6.5 took the energy 1.4% off (doc/methods.md, "The stable step after a restart")
-            if (cap .and. self%restart_steps > 0) h = min(h, constraint_mode_step(model%order, model%w))
+            ! 6.5 took the energy 1.4% off (doc/methods.md, "The stable step after a restart");
+            ! after a start at rest in an equilibrium every step (the four-bar at its top: a 0.625 s
+            ! step at h |s| = 7.8 grew the modes the damping's bias set off, and they fed the
+            ! unstable one)
+            if (cap .and. (self%restart_steps > 0 .or. hold)) h = min(h, constraint_mode_step(model%order, model%w))
             if (self%h_energy > 0.0_wp) h = min(h, self%h_energy)
             ! the monitor's predicted entry into a singular pass: the step ends there (not in
             ! the pass, whose layer its continuous extension would not follow)

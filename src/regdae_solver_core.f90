@@ -54,6 +54,8 @@ module regdae_solver_core
         real(wp) :: sigma_pred0 = -1.0_wp     !! a singular start: the predicted regular sigma_min(GB)
         real(wp) :: eps_auto0 = 0.0_wp        !! the automatic eps at t0 (also when the user set eps)
         logical :: follow_weights = .false.   !! the automatic weights follow the motion along the run
+        logical :: rest_start = .false.       !! the start is at rest in an equilibrium (rest_in_equilibrium):
+                                              !! dopri5 keeps every step within the constraint modes' stable step
         logical :: stop_at_pass_end = .false. !! advance returns early at the end of a singular pass
         logical :: auto_gamma = .false., auto_gamma0 = .false., auto_gamma1 = .false.   !! which were auto
         real(wp) :: t0 = 0.0_wp               !! integrator=auto: the start, kept until the first output
