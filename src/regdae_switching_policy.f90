@@ -13,7 +13,7 @@ module regdae_switching_policy
     implicit none
     private
 
-    public :: spectral_radius, explicit_would_do, radau_preferred
+    public :: spectral_radius, explicit_would_do, radau_preferred, stiff_at_start
 
     !> The largest state (size of z) that integrator=auto gives to Radau IIA where
     !! the system is stiff (above it: IDA). Measured on the stiff chain (mass 1e-2,
@@ -24,6 +24,11 @@ module regdae_switching_policy
     !! eliminated formulation). No crossover was found up to 128: the bound keeps
     !! Radau's n x n dense LU and n-column Jacobian where it was measured.
     integer, parameter, public :: radau_max_n = 128
+
+    !> integrator=auto, a mechanical problem that declares its structure: it starts on
+    !! the implicit integrator where the step that accuracy allows at t0 exceeds this
+    !! factor times the explicit method's stable step (stiff_at_start).
+    real(wp), parameter, public :: stiff_start_factor = 7.0_wp
 
 contains
 
@@ -79,6 +84,46 @@ contains
         type(solver_core), intent(in) :: core
         yes = core%second_order .and. core%model%order == 2 .and. core%n <= radau_max_n
     end function radau_preferred
+
+    !> integrator=auto, before the first explicit step: is the system already stiff at
+    !! (t0, z0)? The explicit method's stable step 3.3/rho (rho: spectral_radius) against
+    !! the step that accuracy allows there, Hairer's starting step for an order-5 method
+    !! (h1 = (0.01/max(d1, d2))^(1/5) with d1 = |F(z0)|_w and d2 = |F(z0 + h0 F(z0)) - F(z0)|_w/h0,
+    !! h0 = 0.01 |z0|_w/d1, the error weights w = 1/(rtol |z0| + atol); at most 100 h0):
+    !! stiff where the accurate step exceeds stiff_start_factor times the stable one.
+    !! h_accurate and rho are returned for the event (0: not computed).
+    logical function stiff_at_start(core, t0, z0, h_accurate, rho) result(yes)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t0, z0(:)
+        real(wp), intent(out) :: h_accurate, rho
+        real(wp) :: f0(core%n), f1(core%n), y(core%m), w(core%n), d0, d1, d2, h0
+        integer :: stat
+        logical :: recoverable
+        yes = .false.
+        h_accurate = 0.0_wp
+        rho = 0.0_wp
+        call core%model%slope_eliminated(t0, z0, f0, y, stat, recoverable)
+        if (stat /= regdae_success) return
+        w = 1.0_wp/(core%opts%rtol*abs(z0) + core%atol_z(1:core%n))
+        d0 = norm2(z0*w)/sqrt(real(core%n, wp))
+        d1 = norm2(f0*w)/sqrt(real(core%n, wp))
+        h0 = 1.0e-6_wp
+        if (d0 > 1.0e-5_wp .and. d1 > 1.0e-5_wp) h0 = 0.01_wp*d0/d1
+        call core%model%slope_eliminated(t0 + h0, z0 + h0*f0, f1, y, stat, recoverable)
+        if (stat /= regdae_success) then
+            call core%model%evaluate(t0, z0, stat, recoverable)
+            return
+        end if
+        d2 = norm2((f1 - f0)*w)/sqrt(real(core%n, wp))/h0
+        if (max(d1, d2) <= 1.0e-15_wp) then
+            h_accurate = max(1.0e-6_wp, 1.0e-3_wp*h0)
+        else
+            h_accurate = (0.01_wp/max(d1, d2))**0.2_wp
+        end if
+        h_accurate = min(100.0_wp*h0, h_accurate)
+        rho = spectral_radius(core, t0, z0)
+        yes = rho > 0.0_wp .and. h_accurate > stiff_start_factor*3.3_wp/rho
+    end function stiff_at_start
 
     !> integrator=auto, the implicit integrator active: would the explicit method do
     !! here? Its stable step 3.3/rho (rho: the implicit integrator's stiffness

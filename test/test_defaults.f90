@@ -55,6 +55,7 @@ contains
                  new_test('switches_halfway_and_back', switches_halfway_and_back), &
                  new_test('explicit_off_branch_fails', explicit_off_branch_fails), &
                  new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented), &
+                 new_test('stiff_chain_starts_augmented', stiff_chain_starts_augmented), &
                  new_test('rate_continuous_at_rest', rate_continuous_at_rest), &
                  new_test('eps_at_singular_start', eps_at_singular_start), &
                  new_test('eps_is_translation_free', eps_is_translation_free), &
@@ -394,6 +395,23 @@ contains
     ! switch (near t = 0.085): it happens in the middle of the run.
     subroutine stiff_chain_switches_to_augmented(chk)
         type(checker), intent(inout) :: chk
+        call stiff_chain_against_reference(chk, 1.0e-7_wp, 'dopri5 -> ida, augmented formulation')
+    end subroutine stiff_chain_switches_to_augmented
+
+    ! The same chain at rtol 1e-4: the step that accuracy allows at t0 (1.2e-2) is 12.6 times
+    ! the explicit method's stable step (9.1e-4), beyond stiff_start_factor = 7: IDA on the
+    ! augmented formulation from t0, no explicit step.
+    subroutine stiff_chain_starts_augmented(chk)
+        type(checker), intent(inout) :: chk
+        call stiff_chain_against_reference(chk, 1.0e-4_wp, 'ida from the start, augmented formulation')
+    end subroutine stiff_chain_starts_augmented
+
+    ! The stiff 4-link chain with the defaults at rtol = atol = tol against formulation=augmented
+    ! at 1e-11 (eps 1e-14) on [0, 0.2]: one switch, the event `what`, positions within 100 tol.
+    subroutine stiff_chain_against_reference(chk, tol, what)
+        type(checker), intent(inout) :: chk
+        real(wp), intent(in) :: tol
+        character(len=*), intent(in) :: what
         integer, parameter :: nout = 20
         type(chain) :: p
         type(solver_options) :: opts
@@ -410,8 +428,8 @@ contains
         do run = 1, 2
             opts = solver_options()
             if (run == 1) then
-                opts%rtol = 1.0e-7_wp
-                opts%atol = 1.0e-7_wp
+                opts%rtol = tol
+                opts%atol = tol
             else
                 opts%rtol = 1.0e-11_wp
                 opts%atol = 1.0e-11_wp
@@ -432,12 +450,11 @@ contains
         end do
         call chk%equal(stat(1), regdae_success, 'defaults reach t = 0.2')
         call chk%equal(stat(2), regdae_success, 'the reference reaches t = 0.2')
-        call chk%true(st%switches == 1 .and. index(events, 'dopri5 -> ida, augmented formulation') > 0, &
-                      'one switch, to IDA on the augmented formulation')
+        call chk%true(st%switches == 1 .and. index(events, what) > 0, 'one switch: '//what)
         err = maxval(abs(q(:, :, 1) - q(:, :, 2)))
-        call chk%true(err <= 1.0e-5_wp, 'positions within 100 rtol of the reference')
+        call chk%true(err <= 100.0_wp*tol, 'positions within 100 rtol of the reference')
         write (*, '(a,es10.2)') '    max |q - q_ref| at the outputs: ', err
-    end subroutine stiff_chain_switches_to_augmented
+    end subroutine stiff_chain_against_reference
 
     ! The slider crank from th1 = 1e-2 (near the singular configuration 0, pi) at
     ! w1 = 0.5, with the explicit integrator, weights gamma1 = 20, gamma0 = 200 and
