@@ -124,7 +124,7 @@ contains
         call log_event(core, 't = '//format_real(core%t0)//': ida from the start, augmented formulation with KLU '// &
                        '(stiff at t0: the accurate first step '//format_real(h_accurate)//' exceeds '// &
                        format_real(stiff_start_factor)//' times the explicit method''s stable step 3.3/rho = '// &
-                       format_real(3.3_wp/rho)//')')
+                       format_real(3.3_wp/rho)//'; no lightly damped mode it would not resolve)')
     end subroutine start_implicit_if_stiff
 
     ! After a switch to the implicit integrator `which` (ida or radau): the counters
