@@ -22,11 +22,11 @@ module regdae_integrator_switching
     use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
     use regdae_ida_integrator, only: ida_integrator, ida_in_slot
     use regdae_radau_integrator, only: radau_adapter, radau_in_slot
-    use regdae_switching_policy, only: radau_preferred
+    use regdae_switching_policy, only: radau_preferred, stiff_at_start, stiff_start_factor
     implicit none
     private
 
-    public :: hand_over, switch_to_implicit, switch_to_dopri5
+    public :: hand_over, switch_to_implicit, switch_to_dopri5, start_implicit_if_stiff
 
 contains
 
@@ -104,6 +104,28 @@ contains
         if (from_start) call start_monitor(core, t, z, zp)
         call now_stiff(core, integrator_ida, '', from_start)
     end subroutine switch_to_implicit
+
+    !> integrator=auto, dopri5 started at t0 on a mechanical problem that declares its
+    !! structure (the one that switches to IDA on the augmented formulation): already
+    !! stiff there (the policy's stiff_at_start), IDA takes over from t0 before the
+    !! first explicit step, rather than after 15 explicit steps at the stability limit.
+    subroutine start_implicit_if_stiff(core, stat, msg)
+        type(solver_core), pointer, intent(in) :: core
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp) :: h_accurate, rho
+        stat = regdae_success
+        msg = ''
+        if (.not. (core%switching .and. augmented_fits(core))) return
+        if (.not. stiff_at_start(core, core%t0, core%z0, h_accurate, rho)) return
+        call switch_to_augmented(core, core%t0, core%z0, .true., stat, msg)
+        if (stat /= regdae_success) return
+        core%switches = core%switches + 1
+        call log_event(core, 't = '//format_real(core%t0)//': ida from the start, augmented formulation with KLU '// &
+                       '(stiff at t0: the accurate first step '//format_real(h_accurate)//' exceeds '// &
+                       format_real(stiff_start_factor)//' times the explicit method''s stable step 3.3/rho = '// &
+                       format_real(3.3_wp/rho)//'; no lightly damped mode it would not resolve)')
+    end subroutine start_implicit_if_stiff
 
     ! After a switch to the implicit integrator `which` (ida or radau): the counters
     ! and the event (what: the formulation, if not the eliminated one).

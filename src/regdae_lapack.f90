@@ -7,7 +7,7 @@ module regdae_lapack
     implicit none
     private
 
-    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv, dgesvd, dgbtrf, dgbtrs, dgetrf, dgetrs, zgetrf, zgetrs
+    public :: dposv, dpotrf, dpotrs, dgelsd, dgesv, dgesvd, dgbtrf, dgbtrs, dgetrf, dgetrs, zgetrf, zgetrs, dgeev
 
     interface
         !> Solve A X = B, A symmetric positive definite (Cholesky).
@@ -107,6 +107,16 @@ module regdae_lapack
             real(wp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dgetrs
+
+        !> Eigenvalues (wr + i wi) and optionally eigenvectors of a general real matrix.
+        subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
+            import :: wp
+            character, intent(in) :: jobvl, jobvr
+            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
+            integer, intent(out) :: info
+        end subroutine dgeev
 
         !> LU factorization of a general complex matrix with partial pivoting.
         subroutine zgetrf(m, n, a, lda, ipiv, info)

@@ -13,6 +13,7 @@ submodule (regdae_solver_front) regdae_solver_init
     use regdae_solver_core, only: new_core
     use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
     use regdae_dopri5_integrator, only: dopri5_integrator, dopri5_in_slot
+    use regdae_integrator_switching, only: start_implicit_if_stiff
     use regdae_ida_integrator, only: ida_integrator, ida_in_slot
     use regdae_radau_integrator, only: radau_adapter, radau_in_slot
     use regdae_auto_parameters, only: set_state_tolerances, resolve_auto_parameters, resolve_augmented_parameters, &
@@ -468,6 +469,11 @@ contains
             call dopri5%start(t0, z0, stat, msg, h0=opts%h_init)
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
+                return
+            end if
+            call start_implicit_if_stiff(core, stat, msg)
+            if (stat /= regdae_success) then
+                stat = start_failed(self, stat, msg)
                 return
             end if
             call self%record(regdae_success, '', stat)

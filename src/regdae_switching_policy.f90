@@ -10,10 +10,11 @@ module regdae_switching_policy
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success
     use regdae_solver_core, only: solver_core
+    use regdae_lapack, only: dgeev
     implicit none
     private
 
-    public :: spectral_radius, explicit_would_do, radau_preferred
+    public :: spectral_radius, explicit_would_do, radau_preferred, stiff_at_start
 
     !> The largest state (size of z) that integrator=auto gives to Radau IIA where
     !! the system is stiff (above it: IDA). Measured on the stiff chain (mass 1e-2,
@@ -24,6 +25,18 @@ module regdae_switching_policy
     !! eliminated formulation). No crossover was found up to 128: the bound keeps
     !! Radau's n x n dense LU and n-column Jacobian where it was measured.
     integer, parameter, public :: radau_max_n = 128
+
+    !> integrator=auto, a mechanical problem that declares its structure: it starts on
+    !! the implicit integrator where the step that accuracy allows at t0 exceeds this
+    !! factor times the explicit method's stable step (stiff_at_start).
+    real(wp), parameter, public :: stiff_start_factor = 7.0_wp
+
+    !> stiff_at_start: a mode lighter than this damping ratio (-Re lambda/|lambda|) that
+    !! the accurate step does not resolve keeps the explicit start.
+    real(wp), parameter, public :: stiff_start_damping = 0.1_wp
+
+    !> stiff_at_start: the largest state whose dense Jacobian and eigenvalues it computes.
+    integer, parameter, public :: stiff_start_max_n = 64
 
 contains
 
@@ -79,6 +92,80 @@ contains
         type(solver_core), intent(in) :: core
         yes = core%second_order .and. core%model%order == 2 .and. core%n <= radau_max_n
     end function radau_preferred
+
+    !> integrator=auto, before the first explicit step: is the system already stiff at
+    !! (t0, z0)? The step that accuracy allows there, h_accurate (Hairer's starting step for
+    !! an order-5 method: (0.01/max(d1, d2))^(1/5) with d1 = |F(z0)|_w and d2 =
+    !! |F(z0 + h0 F(z0)) - F(z0)|_w/h0, h0 = 0.01 |z0|_w/d1, the error weights
+    !! w = 1/(rtol |z0| + atol); at most 100 h0), against the explicit method's stable
+    !! step 3.3/rho (rho: spectral_radius): stiff where h_accurate exceeds
+    !! stiff_start_factor times the stable step, unless a mode that the accurate step
+    !! does not resolve (|lambda| h_accurate > 1) is lightly damped (-Re lambda <
+    !! stiff_start_damping |lambda|, or growing): every method must then follow it with
+    !! steps below its period, and the explicit one does that at less cost. The
+    !! eigenvalues of dF/dz (n difference quotients of F, dgeev) only where the first
+    !! test says stiff, for states of at most stiff_start_max_n components. h_accurate
+    !! and rho are returned for the event (0: not computed).
+    logical function stiff_at_start(core, t0, z0, h_accurate, rho) result(yes)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t0, z0(:)
+        real(wp), intent(out) :: h_accurate, rho
+        real(wp) :: f0(core%n), f1(core%n), y(core%m), w(core%n), d0, d1, d2, h0
+        integer :: stat
+        logical :: recoverable
+        yes = .false.
+        h_accurate = 0.0_wp
+        rho = 0.0_wp
+        if (core%n > stiff_start_max_n) return
+        call core%model%slope_eliminated(t0, z0, f0, y, stat, recoverable)
+        if (stat /= regdae_success) return
+        w = 1.0_wp/(core%opts%rtol*abs(z0) + core%atol_z(1:core%n))
+        d0 = norm2(z0*w)/sqrt(real(core%n, wp))
+        d1 = norm2(f0*w)/sqrt(real(core%n, wp))
+        h0 = 1.0e-6_wp
+        if (d0 > 1.0e-5_wp .and. d1 > 1.0e-5_wp) h0 = 0.01_wp*d0/d1
+        call core%model%slope_eliminated(t0 + h0, z0 + h0*f0, f1, y, stat, recoverable)
+        if (stat /= regdae_success) then
+            call core%model%evaluate(t0, z0, stat, recoverable)
+            return
+        end if
+        d2 = norm2((f1 - f0)*w)/sqrt(real(core%n, wp))/h0
+        if (max(d1, d2) <= 1.0e-15_wp) then
+            h_accurate = max(1.0e-6_wp, 1.0e-3_wp*h0)
+        else
+            h_accurate = (0.01_wp/max(d1, d2))**0.2_wp
+        end if
+        h_accurate = min(100.0_wp*h0, h_accurate)
+        rho = spectral_radius(core, t0, z0)
+        yes = rho > 0.0_wp .and. h_accurate > stiff_start_factor*3.3_wp/rho
+        if (yes) yes = .not. lightly_damped_mode(core, t0, z0, f0, h_accurate)
+    end function stiff_at_start
+
+    ! stiff_at_start: has dF/dz at (t0, z0) (f0 = F there) an eigenvalue with |lambda| h > 1
+    ! and -Re lambda < stiff_start_damping |lambda|? (Also yes where the Jacobian or its
+    ! eigenvalues fail: the explicit start stays.) The model is left evaluated at (t0, z0).
+    logical function lightly_damped_mode(core, t0, z0, f0, h) result(light)
+        type(solver_core), intent(inout) :: core
+        real(wp), intent(in) :: t0, z0(:), f0(:), h
+        real(wp) :: f1(core%n), y(core%m), zd(core%n), jac(core%n, core%n), wr(core%n), wi(core%n), &
+                    vdum(1, 1), work(4*core%n), d
+        integer :: stat, j, info
+        logical :: recoverable
+        light = .true.
+        do j = 1, core%n
+            d = sqrt(epsilon(1.0_wp))*max(1.0_wp, abs(z0(j)))
+            zd = z0
+            zd(j) = z0(j) + d
+            call core%model%slope_eliminated(t0, zd, f1, y, stat, recoverable)
+            if (stat /= regdae_success) exit
+            jac(:, j) = (f1 - f0)/d
+        end do
+        call core%model%evaluate(t0, z0, info, recoverable)   ! the model back at the state
+        if (stat /= regdae_success) return
+        call dgeev('N', 'N', core%n, jac, core%n, wr, wi, vdum, 1, vdum, 1, work, size(work), info)
+        if (info /= 0) return
+        light = any(hypot(wr, wi)*h > 1.0_wp .and. -wr < stiff_start_damping*hypot(wr, wi))
+    end function lightly_damped_mode
 
     !> integrator=auto, the implicit integrator active: would the explicit method do
     !! here? Its stable step 3.3/rho (rho: the implicit integrator's stiffness

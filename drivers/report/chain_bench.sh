@@ -499,7 +499,8 @@ cat <<TXT
 
 \`build/bin/chain $switch rtol=R atol=R\` (the stiff chain with 4 links: 8 coordinates, below the
 16 from which \`formulation=auto\` takes the augmented formulation from the start). With the defaults
-the run starts on the explicit method; near t = 0.1, when the initial transient has decayed and
+the run starts on the explicit method (at rtol 1e-3 ... 1e-5 on IDA from t0: measured by hand
+below); near t = 0.1, when the initial transient has decayed and
 the steps are limited by stability, its stiffness test fires (15 steps at the stability limit) and
 IDA takes over on the augmented formulation with KLU (the chain declares its structure):
 ${switched}. Against the hand-chosen configurations (\`integrator=ida\`: eliminated formulation on
@@ -534,5 +535,18 @@ but changed two runs of the default-options grids from a check's failure into a 
 answer, measured on 2026-11-29, so 15 stays), and at loose tolerances the explicit method's larger
 error in the transient (1.8e-6 at rtol 1e-3 against 1.9e-8 for IDA): at matched accuracy the
 defaults then need a tighter rtol than IDA does.
+
+Measured by hand on 2026-12-06 (not regenerated; the tables above are from the last full run):
+since the stiffness test at t0 (doc/methods.md, "integrator = auto") the defaults start on IDA
+with the augmented formulation from t0 at rtol 1e-3 ... 1e-5 (the accurate first step 20 ... 8.0
+times the explicit method's stable step; 7 is the threshold) and on the explicit method below.
+The solve's instructions (callgrind, regdae's init and advances) at rtol 1e-3 / 1e-6 / 1e-9:
+7.16M / 8.12M / 13.03M before, 4.77M / 8.22M / 13.13M after (formulation=augmented 4.16M /
+8.36M / 20.57M, integrator=radau 5.68M / 8.63M / 20.23M); at matched accuracy 1e-7 ... 1e-11
+against the fastest of formulation=augmented, integrator=radau and integrator=ida: 1.64 / 1.29 /
+1.10 / 1.11 / 1.00x before, 1.14 / 1.11 / 1.12 / 1.12 / 1.01x after (the 1.2x target met; against
+formulation=augmented and integrator=ida alone 1.14 / 1.11 / 0.96 / 0.88 / 0.81x). What is left
+where it starts on IDA: 0.6M above formulation=augmented's run (the explicit start's set-up 0.1M,
+the test's power iteration 0.1M, the Jacobian and its eigenvalues for the damping condition 0.38M).
 
 TXT
