@@ -33,8 +33,10 @@
 !!   method.
 !! - chain_long: the same chains on [0, 10] (100 outputs), N = 2 ... 256: judged on the energy
 !!   change and the largest constraint violation at the outputs, in units of the tight regdae
-!!   run's own plus R times the scales; reference method the peer at R (plain) and Dormand-Prince
-!!   on the slider crank's reduced ODE (N = 2 with the slider), in those units.
+!!   run's own plus R times the scales; reference method the peer at R (plain, and with the
+!!   sliders for N > 2: plain IDA on the same constraints, the sliders' too; it passes the pairs'
+!!   folds where its steps do not land on them) and Dormand-Prince on the slider crank's reduced
+!!   ODE (N = 2 with the slider), in those units, over the outputs the method reached.
 !! - fourbar: the parallelogram four-bar (drivers/problems/fourbar_problem.f90, r = 1, L = 2,
 !!   g = 9.81), 9 starts, index 3 and 2, tf = 5, 200 outputs; reference th1'' = -(g/r) cos th1 by
 !!   CVODE at 1e-13, reference method Dormand-Prince at R; th2_ref = 0, th3_ref = th1_ref. With
@@ -893,11 +895,12 @@ contains
                 'viol_tight + R (1 + q_scale)'
             write (*, '(a)') '#   (dE_tight, viol_tight: the tight run, regdae formulation=augmented rtol = atol = 1e-11 '// &
                 'eps = 1e-16; E_scale: the largest potential-energy drop of that run; q_scale: its max |q|)'
-            write (*, '(a)') '#   reference method: plain, the peer at R; slider N = 2 (the slider crank), '// &
-                'Dormand-Prince on its reduced ODE at R; its err_ref the same over the outputs it reached; the '// &
-                'other sliders none (err_ref = 0); bound = 10 max(1, err_ref)'
-            write (*, '(a)') '#   extra columns: dE dE_unit viol viol_unit method (the reference method''s status; '// &
-                'none: no reference method)'
+            write (*, '(a)') '#   reference method: the peer at R (plain IDA, not regdae), plain and with the sliders '// &
+                '(N > 2: the peer on the same constraints, the sliders'' too); slider N = 2 (the slider crank) '// &
+                'Dormand-Prince on its reduced ODE at R; its err_ref the same over the outputs it reached (after a '// &
+                'failure: those before it); bound = 10 max(1, err_ref)'
+            write (*, '(a)') '#   extra columns: dE dE_unit viol viol_unit method (the reference method''s status: the '// &
+                'peer''s 0 or IDA''s flag, Dormand-Prince''s ok/diverged/timeout/failed); a note gives its dE and viol'
         else
             write (*, '(a)') '#   plain: reference the peer (plain IDA, band, stabilized index 2, not regdae) at '// &
                 'rtol = atol = 1e-11 checked against 1e-10; where either fails, the regdae reference (ref_src); '// &
@@ -946,7 +949,7 @@ contains
         peer_stat = 0
         peer_text = 'none'
         if (.not. slider) then
-            call peer_run(links, rtol, times, qpeer, peer_stat, steps, seconds, peer_message, peer_method_timeout)
+            call peer_run(links, .false., rtol, times, qpeer, peer_stat, steps, seconds, peer_message, peer_method_timeout)
             good = peer_good(qpeer(:, 2:))
             err_ref = weighted_error(qpeer(:, 2:), cached%x, rtol, good)
             peer_text = itext(peer_stat)
@@ -975,6 +978,7 @@ contains
         type(chain) :: p
         real(wp) :: q0(2*links), v0(2*links), de, viol, de_unit, viol_unit, err, err_ref, bound, rerun_err, seconds
         real(wp) :: qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1), crank_states(2, size(times))
+        real(wp) :: de_ref, viol_ref
         integer :: code, rerun_stat, peer_stat, steps
         character(len=:), allocatable :: label, peer_text, peer_message
         label = trim(merge('slider', 'plain ', slider))
@@ -987,18 +991,14 @@ contains
         viol_unit = cached%violation + rtol*(1.0_wp + cached%q_scale)
         p = new_chain(links, slider, chain_gravity)
         call chain_start(p, q0, v0)
-        ! the reference method (plain only): the peer at R, its energy change and violation in
-        ! the same units over the outputs it reached
-        err_ref = 0.0_wp
-        peer_stat = 0
-        peer_text = 'none'
-        if (.not. slider) then
-            call peer_run(links, rtol, times, qpeer, peer_stat, steps, seconds, peer_message, peer_method_timeout, &
-                          vpeer)
-            call method_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de, viol)
-            err_ref = max(de/de_unit, viol/viol_unit)
+        ! the reference method: the peer at R (plain, and with the sliders for N > 2: plain IDA on
+        ! the same constraints, the sliders' too), its energy change and violation in the same
+        ! units over the outputs it reached; N = 2 with the slider Dormand-Prince on the reduced ODE
+        if (.not. slider .or. links > 2) then
+            call peer_run(links, slider, rtol, times, qpeer, peer_stat, steps, seconds, peer_message, &
+                          peer_method_timeout, vpeer)
             peer_text = itext(peer_stat)
-        else if (links == 2) then
+        else
             ! N = 2 with the slider is the slider crank: Dormand-Prince on its reduced ODE at R,
             ! mapped to the joints, joint 1 = (sin th1, -cos th1), joint 2 = (2 sin th1, 0)
             call oracle_run('chain2', pi/2, 0.0_wp, rtol, times, crank_states, peer_stat, peer_message, oracle_timeout)
@@ -1010,10 +1010,10 @@ contains
             vpeer(2, 2:) = crank_states(2, :)*sin(crank_states(1, :))
             vpeer(3, 2:) = 2.0_wp*crank_states(2, :)*cos(crank_states(1, :))
             vpeer(4, 2:) = 0.0_wp
-            call method_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de, viol)
-            err_ref = max(de/de_unit, viol/viol_unit)
             peer_text = oracle_text(peer_stat, crank_states)
         end if
+        call method_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de_ref, viol_ref)
+        err_ref = max(de_ref/de_unit, viol_ref/viol_unit)
         bound = 10.0_wp*max(1.0_wp, err_ref)
         call run_mechanical(p, q0, v0, times, cell_options(rtol), run_budget(120.0_wp), rec)
         call energy_and_violation(rec, de, viol)
@@ -1035,6 +1035,8 @@ contains
                        err_ref, bound, rec%st%t, rec%st%steps, rec%seconds, &
                        ' '//etext(de)//' '//etext(de_unit)//' '//etext(viol)//' '//etext(viol_unit)//' '//peer_text)
         call notes(rec, rerun, rerun_err)
+        call write_note('reference method: ', 'dE='//etext(de_ref)//' viol='//etext(viol_ref)//' over '// &
+                        itext(peer_good(qpeer(:, 2:)))//' of '//itext(size(times))//' outputs')
         if (peer_stat /= 0) call write_note('reference method failed: ', peer_message)
     end subroutine chain_long_cell
 
@@ -1114,8 +1116,8 @@ contains
         s10 = -1
         text = '# reference '//family_name//' '//trim(merge('slider', 'plain ', slider))//' N='//itext(links)//': '
         if (.not. slider .and. .not. long) then
-            call peer_run(links, chain_ref_tol, times, q11, s11, steps, t11, m11, peer_ref_timeout)
-            call peer_run(links, chain_check_tol, times, q10, s10, steps, t10, m10, peer_ref_timeout)
+            call peer_run(links, .false., chain_ref_tol, times, q11, s11, steps, t11, m11, peer_ref_timeout)
+            call peer_run(links, .false., chain_check_tol, times, q10, s10, steps, t10, m10, peer_ref_timeout)
             text = text//'peer 1e-11 status='//itext(s11)//' ('//num(t11)//' s), 1e-10 status='//itext(s10)// &
                    ' ('//num(t10)//' s); '
             peer_ok = (s11 == 0 .and. s10 == 0)
@@ -1140,12 +1142,15 @@ contains
             end if
             if (slider .and. links == 2) text = text//' vs the reduced ODE (CVODE 1e-13): norm(1e-8)='// &
                                                 etext(crank_cross_check(times))
+            if (slider) text = text//' folds passed (sign changes of x_2k - x_2k-2 between outputs, all pairs; '// &
+                               'a lower bound)='//itext(fold_passes(cached%x))
         end if
         write (*, '(a)') text
     end subroutine ensure_reference
 
     ! The regdae reference of a chain (formulation=augmented, 1e-11, eps = 1e-16) and its
-    ! check (1e-10, eps = 1e-14); with the checks off if they stop it. Fills `cached`.
+    ! check (1e-10, eps = 1e-14). Fills `cached`; a run that regdae's own checks stop leaves
+    ! cached%source = 'none' (no reference: the cells are run but not judged).
     subroutine regdae_reference(slider, links, times, text)
         logical, intent(in) :: slider
         integer, intent(in) :: links
@@ -1211,6 +1216,23 @@ contains
         if (rstat /= 0) norm = -1.0_wp
     end function crank_cross_check
 
+    ! The singular passes of a slider chain seen at the outputs `q(:, k)`: a pair of links
+    ! (2k-1, 2k) folds (G loses rank: crank straight down or up, rod back along it) where joint
+    ! 2k crosses joint 2k-2 (the pivot for k = 1) on the line, so the sign changes of
+    ! x_2k - x_2k-2 between outputs, summed over the pairs (two crossings between two outputs
+    ! are missed: a lower bound).
+    pure integer function fold_passes(q) result(passes)
+        real(wp), intent(in) :: q(:, :)
+        real(wp) :: gap(size(q, 2))
+        integer :: k
+        passes = 0
+        do k = 1, size(q, 1)/4
+            gap = q(4*k - 1, :)
+            if (k > 1) gap = gap - q(4*k - 5, :)
+            passes = passes + count(gap(2:)*gap(:size(gap) - 1) < 0.0_wp)
+        end do
+    end function fold_passes
+
     ! The outputs before the first one with a component that is NaN or infinite.
     pure integer function finite_outputs(states) result(good)
         real(wp), intent(in) :: states(:, :)
@@ -1247,10 +1269,12 @@ contains
         end do
     end function peer_good
 
-    ! The plain chain by the peer at rtol = atol = `rtol`, outputs at 0 and `times` (output_times),
-    ! in a child process of this program stopped after `timeout` seconds (status child_timed_out).
-    subroutine peer_run(links, rtol, times, q, stat, steps, seconds, message, timeout, v)
+    ! The chain (with `slider`, every even joint on y = 0) by the peer at rtol = atol = `rtol`,
+    ! outputs at 0 and `times` (output_times), in a child process of this program stopped after
+    ! `timeout` seconds (status child_timed_out).
+    subroutine peer_run(links, slider, rtol, times, q, stat, steps, seconds, message, timeout, v)
         integer, intent(in) :: links, timeout
+        logical, intent(in) :: slider
         real(wp), intent(in) :: rtol, times(:)
         real(wp), intent(out) :: q(:, :)
         real(wp), intent(out), optional :: v(:, :)   !! the velocities, as q
@@ -1263,7 +1287,8 @@ contains
         if (present(v)) v = ieee_value(1.0_wp, ieee_quiet_nan)
         steps = 0
         seconds = 0.0_wp
-        call run_child('peer_job='//itext(links)//','//num_exact(rtol)//','//itext(size(times))//','// &
+        call run_child('peer_job='//itext(links)//','//trim(merge('slider', 'plain ', slider))//','// &
+                       num_exact(rtol)//','//itext(size(times))//','// &
                        num_exact(times(size(times))), timeout, 'the peer', file, unit, stat, message)
         if (stat /= 0) return
         read (unit, iostat=ios) stat, steps, seconds, nmsg
@@ -1351,25 +1376,27 @@ contains
         end if
     end subroutine run_child
 
-    ! The child process: peer_job=N,rtol,nout,tf,file runs the plain chain by the peer at
-    ! rtol = atol on the outputs 0 and output_times(tf, nout) and writes the result.
+    ! The child process: peer_job=N,plain|slider,rtol,nout,tf,file runs the chain (slider: every
+    ! even joint on y = 0) by the peer at rtol = atol on the outputs 0 and output_times(tf, nout)
+    ! and writes the result.
     subroutine peer_job(spec)
         character(len=*), intent(in) :: spec
-        character(len=len(spec)) :: fields(5)
+        character(len=len(spec)) :: fields(6)
         character(len=:), allocatable :: message
         real(wp) :: rtol, tf, seconds
         real(wp), allocatable :: q(:, :), v(:, :)
         integer :: links, nout, stat, steps, res_evals, jac_evals, unit, count
         call split_fields(spec, fields, count)
-        if (count /= 5) call die_usage(prog, 'peer_job=N,rtol,nout,tf,file')
+        if (count /= 6 .or. all(trim(fields(2)) /= ['plain ', 'slider'])) &
+            call die_usage(prog, 'peer_job=N,plain|slider,rtol,nout,tf,file')
         call read_count(prog, 'peer_job N', trim(fields(1)), links, 1, 1000000)
-        call read_number(prog, 'peer_job rtol', trim(fields(2)), rtol)
-        call read_count(prog, 'peer_job nout', trim(fields(3)), nout, 1, 1000000)
-        call read_number(prog, 'peer_job tf', trim(fields(4)), tf)
+        call read_number(prog, 'peer_job rtol', trim(fields(3)), rtol)
+        call read_count(prog, 'peer_job nout', trim(fields(4)), nout, 1, 1000000)
+        call read_number(prog, 'peer_job tf', trim(fields(5)), tf)
         allocate (q(2*links, nout + 1), v(2*links, nout + 1))
-        call run_chain_peer(links, .false., rtol, rtol, [0.0_wp, output_times(tf, nout)], q, steps, res_evals, &
-                            jac_evals, seconds, stat, message, v_out=v)
-        open (newunit=unit, file=trim(fields(5)), access='stream', form='unformatted', status='replace', action='write')
+        call run_chain_peer(links, trim(fields(2)) == 'slider', rtol, rtol, [0.0_wp, output_times(tf, nout)], q, &
+                            steps, res_evals, jac_evals, seconds, stat, message, v_out=v)
+        open (newunit=unit, file=trim(fields(6)), access='stream', form='unformatted', status='replace', action='write')
         write (unit) stat, steps, seconds, len(message), message, q, v
         close (unit)
     end subroutine peer_job

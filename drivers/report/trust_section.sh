@@ -103,6 +103,58 @@ v_silent=$([ "$silent_all" = 0 ] && echo 1 || echo 0)
 v_fa=$([ "$fa_over" = 0 ] && echo 1 || echo 0)
 run_line=$(head -n 1 "$grids/summaries.txt" | sed 's/^# //')
 
+# --- the long chains' reference methods, from chain_long.txt (rows, their '#   ' notes, the
+# '# [part 1] reference' lines): cell 1 (plain N = 2), 49 (slider N = 2) and 67 (slider N = 16)
+# at R = 1e-3; the slider cells of N > 2 whose peer failed; the sliders without a reference.
+long=$grids/chain_long.txt
+long_cell() { # long_cell CELL: "err err_ref bound class dE dE_unit dE_ref", "? ..." if absent
+    awk -v c="$1" '$1 == c && $2 == "chain_long" { found = 1; e = $9; r = $10; b = $11; k = $8; d = $15; u = $16; next }
+        found && /^#   reference method: dE=/ { split($4, a, "="); dr = a[2]; found = 0 }
+        /^ *[0-9]+ / { found = 0 }
+        END { if (e == "") print "? ? ? ? ? ? ?"; else print e, r, b, k, d, u, (dr == "" ? "?" : dr) }' "$long" 2>/dev/null ||
+        echo "? ? ? ? ? ? ?"
+}
+sci() { awk -v x="$1" 'BEGIN { if (x == "?") print "?"; else printf "%.3g", x }'; }
+set -- $(long_cell 1); c1_err=$(sci "$1") c1_ref=$(sci "$2")
+set -- $(long_cell 49); c49_err=$(sci "$1") c49_ref=$(sci "$2")
+set -- $(long_cell 67); c67_err=$(sci "$1") c67_ref=$(sci "$2") c67_bound=$(sci "$3") c67_class=$4
+c67_de=$(sci "$5") c67_unit=$(sci "$6") c67_deref=$(sci "$7")
+# slider cells of N > 2 judged against the peer, and those where it failed (N/R at t): before
+# the first output (t < 0.1: at the start, err_ref = 0) or later
+slider_peer=$(awk '$1 ~ /^[0-9]+$/ && $3 == "slider" && $4 + 0 > 2 && NF >= 19 && $19 != "none" { n++ } END { print n + 0 }' "$long" 2>/dev/null || echo 0)
+peer_failures() { # peer_failures early|late
+    awk -v which="$1" '$1 ~ /^[0-9]+$/ { cur = ""
+            if ($3 == "slider" && $4 + 0 > 2 && NF >= 19 && $19 != "0" && $19 != "none") cur = sprintf("N = %d at R = %s", $4, $6)
+            next }
+        cur != "" && /^#   reference method failed: .*at t = / { t = $0; sub(/.*at t = /, "", t); sub(/ .*/, "", t)
+            if ((which == "early") == (t + 0 < 0.1)) printf "%s%s (t = %.2g)", (n++ ? ", " : ""), cur, t; cur = "" }' "$long" 2>/dev/null || true
+}
+fail_early=$(peer_failures early)
+fail_late=$(peer_failures late)
+count_list() { echo "$1" | awk -F'), ' 'NF { print NF; next } { print 0 }'; }
+n_early=$(count_list "$fail_early")
+n_late=$(count_list "$fail_late")
+# folds passed at the tight runs' outputs, per N, and the slider sizes without a reference (why)
+long_folds=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /folds passed/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
+        f = $NF; sub(/.*=/, "", f); printf "%sN = %s: %s", (k++ ? ", " : ""), n, f }' "$long" 2>/dev/null || true)
+# the slider chains of N >= 16: the tight regdae run's energy change (in the units) against the
+# peer's at R = 1e-8: "smallest largest tight dE, smallest largest ratio"
+long_tight=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /tight run: dE=/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
+        d = $0; sub(/.*tight run: dE=/, "", d); sub(/ .*/, "", d); if (n + 0 >= 16) tight[n + 0] = d + 0 }
+    $1 ~ /^[0-9]+$/ { cur = ($3 == "slider" && $6 == "1.0E-08" && $4 + 0 >= 16) ? $4 + 0 : 0; next }
+    cur && /^#   reference method: dE=/ { split($4, a, "="); if (a[2] + 0 > 0) peer[cur] = a[2] + 0; cur = 0 }
+    END { for (n in tight) { if (!k++ || tight[n] < tl) tl = tight[n]; if (tight[n] > th) th = tight[n]
+              if (n in peer) { r = tight[n] / peer[n]; if (!m++ || r < rl) rl = r; if (r > rh) rh = r } }
+          if (k && m) printf "%.2g ... %.2g, %.2g-%.2g", tl, th, rl, rh; else print "? ... ?, ?-?" }' "$long" 2>/dev/null ||
+    echo "? ... ?, ?-?")
+small_warned=$(awk '$1 ~ /^[0-9]+$/ && $3 == "slider" && $4 + 0 >= 16 && ($6 == "1.0E-07" || $6 == "1.0E-08") { n++; w += ($8 == "warned") }
+    END { printf "%d of the %d", w, n }' "$long" 2>/dev/null || echo "? of the ?")
+tight_range=${long_tight%,*}
+tight_ratio=${long_tight#*, }
+long_noref=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /no reference/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
+        st = $0; sub(/.*status=/, "", st); sub(/ .*/, "", st); t = $0; sub(/.* at t = /, "", t); sub(/ .*/, "", t)
+        printf "%sN = %s (status %s at t = %.3g)", (k++ ? ", " : ""), n, st, t }' "$long" 2>/dev/null || true)
+
 cat <<TXT
 ## Trust grids: is a status ok right?
 
@@ -112,9 +164,10 @@ rtol = atol = R, each cell against a reference that does not come from regdae (\
 run by \`sh drivers/report/trust_grids.sh build\`, ${run_line}). A cell's error is the largest
 \|x_i - xref_i\| / (R \|xref_i\| + R) over its outputs; its bound 10 max(1, err_ref), err_ref the
 same error of a reference method at the same R (Dormand-Prince on the reduced ODE for the crank
-and the four-bar, the plain IDA peer for the plain chain, on [0, 10] too, Dormand-Prince on the
-slider crank's reduced ODE for the chain of 2 links with the slider on [0, 10], none for the linear
-DAEs and the other chains with sliders). Classes: **ok** (status ok, error within the bound), **warned** (a warning status,
+and the four-bar, the plain IDA peer for the plain chain, on [0, 10] too, and on [0, 10] for the
+chains of 4 ... 256 links with sliders (the peer on the same constraints, the sliders' too),
+Dormand-Prince on the slider crank's reduced ODE for the chain of 2 links with the slider on [0,
+10], none for the linear DAEs and the chains with sliders on [0, 1]). Classes: **ok** (status ok, error within the bound), **warned** (a warning status,
 x returned), **silent** (status ok, error above the bound; also a warned run whose outputs after
 its last warning jump above the bound, by 100x every error before, past a fold of the reference
 other than the warned pass's: a later silent departure), **false alarm** (a check stopped a run
@@ -233,14 +286,35 @@ undecided 2 (1873 warned; 7 cells within their bounds warned too: 14, 15, 32, 16
 commit) ok 1729 -> 1711, warned 207 -> 225, silent 4 -> 4 (the same four), false alarms 6 -> 6
 (0.3%), failed 4 -> 4: 18 cells within their bounds now warned, mostly slow starts at the
 singular configuration (err 0.4-8.8 at th1 = 1e-8 ... 1e-4) and w1 = 1e-2 at th1 near pi.
-The long chains are judged against a reference method where one exists: the plain IDA peer at R
-(plain), Dormand-Prince on the slider crank's reduced ODE (2 links with the slider). Their energy
-drift over 10 s of chaotic motion is of the same order as regdae's (at R = 1e-3 the peer's is 12
-units at N = 2, Dormand-Prince's 233; regdae's 32 and 25): judged without them, against the units
-alone (issue 19's first run of this grid), 22 cells were silent, 16 plain and 6 with sliders. The
-one left is the slider chain of 16 links at R = 1e-3, which has no reference method: its energy
-changes by 1.15 against a unit of 0.074 (15.5 units), none leaves the branch or raises a false
-alarm.
+The long chains are judged against a reference method at the same R that does not come from
+regdae: the plain IDA peer (stabilized index 2, \`drivers/common/chain_peer.f90\`) on the plain chain
+and on the chains of 4 ... 256 links with sliders (the same constraints, the sliders' y_2k = 0
+too), Dormand-Prince on the slider crank's reduced ODE for 2 links with the slider. The slider
+chains pass singular configurations: a pair of links folds (G loses rank) where joint 2k crosses
+joint 2k-2 on the line (the folds seen at the tight runs' 100 outputs, a lower bound: ${long_folds:-?});
+plain IDA goes through a fold where none of its steps lands close to it and stops with a failed
+corrector where one does. Of the ${slider_peer} slider cells of N > 2 the peer failed in ${n_late} in mid-run${fail_late:+ (${fail_late})},
+and their err_ref counts the outputs before the failure, as for the plain chain (at d355198, by
+hand: each of the six failures of that run at a fold, sigma_min(G) of the peer's state falling
+linearly to 1e-5 ... 3e-4 in the last 0.005 s before it); in ${n_early} before its first output${fail_early:+ (${fail_early})}:
+at the start of the long chains at loose R, as on the plain chains of 64 ... 256 links at R = 1e-3,
+err_ref = 0 there and the bound 10, as without a reference method. The reference methods'
+energy drift over 10 s of chaotic motion is of the same order as regdae's (at R = 1e-3, N = 2: the
+peer's ${c1_ref} units on the plain chain and Dormand-Prince's ${c49_ref} on the slider crank,
+regdae's ${c1_err} and ${c49_err}): judged without them, against the units alone (issue 19's first
+run of this grid), 22 cells were silent, 16 plain and 6 with sliders. The slider chain of 16 links
+at R = 1e-3, silent against the units alone, is ${c67_class} against the peer: its energy changes by
+${c67_de} against a unit of ${c67_unit} (${c67_err} units), the peer's by ${c67_deref} (${c67_ref}
+units: the bound ${c67_bound}). Not judged for want of a reference: ${long_noref:-none}; there the tight
+regdae run (1e-11, eps = 1e-16, the source of the units) is stopped by its own checks, and the peer
+at 1e-11 is no substitute (it stops at a fold: N = 4 at t = 3.66, N = 8 at t = 1.63, by hand).
+The units carry the tight regdae run's own energy change, which on the slider chains of 16 ... 256
+links (${tight_range}) is ${tight_ratio} times the peer's at R = 1e-8: at small R regdae's energy
+change there is about its tight run's, err about 1 and the bound 10, while plain IDA's is far
+smaller; ${small_warned} cells of N >= 16 at R = 1e-7, 1e-8 end with a warning. Against R E_scale alone (the energy part,
+the tight term left out; at d355198, by hand) no slider cell with status ok is above its bound
+either: the cells above it (N = 16 ... 256 at R = 1e-5 ... 1e-8, up to 1.1e4 against 40) are all
+warned.
 
 **Fast spins against the reference method** (issue 19's last silent cells; at 63bcca4, the library of 8e737d6, by hand,
 \`sh drivers/report/spin_grid.sh build/bin\`: 6 th1 uniform in (0.05, pi - 0.05) times w1 = 2 ... 30
