@@ -227,36 +227,37 @@ contains
     ! the signs alternating, so that an M of the differences of coordinates moves too) and t0 by
     ! mass_shift max(|t0|, 1). An entry that differs by more than mass_constant_tol max|M(q0, t0)|
     ! refuses the declaration (regdae_err_structure, msg names the entry). M from the declared
-    ! pattern (`mass_values`, O(nonzeros)) on the augmented formulation, where the pattern fits (its
-    ! setup refuses one that does not), else dense (`mass_matrix`). A user routine that fails at the
-    ! shifted point is tried at one 100 times closer; failing there too, the declaration stands
-    ! unverified (a failure at q0 itself is reported where M is first needed); a nonzero outside
-    ! the declared pattern at the shifted point refuses it.
+    ! pattern (`mass_values`, O(nonzeros)) where it fits (the augmented setup refuses one that does
+    ! not), else dense (`mass_matrix`; unchecked if that does not fit in memory). A user routine
+    ! that fails at the shifted point is tried at one 100 times closer; failing there too, the
+    ! declaration stands unverified (a failure at q0 itself is reported where M is first needed);
+    ! a nonzero outside the declared pattern at the shifted point refuses it.
     subroutine check_mass_constant(problem, t0, q0, augmented, stat, msg)
         class(mechanical_problem), intent(inout) :: problem
         real(wp), intent(in) :: t0, q0(:)
-        logical, intent(in) :: augmented   !! the augmented formulation (M from the declared pattern)
+        logical, intent(in) :: augmented   !! the augmented formulation (it refuses a pattern that does not fit)
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         real(wp), parameter :: mass_shift = 1.0e-2_wp, golden = 0.6180339887498949_wp
         real(wp), parameter :: mass_constant_tol = 1.0e3_wp*epsilon(1.0_wp)
         type(mechanical_structure) :: st
-        real(wp), allocatable :: m0(:), m1(:), dense(:, :)
-        real(wp) :: dq(size(q0)), scale, shift, dt
-        integer :: i, k, ustat, row, col
+        real(wp), allocatable :: m0(:), m1(:), dense(:, :), dq(:), q1(:)   ! (heap: n may be millions)
+        real(wp) :: scale, shift, dt
+        integer :: i, k, ustat, row, col, astat
         logical :: sparse
         stat = regdae_success
         msg = ''
         st = problem%structure()
         if (.not. (st%declared .and. st%mass_constant)) return
-        sparse = augmented
+        sparse = allocated(st%mass%row_start) .and. st%mass%nrows == problem%n .and. st%mass%ncols == problem%n
         if (sparse) then
-            if (.not. (allocated(st%mass%row_start) .and. st%mass%nrows == problem%n .and. &
-                       st%mass%ncols == problem%n)) return   ! refused by the augmented setup
-            allocate (m0(st%mass%nnz()), m1(st%mass%nnz()))
+            allocate (m0(st%mass%nnz()), m1(st%mass%nnz()), stat=astat)
         else
-            allocate (m0(problem%n**2), m1(problem%n**2), dense(problem%n, problem%n))
+            if (augmented .or. real(problem%n, wp)**2 > real(huge(1), wp)) return   ! (the augmented setup
+            allocate (m0(problem%n**2), m1(problem%n**2), dense(problem%n, problem%n), stat=astat)   ! refuses it)
         end if
+        if (astat == 0) allocate (dq(problem%n), q1(problem%n), stat=astat)
+        if (astat /= 0) return   ! the formulation's own allocations report it
         do i = 1, size(q0)
             dq(i) = merge(1.0_wp, -1.0_wp, mod(i, 2) == 1)*(0.5_wp + modulo(i*golden, 1.0_wp))*max(abs(q0(i)), 1.0_wp)
         end do
@@ -267,7 +268,8 @@ contains
         shift = mass_shift
         do k = 1, 2   ! the shifted point, or one 100 times closer where the user routine fails there
             ustat = 0
-            call mass_at(t0 + shift*dt, q0 + shift*dq, m1)
+            q1 = q0 + shift*dq
+            call mass_at(t0 + shift*dt, q1, m1)
             if (ustat == 0) exit
             shift = shift/100.0_wp
         end do
