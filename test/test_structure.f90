@@ -127,27 +127,24 @@ contains
         mass(2, 1) = 0.25_wp
     end subroutine coupled_mass
 
-    ! The joint mass of varying_mass_chain at (t, q).
-    real(wp) function varying_joint_mass(self, t, q) result(mass)
-        class(varying_mass_chain), intent(in) :: self
+    ! The chain's M with the joint mass of varying_mass_chain at (t, q).
+    subroutine vary_joint_mass(self, t, q)
+        class(varying_mass_chain), intent(inout) :: self
         real(wp), intent(in) :: t, q(:)
         select case (self%dependence)
-        case (1); mass = self%joint_mass*(1.0_wp + 0.1_wp*q(1)**2)
-        case (2); mass = self%joint_mass*(1.0_wp + (q(4) - q(2))**2)   ! 0 at the start: quadratic
-        case default; mass = self%joint_mass*(1.0_wp + 0.1_wp*t)
+        case (1); self%joint_mass = 1.0_wp + 0.1_wp*q(1)**2
+        case (2); self%joint_mass = 1.0_wp + (q(4) - q(2))**2   ! 0 at the start: quadratic
+        case default; self%joint_mass = 1.0_wp + 0.1_wp*t
         end select
-    end function varying_joint_mass
+    end subroutine vary_joint_mass
 
     subroutine varying_mass(self, t, q, mass, stat)
         class(varying_mass_chain), intent(inout) :: self
         real(wp), intent(in) :: t, q(:)
         real(wp), intent(out) :: mass(:, :)
         integer, intent(inout) :: stat
-        integer :: i
-        mass = 0.0_wp
-        do i = 1, self%n
-            mass(i, i) = varying_joint_mass(self, t, q)
-        end do
+        call vary_joint_mass(self, t, q)
+        call self%chain%mass_matrix(t, q, mass, stat)
     end subroutine varying_mass
 
     subroutine varying_mass_values(self, t, q, pattern, vals, stat)
@@ -156,7 +153,8 @@ contains
         type(sparsity_pattern), intent(in) :: pattern
         real(wp), intent(out) :: vals(:)
         integer, intent(inout) :: stat
-        vals = varying_joint_mass(self, t, q)
+        call vary_joint_mass(self, t, q)
+        call self%chain%mass_values(t, q, pattern, vals, stat)
     end subroutine varying_mass_values
 
     function unset_forces_structure(self) result(st)
