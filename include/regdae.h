@@ -110,7 +110,7 @@ extern "C" {
 #define REGDAE_ERR_DRIFT -113
 /** The invariant changed by more than invariant_tol. */
 #define REGDAE_ERR_INVARIANT -114
-/** A matrix has a nonzero outside the declared pattern. */
+/** A matrix has a nonzero outside the declared pattern (or, Fortran's mass_constant, an M declared constant varies). */
 #define REGDAE_ERR_STRUCTURE -115
 /** check_jacobians: G or the Newton matrix disagrees with difference quotients. */
 #define REGDAE_ERR_JACOBIAN -116

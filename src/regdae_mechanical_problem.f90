@@ -44,7 +44,7 @@ module regdae_mechanical_problem
                                                  !! otherwise a difference quotient of the sparse G)
         logical :: mass_constant = .false.       !! M depends on neither q nor t (the work-energy balance then
                                                  !! takes dM/dt = 0 instead of a difference quotient of M, and
-                                                 !! M is factored once per run)
+                                                 !! M is factored once per run; verified at init)
     end type mechanical_structure
 
     !> Abstract constrained mechanical system.

@@ -65,6 +65,7 @@ module regdae_monitor
     use regdae_scales, only: running_scales
     use regdae_auto_rules, only: weight_rule, dense_motion_scales, baumgarte_weights
     use regdae_mechanical_problem, only: mechanical_problem
+    use regdae_sparsity, only: sparsity_pattern
     use regdae_work_energy, only: interval_work, parabola_work, state_energy_tolerance => tolerance_energy
     implicit none
     private
@@ -232,7 +233,8 @@ module regdae_monitor
     ! The work-energy balance (submodule regdae_monitor_work).
     interface
         !> Sample the kinetic energy and the power of the applied forces at t (`sample_work`).
-        module subroutine monitor_sample_work(self, t, kinetic, power, stat, energy_tol, problem, z, dz)
+        module subroutine monitor_sample_work(self, t, kinetic, power, stat, energy_tol, problem, z, dz, pattern, &
+                                              constant)
             class(solution_monitor), intent(inout) :: self
             real(wp), intent(in) :: t, kinetic, power
             integer, intent(in) :: stat   !! the user routines' status (nonzero: the sample is skipped)
@@ -241,6 +243,8 @@ module regdae_monitor
                                                            !! is allowed
             class(mechanical_problem), intent(inout), optional :: problem   !! with z = (q, v) at t and its slope dz:
             real(wp), intent(in), optional :: z(:), dz(:)                   !! an uncertain interval is refined
+            type(sparsity_pattern), intent(in), optional :: pattern   !! the refinement's M from `mass_values` in
+            logical, intent(in), optional :: constant                 !! this pattern; M declared constant
         end subroutine monitor_sample_work
         !> The work-energy balance of an explicit step ending at t (the model evaluated at its end z,
         !! slope dz), before the step is taken: from the last sample (its start) on the cubic Hermite

@@ -49,7 +49,7 @@ contains
                 rstat = 0
             end if
             if (rstat /= 0) call interval_work(problem, self%t_work, self%work_z, self%work_dz, self%power_last, t, z, &
-                                               dz, power, refined, refined_error, rstat)
+                                               dz, power, refined, refined_error, rstat, pattern, constant)
             if (rstat == 0) then
                 quadratic = refined
                 estimate = refined_error

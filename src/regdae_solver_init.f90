@@ -87,6 +87,11 @@ contains
         select type (copy)
         class is (mechanical_problem)
             augmented = use_augmented(copy, opts)
+            call check_mass_constant(copy, t0, x0, augmented, ustat, msg)
+            if (ustat /= regdae_success) then
+                call self%record(ustat, msg, stat)
+                return
+            end if
         end select
         if (.not. augmented) then
             if (.not. formulation_fits(self, opts, stat)) return
@@ -215,6 +220,98 @@ contains
         end select
         call velocity_constraint(problem, t0, x0, v0, val, stat)
     end subroutine initial_velocity_constraint
+
+    ! A mass matrix declared constant (`mechanical_structure%mass_constant`) is taken at its word
+    ! by the work-energy balance (dM/dt = 0) and the eliminated formulation (one factor per run),
+    ! so the declaration is verified once here: M at (q0, t0) against M at a shifted point, every
+    ! coordinate moved by its own amount (mass_shift max(|q0_i|, 1) times a factor in [0.5, 1.5),
+    ! the signs alternating, so that an M of the differences of coordinates moves too) and t0 by
+    ! mass_shift max(|t0|, 1). An entry that differs by more than mass_constant_tol max|M(q0, t0)|
+    ! refuses the declaration (regdae_err_structure, msg names the entry). M from the declared
+    ! pattern (`mass_values`, O(nonzeros)) where it fits (the augmented setup refuses one that does
+    ! not), else dense (`mass_matrix`; unchecked if that does not fit in memory). A user routine
+    ! that fails at the shifted point is tried at one 100 times closer; failing there too, the
+    ! declaration stands unverified (a failure at q0 itself is reported where M is first needed);
+    ! a nonzero outside the declared pattern at the shifted point refuses it.
+    subroutine check_mass_constant(problem, t0, q0, augmented, stat, msg)
+        class(mechanical_problem), intent(inout) :: problem
+        real(wp), intent(in) :: t0, q0(:)
+        logical, intent(in) :: augmented   !! the augmented formulation (it refuses a pattern that does not fit)
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: msg
+        real(wp), parameter :: mass_shift = 1.0e-2_wp, golden = 0.6180339887498949_wp
+        real(wp), parameter :: mass_constant_tol = 1.0e3_wp*epsilon(1.0_wp)
+        type(mechanical_structure) :: st
+        real(wp), allocatable :: m0(:), m1(:), dense(:, :), dq(:), q1(:)   ! (heap: n may be millions)
+        real(wp) :: scale, shift, dt
+        integer :: i, k, ustat, row, col, astat
+        logical :: sparse
+        stat = regdae_success
+        msg = ''
+        st = problem%structure()
+        if (.not. (st%declared .and. st%mass_constant)) return
+        sparse = allocated(st%mass%row_start) .and. st%mass%nrows == problem%n .and. st%mass%ncols == problem%n
+        if (sparse) then
+            allocate (m0(st%mass%nnz()), m1(st%mass%nnz()), stat=astat)
+        else
+            if (augmented .or. real(problem%n, wp)**2 > real(huge(1), wp)) return   ! (the augmented setup
+            allocate (m0(problem%n**2), m1(problem%n**2), dense(problem%n, problem%n), stat=astat)   ! refuses it)
+        end if
+        if (astat == 0) allocate (dq(problem%n), q1(problem%n), stat=astat)
+        if (astat /= 0) return   ! the formulation's own allocations report it
+        do i = 1, size(q0)
+            dq(i) = merge(1.0_wp, -1.0_wp, mod(i, 2) == 1)*(0.5_wp + modulo(i*golden, 1.0_wp))*max(abs(q0(i)), 1.0_wp)
+        end do
+        dt = max(abs(t0), 1.0_wp)
+        ustat = 0
+        call mass_at(t0, q0, m0)
+        if (ustat /= 0) return   ! reported where M is first needed
+        shift = mass_shift
+        do k = 1, 2   ! the shifted point, or one 100 times closer where the user routine fails there
+            ustat = 0
+            q1 = q0 + shift*dq
+            call mass_at(t0 + shift*dt, q1, m1)
+            if (ustat == 0) exit
+            shift = shift/100.0_wp
+        end do
+        if (ustat == regdae_err_structure) then   ! a nonzero outside the pattern there: M varies
+            stat = regdae_err_structure
+            msg = 'the structure declares M constant (mass_constant), but M varies: at q0 + dq, t0 + '// &
+                  format_real(shift*dt)//' it has a nonzero outside the declared mass pattern (mass_values)'
+            return
+        end if
+        if (ustat /= 0) return   ! not verified: M is not defined near q0 (the declaration stands)
+        scale = 0.0_wp
+        if (size(m0) > 0) scale = maxval(abs(m0))
+        do k = 1, size(m0)
+            if (.not. (abs(m1(k) - m0(k)) > mass_constant_tol*scale .or. m1(k) /= m1(k))) cycle
+            if (sparse) then
+                row = findloc(st%mass%row_start <= k, .false., dim=1) - 1   ! the first row start beyond k
+                col = st%mass%cols(k)
+            else
+                row = modulo(k - 1, problem%n) + 1
+                col = (k - 1)/problem%n + 1
+            end if
+            stat = regdae_err_structure
+            msg = 'the structure declares M constant (mass_constant), but M varies: entry ('//format_int(row)// &
+                  ', '//format_int(col)//') is '//format_real(m0(k))//' at (q0, t0) and '//format_real(m1(k))// &
+                  ' at q0 + dq, t0 + '//format_real(shift*dt)//' (dq_i up to '//format_real(1.5_wp*shift)// &
+                  ' max(|q0_i|, 1)); declare mass_constant = .false.'
+            return
+        end do
+    contains
+        ! M at (t, q) into vals: in pattern order (sparse) or column by column
+        subroutine mass_at(t, q, vals)
+            real(wp), intent(in) :: t, q(:)
+            real(wp), intent(out) :: vals(:)
+            if (sparse) then
+                call problem%mass_values(t, q, st%mass, vals, ustat)
+            else
+                call problem%mass_matrix(t, q, dense, ustat)
+                if (ustat == 0) vals = reshape(dense, [size(dense)])
+            end if
+        end subroutine mass_at
+    end subroutine check_mass_constant
 
     ! formulation=auto takes the augmented formulation for a mechanical problem
     ! that declares its structure and is large enough, with M positive definite

@@ -128,7 +128,7 @@ contains
         real(wp), intent(in) :: t
         real(c_double), pointer :: u(:), up(:)
         type(augmented_system), pointer :: sys
-        real(wp), target :: z(2*core%nx)   ! (q, v): one block instead of two and the constructor [q, v]
+        real(wp), target :: z(2*core%nx), dz(2*core%nx)   ! (q, v) and its slope: one block each
         real(wp) :: a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g, sums(2)
         real(wp), pointer :: q(:), v(:)
         integer :: dstat, istat, wstat
@@ -162,9 +162,13 @@ contains
         end if
         if (core%monitor%work_tol > 0.0_wp .and. associated(sys)) then   ! after sample_values: it knows
             call sys%unpack(u, up, y=y)                                    ! whether t is in a layer
+            call sys%unpack(up, up, q=dz(1:core%nx), v=dz(core%nx + 1:2*core%nx))   ! (q', v'): the slope
             call kinetic_energy_and_power(sys%problem, t, q, v, y, kinetic, power, wstat, sys%st%mass, sums, &
                                           constant=sys%st%mass_constant)
-            call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v))
+            ! with the state and its slope: an interval whose quadrature is uncertain is refined
+            ! on the integrator's motion (as the dense formulations' samples are)
+            call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v), &
+                                          sys%problem, z, dz, sys%st%mass, sys%st%mass_constant)
         end if
     end subroutine sample_augmented
 

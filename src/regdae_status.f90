@@ -28,7 +28,8 @@ module regdae_status
     integer, parameter, public :: regdae_err_branch = -112           !! the velocity jumped across a singular interval
     integer, parameter, public :: regdae_err_drift = -113            !! the position constraint drifted beyond drift_tol
     integer, parameter, public :: regdae_err_invariant = -114        !! the problem's invariant changed beyond invariant_tol
-    integer, parameter, public :: regdae_err_structure = -115        !! a matrix has an entry outside its declared pattern
+    integer, parameter, public :: regdae_err_structure = -115        !! a matrix has an entry outside its declared pattern, or a
+                                                                     !! mass matrix declared constant varies
     integer, parameter, public :: regdae_err_jacobian = -116         !! a Jacobian disagrees with difference quotients
     integer, parameter, public :: regdae_err_work = -117             !! the work-energy balance of a mechanical problem failed
     integer, parameter, public :: regdae_err_memory = -118           !! the system refused an allocation
@@ -63,7 +64,7 @@ module regdae_status
         'the velocity jumped across a singular configuration: the solution probably changed branch'//achar(0), &
         'the position constraint g(x, t) = 0 drifted beyond drift_tol'//achar(0), &
         'the invariant of the problem changed beyond invariant_tol'//achar(0), &
-        'a matrix has a nonzero entry outside the sparsity pattern the problem declared'//achar(0), &
+        'a nonzero entry outside the sparsity pattern the problem declared, or an M declared constant varies'//achar(0), &
         'the work-energy balance failed: the constraint forces did work (energy gained or lost)'//achar(0), &
         'out of memory: the system refused an allocation'//achar(0), &
         'a Jacobian (user G, or the Newton matrix from the declared patterns) disagrees with difference quotients'// &

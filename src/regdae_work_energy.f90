@@ -120,12 +120,13 @@ contains
     !! O(h^4). stat /= 0: a user routine failed, or the constraints move inside the
     !! interval (g_t /= 0: the multiplier's work needs the multiplier there); the
     !! caller keeps its own quadrature then.
-    subroutine interval_work(problem, t0, z0, dz0, p0, t1, z1, dz1, p1, work, error, stat, pattern)
+    subroutine interval_work(problem, t0, z0, dz0, p0, t1, z1, dz1, p1, work, error, stat, pattern, constant)
         class(mechanical_problem), intent(inout) :: problem
         real(wp), intent(in) :: t0, z0(:), dz0(:), p0, t1, z1(:), dz1(:), p1
         real(wp), intent(out) :: work, error
         integer, intent(out) :: stat
-        type(sparsity_pattern), intent(in), optional :: pattern
+        type(sparsity_pattern), intent(in), optional :: pattern   !! M in pattern order (`mass_values`), as for
+        logical, intent(in), optional :: constant                  !! kinetic_energy_and_power; M declared constant
         real(wp), parameter :: nodes(3) = [0.25_wp, 0.5_wp, 0.75_wp]
         real(wp) :: h, s, z(size(z0)), dq(size(z0)/2), y(problem%m), p(3), kinetic, simpson1, simpson2, sums(2), &
                     path_error
@@ -142,7 +143,7 @@ contains
             z = (2*s**3 - 3*s**2 + 1)*z0 + (s**3 - 2*s**2 + s)*h*dz0 + (3*s**2 - 2*s**3)*z1 + (s**3 - s**2)*h*dz1
             dq = (6*s - 6*s**2)*(z1(1:n) - z0(1:n))/h + (3*s**2 - 4*s + 1)*dz0(1:n) + (3*s**2 - 2*s)*dz1(1:n)
             call kinetic_energy_and_power(problem, t0 + s*h, z(1:n), z(n + 1:2*n), y, kinetic, p(k), stat, &
-                                          pattern, sums, moving, dq)
+                                          pattern, sums, moving, dq, constant)
             ! the path's own uncertainty at the midpoint: q' of the positions' interpolant against
             ! the velocities' (the step's integration error of q' = v), times the forces
             if (k == 2) path_error = h*sums(2)*maxval(abs(dq - z(n + 1:2*n)))

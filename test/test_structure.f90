@@ -68,6 +68,15 @@ module test_structure
         procedure :: structure => misfit_structure
     end type misfit_crank
 
+    !> The chain whose joint masses vary (`dependence`: 1 with x1, 2 with y2 - y1, 3 with t) while
+    !! the inherited structure declares M constant.
+    type, extends(chain) :: varying_mass_chain
+        integer :: dependence = 1
+    contains
+        procedure :: mass_matrix => varying_mass
+        procedure :: mass_values => varying_mass_values
+    end type varying_mass_chain
+
 contains
 
     function structure_tests() result(tests)
@@ -86,7 +95,8 @@ contains
                  new_test('pattern_missing_an_entry', pattern_missing_an_entry), &
                  new_test('structure_that_does_not_fit', structure_that_does_not_fit), &
                  new_test('dense_formulations_refuse_band', dense_formulations_refuse_band), &
-                 new_test('sparse_projection_matches_dense', sparse_projection_matches_dense)]
+                 new_test('sparse_projection_matches_dense', sparse_projection_matches_dense), &
+                 new_test('varying_mass_declared_constant_refused', varying_mass_declared_constant_refused)]
     end function structure_tests
 
     subroutine sprung_forces(self, t, q, qd, f, stat)
@@ -116,6 +126,36 @@ contains
         mass(1, 2) = 0.25_wp
         mass(2, 1) = 0.25_wp
     end subroutine coupled_mass
+
+    ! The chain's M with the joint mass of varying_mass_chain at (t, q).
+    subroutine vary_joint_mass(self, t, q)
+        class(varying_mass_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        select case (self%dependence)
+        case (1); self%joint_mass = 1.0_wp + 0.1_wp*q(1)**2
+        case (2); self%joint_mass = 1.0_wp + (q(4) - q(2))**2   ! 0 at the start: quadratic
+        case default; self%joint_mass = 1.0_wp + 0.1_wp*t
+        end select
+    end subroutine vary_joint_mass
+
+    subroutine varying_mass(self, t, q, mass, stat)
+        class(varying_mass_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        real(wp), intent(out) :: mass(:, :)
+        integer, intent(inout) :: stat
+        call vary_joint_mass(self, t, q)
+        call self%chain%mass_matrix(t, q, mass, stat)
+    end subroutine varying_mass
+
+    subroutine varying_mass_values(self, t, q, pattern, vals, stat)
+        class(varying_mass_chain), intent(inout) :: self
+        real(wp), intent(in) :: t, q(:)
+        type(sparsity_pattern), intent(in) :: pattern
+        real(wp), intent(out) :: vals(:)
+        integer, intent(inout) :: stat
+        call vary_joint_mass(self, t, q)
+        call self%chain%mass_values(t, q, pattern, vals, stat)
+    end subroutine varying_mass_values
 
     function unset_forces_structure(self) result(st)
         class(unset_forces_chain), intent(in) :: self
@@ -523,6 +563,38 @@ contains
         call chk%equal(stat, regdae_err_bad_input, 'refused')
         call chk%true(index(solver%message(), 'mass pattern is 3 x 3, expected 2 x 2') > 0, 'the message says what')
     end subroutine structure_that_does_not_fit
+
+    ! mass_constant declared where M varies with a coordinate, with a difference of two (0 at
+    ! the start, so that only a shift of its own size shows it) or with t: init refuses it on the
+    ! augmented and on the eliminated formulation, naming the declaration; the chain's own
+    ! constant M is accepted.
+    subroutine varying_mass_declared_constant_refused(chk)
+        type(checker), intent(inout) :: chk
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(varying_mass_chain) :: p
+        real(wp) :: q0(8), v0(8)
+        integer :: stat, dependence, formulation
+        character(len=40) :: what
+        p%chain = new_chain(4, .false., 9.81_wp)
+        call chain_start(p%chain, q0, v0)
+        do dependence = 1, 3
+            do formulation = 1, 2
+                opts = solver_options()
+                opts%formulation = merge(formulation_augmented, formulation_eliminated, formulation == 1)
+                p%dependence = dependence
+                write (what, '(a,i0,a,a)') 'dependence ', dependence, ', ', trim(merge('augmented ', 'eliminated', &
+                                                                                     formulation == 1))
+                call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+                call chk%equal(stat, regdae_err_structure, trim(what)//': refused')
+                call chk%true(index(solver%message(), 'declares M constant (mass_constant), but M varies') > 0, &
+                              trim(what)//': the message names the declaration')
+            end do
+        end do
+        call solver%init(p%chain, 0.0_wp, q0, v0, opts, stat)
+        call chk%equal(stat, regdae_success, 'the chain''s constant M accepted')
+        call solver%destroy()
+    end subroutine varying_mass_declared_constant_refused
 
     subroutine dense_formulations_refuse_band(chk)
         type(checker), intent(inout) :: chk
