@@ -238,12 +238,14 @@ and is not changed). The two near-singular starts that were silent before (w1 = 
 3.7e-3 and 1e-2, at R = 1e-7 and 1e-6: the automatic weights too stiff there, and IDA's BDF
 error 5-10x the reference's) are ok since \`integrator=auto\` hands a small stiff second-order
 problem to Radau IIA instead of IDA (issue 21): errors 0.63 and 0.76 against bounds of 21 and 29.
-The four-bar's top (the unstable equilibrium at rest) is left by regdae at R = 1e-3 and kept by
-the reference method exactly (its right-hand side vanishes there): the unstable mode grows like
-exp(sqrt(g/r) t), 6e6 over the 5 s, so that a perturbation of 5e-9, far inside what the tolerance
-allows, ends at 0.04 rad; regdae's own starts in the constrained coordinate (th2 5e-7 off at t =
-0.5 at R = 1e-3, the damped least squares' bias eps/sigma^2 normal to the constraints, which the
-Baumgarte terms pull back). rand4/i3 at R = 1e-3, silent before (a 0.34 s explicit step straight
+The four-bar's top (the unstable equilibrium at rest), silent before at R = 1e-3 (cells 9 and 63:
+14.3 and 32.4 weights), stays at the top since a start at rest in an equilibrium keeps every
+explicit step within the constraint modes' stable step (doc/methods.md, "The stable step after a
+restart"): the damped least squares' bias eps/sigma^2 (4.8e-6 in th2, normal to the constraints)
+had been grown by a 0.625 s step at h |s| = 7.8 to th2 ~ 1e-4, which fed the unstable mode
+(exp(sqrt(g/r) t), 6e6 over the 5 s) through the tilted constraint force; now 3.4e-5 and 1.4e-3
+weights, the reference method keeping the top exactly (its right-hand side vanishes there).
+rand4/i3 at R = 1e-3, silent before (a 0.34 s explicit step straight
 over the fold at th1 = -2 pi, no pass seen), is ok since a step longer than the motion's time
 scale has its quarter points probed for a singular pass (\`regdae_explicit_rk\`,
 \`sample_step_end\`): error 3.29 against a bound of 38.6 (was 42.9).
