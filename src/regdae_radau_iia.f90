@@ -14,6 +14,8 @@
 !!   convergence rate \(\theta_k = \|\Delta W_k\|/\|\Delta W_{k-1}\|\), stop when
 !!   \(\eta_k \|\Delta W_k\| \le \kappa\), \(\eta_k = \theta_k/(1 - \theta_k)\), \(\eta_0 = \max(\eta_{old}, u)^{0.8}\);
 !!   give up when \(\theta_k \ge 0.99\) or \(\theta_k^{k_{max}-k}/(1-\theta_k)\|\Delta W_k\| > \kappa\).
+!!   With algebraic rows the weights are at least the rounding floor of the increments over
+!!   \(\kappa\) (regdae_radau_linear's rounding_floor, after each LU).
 !! - Error: \(err = (\gamma/h\, M - J)^{-1}(F(t_0, u_0) + M \sum_j e_j z_j / h)\); at the first
 !!   step and after a rejection, when err >= 1, once more with \(F(t_0, u_0 + err)\).
 !! - Step: \(h_{new} = h / q\), \(q = err^{1/4}/fac\) clamped to [1/8, 5], fac = 0.9 (2 kmax + 1)/(2 kmax + newt),
