@@ -14,6 +14,8 @@
 !!   convergence rate \(\theta_k = \|\Delta W_k\|/\|\Delta W_{k-1}\|\), stop when
 !!   \(\eta_k \|\Delta W_k\| \le \kappa\), \(\eta_k = \theta_k/(1 - \theta_k)\), \(\eta_0 = \max(\eta_{old}, u)^{0.8}\);
 !!   give up when \(\theta_k \ge 0.99\) or \(\theta_k^{k_{max}-k}/(1-\theta_k)\|\Delta W_k\| > \kappa\).
+!!   With algebraic rows the weights are at least the rounding floor of the increments over
+!!   \(\kappa\) (regdae_radau_linear's rounding_floor, after each LU).
 !! - Error: \(err = (\gamma/h\, M - J)^{-1}(F(t_0, u_0) + M \sum_j e_j z_j / h)\); at the first
 !!   step and after a rejection, when err >= 1, once more with \(F(t_0, u_0 + err)\).
 !! - Step: \(h_{new} = h / q\), \(q = err^{1/4}/fac\) clamped to [1/8, 5], fac = 0.9 (2 kmax + 1)/(2 kmax + newt),
@@ -29,7 +31,7 @@ module regdae_radau_iia
     use regdae_format, only: format_real, format_int
     use regdae_radau_tableau, only: radau_coefficients, radau_iia_coefficients
     use regdae_radau_linear, only: radau_newton_matrices
-    use regdae_radau_system, only: radau_system, radau_options, radau_stats
+    use regdae_radau_system, only: radau_system, radau_options, radau_stats, validate_options
     implicit none
     private
 
@@ -63,6 +65,9 @@ module regdae_radau_iia
         ! the current point
         real(wp) :: t = 0, h = 0
         real(wp), allocatable :: u(:), f0(:), jac(:, :), sc(:)
+        ! with algebraic rows: the rounding floor of the Newton increments (rounding_floor)
+        logical :: algebraic = .false.
+        real(wp), allocatable :: floor(:)
         ! the last accepted step: u(t_prev + s h_last) = u_prev + sum_k q(:, k) s^k
         logical :: have_step = .false.
         real(wp) :: t_prev = 0, h_last = 0
@@ -122,7 +127,7 @@ contains
         self%n = n
         self%counts = radau_stats()
         self%have_step = .false.
-        call validate(opts, t0, u0, self%msg)
+        call validate_options(opts, t0, u0, self%msg)
         if (len(self%msg) > 0) then
             self%stat = regdae_err_bad_input
             stat = self%stat
@@ -140,6 +145,7 @@ contains
         end if
         self%mass = spread(1.0_wp, 1, n)
         if (allocated(opts%mass)) self%mass = opts%mass
+        self%algebraic = any(self%mass == 0)
         self%dae_index = spread(1, 1, n)
         if (allocated(opts%dae_index)) self%dae_index = opts%dae_index
         self%in_test = spread(.true., 1, n)
@@ -154,9 +160,10 @@ contains
         self%t = t0
         self%u = u0
         if (allocated(self%f0)) deallocate (self%f0, self%jac, self%sc, self%u_prev, self%q, self%z, self%w, &
-                                            self%fz, self%dw, self%err_v, self%work)
+                                            self%fz, self%dw, self%err_v, self%work, self%floor)
         allocate (self%f0(n), self%jac(n, n), self%sc(n), self%u_prev(n), self%q(n, 3), self%z(n, 3), &
-                  self%w(n, 3), self%fz(n, 3), self%dw(n, 3), self%err_v(n), self%work(n))
+                  self%w(n, 3), self%fz(n, 3), self%dw(n, 3), self%err_v(n), self%work(n), self%floor(n))
+        self%floor = 0
         self%q = 0
         self%z = 0
         self%jac_current = .false.
@@ -190,74 +197,6 @@ contains
         self%h_last = 0
         self%u_prev = u0
     end subroutine radau_start
-
-    !> The options and the initial values checked; msg = '' when they are valid.
-    subroutine validate(opts, t0, u0, msg)
-        type(radau_options), intent(in) :: opts
-        real(wp), intent(in) :: t0, u0(:)
-        character(len=:), allocatable, intent(out) :: msg
-        integer :: n
-        n = size(u0)
-        msg = ''
-        if (n < 1) then
-            msg = 'radau: the state is empty'
-        else if (.not. ieee_is_finite(t0) .or. .not. all(ieee_is_finite(u0))) then
-            msg = 'radau: t0 or u0 is not finite'
-        else if (.not. (opts%rtol > 0) .or. .not. ieee_is_finite(opts%rtol)) then
-            msg = 'radau: rtol must be positive and finite (got '//format_real(opts%rtol)//')'
-        else if (.not. (opts%atol >= 0) .or. .not. ieee_is_finite(opts%atol)) then
-            msg = 'radau: atol must be >= 0 and finite (got '//format_real(opts%atol)//')'
-        else if (.not. vector_ok(opts%rtol_vector, n, .true.)) then
-            msg = 'radau: rtol_vector needs size(u0) positive finite entries'
-        else if (.not. vector_ok(opts%atol_vector, n, .false.)) then
-            msg = 'radau: atol_vector needs size(u0) finite entries >= 0'
-        else if (.not. (opts%h0 >= 0) .or. .not. ieee_is_finite(opts%h0)) then
-            msg = 'radau: h0 must be >= 0 and finite'
-        else if (.not. (opts%h_max >= 0) .or. .not. ieee_is_finite(opts%h_max)) then
-            msg = 'radau: h_max must be >= 0 and finite'
-        else if (opts%max_steps < 1 .or. opts%max_newton < 1) then
-            msg = 'radau: max_steps and max_newton must be >= 1'
-        else if (opts%fixed_step .and. .not. (opts%h0 > 0)) then
-            msg = 'radau: fixed_step needs h0 > 0'
-        else if (allocated(opts%mass)) then
-            if (size(opts%mass) /= n) then
-                msg = 'radau: mass has size '//format_int(size(opts%mass))//', the state '//format_int(n)
-            else if (.not. all(ieee_is_finite(opts%mass))) then
-                msg = 'radau: mass is not finite'
-            end if
-        end if
-        if (len(msg) > 0) return
-        if (allocated(opts%dae_index)) then
-            if (size(opts%dae_index) /= n) then
-                msg = 'radau: dae_index needs size(u0) entries'
-            else if (any(opts%dae_index < 1 .or. opts%dae_index > 3)) then
-                msg = 'radau: dae_index entries must be 1, 2 or 3'
-            end if
-        end if
-        if (allocated(opts%error_test)) then
-            if (size(opts%error_test) /= n) then
-                msg = 'radau: error_test needs size(u0) entries'
-            else if (.not. any(opts%error_test)) then
-                msg = 'radau: error_test excludes every component'
-            end if
-        end if
-    end subroutine validate
-
-    logical function vector_ok(v, n, positive)
-        real(wp), allocatable, intent(in) :: v(:)
-        integer, intent(in) :: n
-        logical, intent(in) :: positive
-        vector_ok = .true.
-        if (.not. allocated(v)) return
-        vector_ok = size(v) == n
-        if (.not. vector_ok) return
-        vector_ok = all(ieee_is_finite(v))
-        if (positive) then
-            vector_ok = vector_ok .and. all(v > 0)
-        else
-            vector_ok = vector_ok .and. all(v >= 0)
-        end if
-    end function vector_ok
 
     !> One accepted step from t, ending at t_stop at the latest (it lands there
     !! exactly when the step would pass it). stat: regdae_success, or a failure
@@ -318,6 +257,7 @@ contains
                 end if
                 self%lu_valid = .true.
                 self%h_lu = h
+                if (self%algebraic) call self%lin%rounding_floor(self%jac, self%mass, self%u, self%f0, self%floor)
             end if
             self%counts%steps = self%counts%steps + 1
             call self%newton(sys, h, converged, newt, stat, recoverable)
@@ -540,11 +480,14 @@ contains
         error_norm = sqrt(sum((v/sc)**2, mask=in_test)/n_test)
     end function error_norm
 
-    !> The weights of the Newton norm at the current point: (atol + rtol |u|) / h^(index-1).
+    !> The weights of the Newton norm at the current point: (atol + rtol |u|) / h^(index-1),
+    !! and with algebraic rows at least floor / kappa, so that the iteration's target
+    !! (kappa times the weight) is not below the rounding floor of its increments.
     subroutine weights(self, h)
         class(radau_integrator), intent(inout) :: self
         real(wp), intent(in) :: h
         self%sc(:) = (self%atol + self%rtol*abs(self%u))/h**(self%dae_index - 1)
+        if (self%algebraic) self%sc(:) = max(self%sc, self%floor/self%kappa)
     end subroutine weights
 
     !> dF/du at the current point: the system's, or forward difference quotients.

@@ -45,6 +45,8 @@ module regdae_radau_linear
         procedure :: solve_real => matrices_solve_real
         !> Solve E_2 (x + i y) = b + i c in place (x, y overwrite b, c).
         procedure :: solve_complex => matrices_solve_complex
+        !> The rounding floor of the Newton increments that the algebraic rows leave.
+        procedure :: rounding_floor => matrices_rounding_floor
     end type radau_newton_matrices
 
 contains
@@ -118,6 +120,32 @@ contains
             c = aimag(w)
         end associate
     end subroutine matrices_solve_complex
+
+    !> The size of the Newton increments that the rounding of F's algebraic rows
+    !! (M_ii = 0) leaves in each unknown, with the factors of E_1 at hand. F_i(u) is
+    !! known to rho_i = eps_m (|F_i| + sum_j |J_ij| |u_j|) (eps_m the machine epsilon: the
+    !! rounding of F_i's value and of the arguments it is computed from), and on an
+    !! algebraic row the stage equation is 0 = F_i: no factor h damps that error,
+    !! and the iteration's increments settle at about E_1^{-1} rho, whatever h.
+    !! floor = |E_1^{-1} rho|, rho = 0 on the differential rows (their rounding
+    !! enters times h/gamma). Large where a row is computed from terms much larger
+    !! than its value (the stiff chain's Baumgarte rows: gamma0 g(q), gamma0 = 1.3e7,
+    !! g rounded to 1e-16 |q|^2, leave 1e-8 in the accelerations).
+    subroutine matrices_rounding_floor(self, jac, mass, u, f, floor)
+        class(radau_newton_matrices), intent(inout) :: self
+        real(wp), intent(in) :: jac(:, :)    !! J = dF/du, n x n
+        real(wp), intent(in) :: mass(:)      !! the diagonal of M
+        real(wp), intent(in) :: u(:)         !! the point of J
+        real(wp), intent(in) :: f(:)         !! F(t, u)
+        real(wp), intent(out) :: floor(:)    !! the floor per unknown, size n
+        integer :: i
+        do i = 1, self%n
+            floor(i) = 0
+            if (mass(i) == 0) floor(i) = epsilon(1.0_wp)*(abs(f(i)) + sum(abs(jac(i, :))*abs(u)))
+        end do
+        call self%solve_real(floor)
+        floor = abs(floor)
+    end subroutine matrices_rounding_floor
 
     !> LU with partial pivoting of a small real matrix in place (LAPACK's dgetrf
     !! layout: unit L below the diagonal, U on and above it, row k swapped with

@@ -3,12 +3,14 @@
 !! (1 on differential rows, 0 on algebraic ones: ODEs and semi-explicit DAEs as
 !! Hairer & Wanner's RADAU5 runs them, Solving ODEs II, sections IV.8 and VI.1).
 module regdae_radau_system
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_err_bad_input
+    use regdae_format, only: format_real, format_int
     implicit none
     private
 
-    public :: radau_system, radau_rhs, radau_options, radau_stats
+    public :: radau_system, radau_rhs, radau_options, radau_stats, validate_options
 
     !> A problem \(M u' = F(t, u)\). Extend it with the problem's parameters and
     !! supply `rhs`; supply `jacobian` and let `has_jacobian` return .true. for an
@@ -71,6 +73,76 @@ module regdae_radau_system
     end type radau_stats
 
 contains
+
+    !> The options and the initial values u0 (at t0) checked; msg = '' when they are
+    !! valid, else what is wrong (the integrator's start refuses them).
+    subroutine validate_options(opts, t0, u0, msg)
+        type(radau_options), intent(in) :: opts
+        real(wp), intent(in) :: t0, u0(:)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: n
+        n = size(u0)
+        msg = ''
+        if (n < 1) then
+            msg = 'radau: the state is empty'
+        else if (.not. ieee_is_finite(t0) .or. .not. all(ieee_is_finite(u0))) then
+            msg = 'radau: t0 or u0 is not finite'
+        else if (.not. (opts%rtol > 0) .or. .not. ieee_is_finite(opts%rtol)) then
+            msg = 'radau: rtol must be positive and finite (got '//format_real(opts%rtol)//')'
+        else if (.not. (opts%atol >= 0) .or. .not. ieee_is_finite(opts%atol)) then
+            msg = 'radau: atol must be >= 0 and finite (got '//format_real(opts%atol)//')'
+        else if (.not. vector_ok(opts%rtol_vector, n, .true.)) then
+            msg = 'radau: rtol_vector needs size(u0) positive finite entries'
+        else if (.not. vector_ok(opts%atol_vector, n, .false.)) then
+            msg = 'radau: atol_vector needs size(u0) finite entries >= 0'
+        else if (.not. (opts%h0 >= 0) .or. .not. ieee_is_finite(opts%h0)) then
+            msg = 'radau: h0 must be >= 0 and finite'
+        else if (.not. (opts%h_max >= 0) .or. .not. ieee_is_finite(opts%h_max)) then
+            msg = 'radau: h_max must be >= 0 and finite'
+        else if (opts%max_steps < 1 .or. opts%max_newton < 1) then
+            msg = 'radau: max_steps and max_newton must be >= 1'
+        else if (opts%fixed_step .and. .not. (opts%h0 > 0)) then
+            msg = 'radau: fixed_step needs h0 > 0'
+        else if (allocated(opts%mass)) then
+            if (size(opts%mass) /= n) then
+                msg = 'radau: mass has size '//format_int(size(opts%mass))//', the state '//format_int(n)
+            else if (.not. all(ieee_is_finite(opts%mass))) then
+                msg = 'radau: mass is not finite'
+            end if
+        end if
+        if (len(msg) > 0) return
+        if (allocated(opts%dae_index)) then
+            if (size(opts%dae_index) /= n) then
+                msg = 'radau: dae_index needs size(u0) entries'
+            else if (any(opts%dae_index < 1 .or. opts%dae_index > 3)) then
+                msg = 'radau: dae_index entries must be 1, 2 or 3'
+            end if
+        end if
+        if (allocated(opts%error_test)) then
+            if (size(opts%error_test) /= n) then
+                msg = 'radau: error_test needs size(u0) entries'
+            else if (.not. any(opts%error_test)) then
+                msg = 'radau: error_test excludes every component'
+            end if
+        end if
+    end subroutine validate_options
+
+    ! Is v absent, or of size n, finite and positive (positive) or >= 0?
+    logical function vector_ok(v, n, positive)
+        real(wp), allocatable, intent(in) :: v(:)
+        integer, intent(in) :: n
+        logical, intent(in) :: positive
+        vector_ok = .true.
+        if (.not. allocated(v)) return
+        vector_ok = size(v) == n
+        if (.not. vector_ok) return
+        vector_ok = all(ieee_is_finite(v))
+        if (positive) then
+            vector_ok = vector_ok .and. all(v > 0)
+        else
+            vector_ok = vector_ok .and. all(v >= 0)
+        end if
+    end function vector_ok
 
     logical function system_has_no_jacobian(self)
         class(radau_system), intent(in) :: self

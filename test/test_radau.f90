@@ -715,19 +715,20 @@ contains
     ! E_1 x = b and E_2 (x + i y) = b + i c for matrices that need row exchanges (J with
     ! scattered large entries) and a singular M, checked by their residuals: a backward-stable
     ! LU leaves a few u ||E|| ||x||, and 1e-12 relative to ||E|| ||x|| is ample at n <= 20.
+    ! The rounding floor (on the algebraic row of M) the same way, and 0 for an ODE (n = 1).
     subroutine newton_matrices(chk)
         type(checker), intent(inout) :: chk
         integer, parameter :: sizes(3) = [1, 5, 20]
         real(wp), parameter :: fr = 0.3_wp, fa = 0.2_wp, fb = 0.7_wp
         type(radau_newton_matrices) :: lin
-        real(wp), allocatable :: jac(:, :), mass(:), b(:), c(:), x(:), y(:), e1(:, :)
+        real(wp), allocatable :: jac(:, :), mass(:), b(:), c(:), x(:), y(:), e1(:, :), rho(:), fl(:)
         complex(wp), allocatable :: e2(:, :), r(:)
         integer :: i, j, k, n, stat
         character(len=8) :: tag
         do k = 1, size(sizes)
             n = sizes(k)
             write (tag, '(i0)') n
-            allocate (jac(n, n), mass(n), b(n), c(n))
+            allocate (jac(n, n), mass(n), b(n), c(n), fl(n))
             do j = 1, n
                 do i = 1, n
                     jac(i, j) = sin(real(3*i*i + 7*j, wp))   ! scattered large entries: rows are exchanged
@@ -756,7 +757,16 @@ contains
             r = matmul(e2, cmplx(x, y, wp)) - cmplx(b, c, wp)
             call chk%true(maxval(abs(r)) <= 1.0e-12_wp*maxval(abs(e2))*max(1.0_wp, maxval(abs(cmplx(x, y, wp)))), &
                           'complex Newton system solved, n = '//trim(tag))
-            deallocate (jac, mass, b, c)
+            ! the rounding floor at u = b, F = c: |E_1^-1 rho|, rho = eps_m (|F| + |J| |u|) on the algebraic rows
+            rho = merge(epsilon(1.0_wp)*(abs(c) + matmul(abs(jac), abs(b))), 0.0_wp, mass == 0)
+            call lin%rounding_floor(jac, mass, b, c, fl)
+            x = rho
+            call lin%solve_real(x)
+            call chk%true(all(fl == abs(x)) .and. maxval(abs(matmul(e1, x) - rho)) <= &
+                          1.0e-12_wp*maxval(abs(e1))*max(maxval(rho), maxval(abs(x))), &
+                          'rounding floor |E_1^-1 rho| on the algebraic rows, n = '//trim(tag))
+            call chk%true(n > 1 .eqv. any(fl > 0), 'rounding floor nonzero where M has an algebraic row, n = '//trim(tag))
+            deallocate (jac, mass, b, c, fl)
         end do
         ! an exactly singular E_1 (J = fr M in column 1): the status the step control expects
         call lin%init(2)

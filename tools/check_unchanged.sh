@@ -57,6 +57,12 @@ bin/chain n_links=16 linear_solver=band check_jacobians=yes
 bin/chain n_links=8 slider=yes linear_solver=sparse nout=10
 bin/chain n_links=8 formulation=augmented linear_solver=dense method=direct
 bin/chain n_links=2 slider=yes
+bin/ex52 integrator=radau
+bin/ex52 integrator=radau rtol=1e-8 atol=1e-8
+bin/ex52 integrator=radau formulation=augmented
+bin/chain n_links=4 mass=1e-2 stiffness=1e4 damping=10 integrator=radau formulation=eliminated
+bin/chain n_links=4 mass=1e-2 stiffness=1e4 damping=10 integrator=radau formulation=augmented rtol=1e-6 atol=1e-6
+bin/car_axis
 bin/order3 eps=1e-9 rtol=1e-8 atol=1e-8
 bin/order3
 bin/redundant tf=3 nout=100
@@ -79,11 +85,14 @@ test/regdae_tester hardening
 test/regdae_tester lsq
 test/regdae_tester residuals
 test/regdae_tester theory
+test/regdae_tester radau
+test/regdae_tester radau_solver
 test/capi_tester'
 
 filter() {   # FILE RUN
     case $2 in
     bin/trust*) awk '/^ +[0-9]+ /{$14 = "X"} {print}' "$1" ;;   # column 14: seconds
+    bin/car_axis*) awk '/^car_axis /{$6 = "X"; $15 = "X"} {print}' "$1" ;;   # seconds, x_radau5_time
     *) sed -E 's/(seconds|output_seconds|seconds_per_step|peak_rss_kb)=[^ ]*/\1=X/g' "$1" ;;
     esac
 }
