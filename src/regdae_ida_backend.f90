@@ -97,7 +97,8 @@ module regdae_ida_backend
         real(wp), allocatable :: atol_ida(:)
         real(wp) :: algebraic_factor = 1.0_wp
         integer(c_long) :: jac_res_evals = 0
-        ! IDACalcIC's last Newton matrix, for its next pass (reuse_ic_matrix); ic_weights_new:
+        ! IDACalcIC solves twice (its second pass after new error weights, each with a new
+        ! Newton matrix): the last matrix of a calc_ic, kept for the next pass; ic_weights_new:
         ! IDA has taken new error weights since (a new pass, not a retry within one)
         logical :: in_calc_ic = .false., ic_weights_new = .false.
         real(wp), allocatable :: ic_matrix(:)
@@ -160,17 +161,6 @@ module regdae_ida_backend
             integer, intent(out) :: stat
             character(len=:), allocatable, intent(out) :: msg
         end subroutine backend_check_grouped
-        !> IDACalcIC's next pass at its last matrix's t and cj: that matrix into jdata (true).
-        logical module function reuse_ic_matrix(self, t, cj, jdata) result(reused)
-            type(ida_backend), intent(inout) :: self
-            real(wp), intent(in) :: t, cj
-            real(c_double), intent(inout) :: jdata(:)
-        end function reuse_ic_matrix
-        !> A new Newton matrix of IDACalcIC (jdata) kept for its next pass.
-        module subroutine keep_ic_matrix(self, t, cj, jdata)
-            type(ida_backend), intent(inout) :: self
-            real(wp), intent(in) :: t, cj, jdata(:)
-        end subroutine keep_ic_matrix
         !> IDA's counters into a solver_stats record (submodule `regdae_ida_checks`).
         module subroutine backend_statistics(self, st)
             class(ida_backend), intent(in) :: self
@@ -664,7 +654,7 @@ contains
         real(c_double), pointer :: u(:), up(:), res(:), jdata(:), dense(:, :), band(:), sparse(:), flat(:)
         integer(c_long_long), pointer :: col_ptr(:), row_idx(:)
         real(wp) :: sqrt_unit, d
-        integer :: c, a, j, k, neq, ldim, smu, length
+        integer :: c, a, j, k, neq, ldim, smu
 
         call c_f_pointer(user_data, self)
         neq = self%neq
@@ -679,12 +669,10 @@ contains
             ldim = int(FSUNBandMatrix_LDim(jmat))
             smu = int(FSUNBandMatrix_StoredUpperBandwidth(jmat))
             call c_f_pointer(c_loc(jdata(1)), band, [ldim*neq])
-            length = ldim*neq
         case (linear_solver_sparse)
             ! SUNMatZero cleared the index arrays too: write the pattern every time.
             jdata => FSUNSparseMatrix_Data(jmat)
             call c_f_pointer(c_loc(jdata(1)), sparse, [size(self%csc_rows)])
-            length = size(self%csc_rows)
             col_ptr => FSUNSparseMatrix_IndexPointers(jmat)
             row_idx => FSUNSparseMatrix_IndexValues(jmat)
             call c_f_pointer(c_loc(col_ptr(1)), col_ptr, [neq + 1])
@@ -694,11 +682,12 @@ contains
         case default
             jdata => FSUNDenseMatrix_Data(jmat)
             call c_f_pointer(c_loc(jdata(1)), dense, [neq, neq])
-            length = neq*neq
         end select
-        call c_f_pointer(c_loc(jdata(1)), flat, [length])   ! the whole data array (jdata's extent is 1)
+        ! the whole data array (jdata's extent is 1)
+        call c_f_pointer(c_loc(jdata(1)), flat, [matrix_length(self)])
         ierr = 0
         if (reuse_ic_matrix(self, t, cj, flat)) return
+        self%ic_weights_new = .false.
         sqrt_unit = sqrt(epsilon(1.0_wp))
         self%u_pert = u(1:neq)
         self%up_pert = up(1:neq)
@@ -732,8 +721,45 @@ contains
             end do
         end do
         ierr = 0
-        if (self%in_calc_ic) call keep_ic_matrix(self, t, cj, flat)
+        if (self%in_calc_ic) then   ! a matrix of IDACalcIC: kept for its next pass
+            self%ic_matrix = flat
+            self%ic_t = t
+            self%ic_cj = cj
+        end if
     end function ida_jacobian_grouped
+
+    ! IDACalcIC's second pass (IDA_YA_YDP_INIT: new error weights since the last matrix, the
+    ! same t and cj): the first pass's matrix into jdata (true), which the second would compute
+    ! again. The two passes differ only in the unknowns the IC computes (the algebraic ones
+    ! and the differential ones' derivatives); the augmented residual, calc_ic's only user,
+    ! is linear in them, so the matrix moves only in the q-derivatives of M v', G^T y and
+    ! G^T s, small against cj dF/dq' as between the steps that share a Newton matrix. A retry
+    ! within a pass (slow convergence, no new weights) gets a new matrix, as IDA asks.
+    logical function reuse_ic_matrix(self, t, cj, jdata) result(reused)
+        type(ida_backend), intent(inout) :: self
+        real(wp), intent(in) :: t, cj
+        real(c_double), intent(inout) :: jdata(:)   !! the matrix's whole data array
+        reused = .false.
+        if (.not. (self%in_calc_ic .and. self%ic_weights_new .and. allocated(self%ic_matrix))) return
+        if (.not. (t == self%ic_t .and. cj == self%ic_cj)) return
+        jdata = self%ic_matrix
+        self%ic_weights_new = .false.
+        reused = .true.
+    end function reuse_ic_matrix
+
+    ! The length of the matrix's data array: the pattern's entries (sparse), the band
+    ! storage, or n^2.
+    integer function matrix_length(self) result(length)
+        type(ida_backend), intent(in) :: self
+        select case (self%linear_solver)
+        case (linear_solver_band)
+            length = int(FSUNBandMatrix_LDim(self%jmat))*self%neq
+        case (linear_solver_sparse)
+            length = size(self%csc_rows)
+        case default
+            length = self%neq*self%neq
+        end select
+    end function matrix_length
 
     !> The relative tolerance IDA gets for a user's rtol:
     !! $$ \tau = \mathrm{rtol}\,\min\bigl(1, (\mathrm{rtol}/10^{-3})^{1/q}\bigr), $$

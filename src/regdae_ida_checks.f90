@@ -1,41 +1,11 @@
 !> What `regdae_ida_backend` reports about its IDA run: the residual's failures (recorded
 !! for failure_status, a stall at a point the solution cannot pass made fatal), the check of
 !! the grouped difference-quotient Newton matrix against the column-by-column one
-!! (check_jacobians on a declared structure), IDA's counters as a solver_stats record, and
-!! the Newton matrix that IDACalcIC's second pass reuses.
+!! (check_jacobians on a declared structure) and IDA's counters as a solver_stats record.
 submodule (regdae_ida_backend) regdae_ida_checks
     implicit none
 
 contains
-
-    ! IDACalcIC's second pass (IDA_YA_YDP_INIT: new error weights since the last matrix, the
-    ! same t and cj): the first pass's matrix into jdata (true), which the second would compute
-    ! again. The two passes differ only in the unknowns the IC computes (the algebraic ones
-    ! and the differential ones' derivatives); the augmented residual, calc_ic's only user,
-    ! is linear in them, so the matrix moves only in the q-derivatives of M v', G^T y and
-    ! G^T s, small against cj dF/dq' as between the steps that share a Newton matrix. A retry
-    ! within a pass (slow convergence, no new weights) gets a new matrix, as IDA asks.
-    logical module function reuse_ic_matrix(self, t, cj, jdata) result(reused)
-        type(ida_backend), intent(inout) :: self
-        real(wp), intent(in) :: t, cj
-        real(c_double), intent(inout) :: jdata(:)   ! the matrix's whole data array
-        reused = .false.
-        if (.not. (self%in_calc_ic .and. self%ic_weights_new .and. allocated(self%ic_matrix))) return
-        if (.not. (t == self%ic_t .and. cj == self%ic_cj)) return
-        jdata = self%ic_matrix
-        self%ic_weights_new = .false.
-        reused = .true.
-    end function reuse_ic_matrix
-
-    ! A new Newton matrix of IDACalcIC (its whole data array), kept for the next pass.
-    module subroutine keep_ic_matrix(self, t, cj, jdata)
-        type(ida_backend), intent(inout) :: self
-        real(wp), intent(in) :: t, cj, jdata(:)
-        self%ic_matrix = jdata
-        self%ic_t = t
-        self%ic_cj = cj
-        self%ic_weights_new = .false.
-    end subroutine keep_ic_matrix
 
     ! The system's residual; returns 0, or +1 (recoverable) / -1 (fatal) after
     ! recording the failure in the backend.
