@@ -98,9 +98,8 @@ module regdae_ida_backend
         real(wp) :: algebraic_factor = 1.0_wp
         integer(c_long) :: jac_res_evals = 0
         ! IDACalcIC solves twice (its second pass after new error weights, each with a new
-        ! Newton matrix): the last matrix of a calc_ic, kept for the next pass; ic_weights_new:
-        ! IDA has taken new error weights since (a new pass, not a retry within one)
-        logical :: in_calc_ic = .false., ic_weights_new = .false.
+        ! Newton matrix): the first matrix of a calc_ic, kept for the second (backend_calc_ic)
+        logical :: in_calc_ic = .false.
         real(wp), allocatable :: ic_matrix(:)
         real(wp) :: ic_t = 0.0_wp, ic_cj = 0.0_wp
         type(solver_stats) :: carried                   !! IDA's counters before the last FIDAReInit (which zeroes them)
@@ -375,7 +374,6 @@ contains
         p = differential
         ierr = FIDASetId(self%ida_mem, id)
         self%in_calc_ic = .true.
-        self%ic_weights_new = .false.
         if (allocated(self%ic_matrix)) deallocate (self%ic_matrix)
         if (ierr == 0) ierr = FIDACalcIC(self%ida_mem, IDA_YA_YDP_INIT, tout1)
         self%in_calc_ic = .false.
@@ -687,7 +685,6 @@ contains
         call c_f_pointer(c_loc(jdata(1)), flat, [matrix_length(self)])
         ierr = 0
         if (reuse_ic_matrix(self, t, cj, flat)) return
-        self%ic_weights_new = .false.
         sqrt_unit = sqrt(epsilon(1.0_wp))
         self%u_pert = u(1:neq)
         self%up_pert = up(1:neq)
@@ -721,29 +718,27 @@ contains
             end do
         end do
         ierr = 0
-        if (self%in_calc_ic) then   ! a matrix of IDACalcIC: kept for its next pass
+        if (self%in_calc_ic) then   ! the first matrix of IDACalcIC: kept for its second pass
             self%ic_matrix = flat
             self%ic_t = t
             self%ic_cj = cj
         end if
     end function ida_jacobian_grouped
 
-    ! IDACalcIC's second pass (IDA_YA_YDP_INIT: new error weights since the last matrix, the
-    ! same t and cj): the first pass's matrix into jdata (true), which the second would compute
-    ! again. The two passes differ only in the unknowns the IC computes (the algebraic ones
-    ! and the differential ones' derivatives); the augmented residual, calc_ic's only user,
-    ! is linear in them, so the matrix moves only in the q-derivatives of M v', G^T y and
-    ! G^T s, small against cj dF/dq' as between the steps that share a Newton matrix. A retry
-    ! within a pass (slow convergence, no new weights) gets a new matrix, as IDA asks.
+    ! IDACalcIC's second pass (IDA_YA_YDP_INIT) at the t and cj of its first: the first
+    ! pass's matrix into jdata (true), which the second would compute again. The two passes
+    ! differ only in the unknowns the IC computes (the algebraic ones and the differential
+    ! ones' derivatives); the augmented residual, calc_ic's only user, is linear in them, so
+    ! the matrix moves only in the curvature of M v', G^T y, G^T s in q against IDA's
+    ! 1/cj-scaled term, as it does between the steps that share a Newton matrix.
     logical function reuse_ic_matrix(self, t, cj, jdata) result(reused)
         type(ida_backend), intent(inout) :: self
         real(wp), intent(in) :: t, cj
         real(c_double), intent(inout) :: jdata(:)   !! the matrix's whole data array
         reused = .false.
-        if (.not. (self%in_calc_ic .and. self%ic_weights_new .and. allocated(self%ic_matrix))) return
+        if (.not. (self%in_calc_ic .and. allocated(self%ic_matrix))) return
         if (.not. (t == self%ic_t .and. cj == self%ic_cj)) return
         jdata = self%ic_matrix
-        self%ic_weights_new = .false.
         reused = .true.
     end function reuse_ic_matrix
 
@@ -788,7 +783,6 @@ contains
         integer :: i
 
         call c_f_pointer(user_data, self)
-        if (self%in_calc_ic) self%ic_weights_new = .true.   ! IDACalcIC's next pass
         u => FN_VGetArrayPointer(nv_u)
         ewt => FN_VGetArrayPointer(nv_ewt)
         do i = 1, self%neq
