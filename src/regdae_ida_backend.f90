@@ -97,11 +97,6 @@ module regdae_ida_backend
         real(wp), allocatable :: atol_ida(:)
         real(wp) :: algebraic_factor = 1.0_wp
         integer(c_long) :: jac_res_evals = 0
-        ! IDACalcIC solves twice (its second pass after new error weights, each with a new
-        ! Newton matrix): the first matrix of a calc_ic, kept for the second (backend_calc_ic)
-        logical :: in_calc_ic = .false.
-        real(wp), allocatable :: ic_matrix(:)
-        real(wp) :: ic_t = 0.0_wp, ic_cj = 0.0_wp
         type(solver_stats) :: carried                   !! IDA's counters before the last FIDAReInit (which zeroes them)
         integer :: pending_stat = regdae_success        !! last failure seen in a callback
         logical :: pending_recoverable = .true.
@@ -373,11 +368,7 @@ contains
         p => FN_VGetArrayPointer(id)
         p = differential
         ierr = FIDASetId(self%ida_mem, id)
-        self%in_calc_ic = .true.
-        if (allocated(self%ic_matrix)) deallocate (self%ic_matrix)
         if (ierr == 0) ierr = FIDACalcIC(self%ida_mem, IDA_YA_YDP_INIT, tout1)
-        self%in_calc_ic = .false.
-        if (allocated(self%ic_matrix)) deallocate (self%ic_matrix)
         if (ierr == 0) ierr = FIDAGetConsistentIC(self%ida_mem, self%uu, self%up)
         ! the error test's id (suppress) again, if any
         if (associated(self%idv)) then
@@ -649,7 +640,7 @@ contains
         type(c_ptr), value :: user_data
         type(N_Vector) :: tmp1, tmp2, tmp3
         type(ida_backend), pointer :: self
-        real(c_double), pointer :: u(:), up(:), res(:), jdata(:), dense(:, :), band(:), sparse(:), flat(:)
+        real(c_double), pointer :: u(:), up(:), res(:), jdata(:), dense(:, :), band(:), sparse(:)
         integer(c_long_long), pointer :: col_ptr(:), row_idx(:)
         real(wp) :: sqrt_unit, d
         integer :: c, a, j, k, neq, ldim, smu
@@ -681,10 +672,6 @@ contains
             jdata => FSUNDenseMatrix_Data(jmat)
             call c_f_pointer(c_loc(jdata(1)), dense, [neq, neq])
         end select
-        ! the whole data array (jdata's extent is 1)
-        call c_f_pointer(c_loc(jdata(1)), flat, [matrix_length(self)])
-        ierr = 0
-        if (reuse_ic_matrix(self, t, cj, flat)) return
         sqrt_unit = sqrt(epsilon(1.0_wp))
         self%u_pert = u(1:neq)
         self%up_pert = up(1:neq)
@@ -718,43 +705,7 @@ contains
             end do
         end do
         ierr = 0
-        if (self%in_calc_ic) then   ! the first matrix of IDACalcIC: kept for its second pass
-            self%ic_matrix = flat
-            self%ic_t = t
-            self%ic_cj = cj
-        end if
     end function ida_jacobian_grouped
-
-    ! IDACalcIC's second pass (IDA_YA_YDP_INIT) at the t and cj of its first: the first
-    ! pass's matrix into jdata (true), which the second would compute again. The two passes
-    ! differ only in the unknowns the IC computes (the algebraic ones and the differential
-    ! ones' derivatives); the augmented residual, calc_ic's only user, is linear in them, so
-    ! the matrix moves only in the curvature of M v', G^T y, G^T s in q against IDA's
-    ! 1/cj-scaled term, as it does between the steps that share a Newton matrix.
-    logical function reuse_ic_matrix(self, t, cj, jdata) result(reused)
-        type(ida_backend), intent(inout) :: self
-        real(wp), intent(in) :: t, cj
-        real(c_double), intent(inout) :: jdata(:)   !! the matrix's whole data array
-        reused = .false.
-        if (.not. (self%in_calc_ic .and. allocated(self%ic_matrix))) return
-        if (.not. (t == self%ic_t .and. cj == self%ic_cj)) return
-        jdata = self%ic_matrix
-        reused = .true.
-    end function reuse_ic_matrix
-
-    ! The length of the matrix's data array: the pattern's entries (sparse), the band
-    ! storage, or n^2.
-    integer function matrix_length(self) result(length)
-        type(ida_backend), intent(in) :: self
-        select case (self%linear_solver)
-        case (linear_solver_band)
-            length = int(FSUNBandMatrix_LDim(self%jmat))*self%neq
-        case (linear_solver_sparse)
-            length = size(self%csc_rows)
-        case default
-            length = self%neq*self%neq
-        end select
-    end function matrix_length
 
     !> The relative tolerance IDA gets for a user's rtol:
     !! $$ \tau = \mathrm{rtol}\,\min\bigl(1, (\mathrm{rtol}/10^{-3})^{1/q}\bigr), $$
