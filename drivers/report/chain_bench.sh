@@ -481,15 +481,19 @@ rtol 1e-6 3.6e-8 against 1.3e-7: tau, and 64 unknowns against 48 in the norm). P
 takes 1.35 / 1.47 / 1.44 Newton iterations at rtol 1e-3 / 1e-6 / 1e-9 (the peer 1.48 / 1.49 /
 1.59) and 0.78 / 0.31 / 0.14 Jacobians (0.70 / 0.29 / 0.17), and its steps cost less (KLU and
 grouped differences against a band LU of IDA's difference quotients: at rtol 1e-3 IDA's steps take
-3.97M against the peer's 5.69M). The ratio at 1e-7 and 1e-8 is the work outside IDA's steps, at
-rtol 1e-3: the setup 1.25M (IDACalcIC 0.57M, the augmented system's patterns and ordering 0.33M),
+3.96M against the peer's 5.69M). The ratio at 1e-7 and 1e-8 is the work outside IDA's steps, at
+rtol 1e-3: the setup 1.34M (IDACalcIC 0.66M, the augmented system's patterns and ordering 0.33M),
 the monitor's sample at each step 1.13M (its sigma_min(GB) bound 0.43M, the work-energy balance
-0.25M) and the interpolation at the 100 outputs 0.41M. IDACalcIC solves twice; its second pass
-now reuses the first's Newton matrix (doc/methods.md; outputs identical here, 12 residuals fewer
-per start): 7.10M / 14.10M / 34.83M -> 7.00M / 14.01M / 34.74M at rtol 1e-3 / 1e-6 / 1e-9, at
-matched accuracy 1.20 / 1.61 / 1.08 / 0.76 / 0.98x -> 1.19 / 1.59 / 1.08 / 0.75 / 0.98x (issue
-21's 1x: still missed at 1e-7 ... 1e-9). IDA's fused vector operations (FN_VEnableFusedOps_Serial,
-outputs identical) cost more here: 14.13M and 35.51M at rtol 1e-6 and 1e-9.
+0.25M) and the interpolation at the 100 outputs 0.41M. Tried and not kept: IDACalcIC always solves
+twice (the second pass after new error weights, each with a new Newton matrix and factorization);
+handing the second pass the first's matrix saves its difference quotient (12 residuals: 7.10M /
+14.10M / 34.83M -> 7.00M / 14.01M / 34.74M at rtol 1e-3 / 1e-6 / 1e-9, at matched accuracy 1.19 /
+1.59 / 1.08 / 0.75 / 0.98x, outputs identical here), but where the second pass iterates (the
+slider chains' singular start) the initial values move within IDACalcIC's Newton tolerance, and
+`trust family=chain_long` moved a cell from ok to warned (the 16-link slider chain at R = 1e-6: an
+unresolved pass, 1.06 -> 2.29 error weights against a bound of 10; `family=chain` kept its
+classes, 4 of 144 errors moved). IDA's fused vector operations (FN_VEnableFusedOps_Serial, outputs
+identical) cost more here: 14.13M and 35.51M at rtol 1e-6 and 1e-9.
 
 TXT
 # Issue 11: the small stiff chain, integrator=auto against hand-chosen configurations.
