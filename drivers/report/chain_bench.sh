@@ -464,10 +464,36 @@ instructions (callgrind, regdae's init and advances against the peer's run, damp
 1e-3 / 1e-6 / 1e-9: 11.40M / 19.65M / 42.19M before, 7.09M / 14.10M / 34.83M at e1d04d5, against
 the peer's 5.85M / 12.65M / 27.92M (1.95 / 1.55 / 1.51x -> 1.21 / 1.11 / 1.25x), errors
 identical; at matched accuracy 1e-7 ... 1e-11 by instructions 1.90 / 2.46 / 1.51 / 1.03 / 1.26x ->
-1.20 / 1.61 / 1.08 / 0.76 / 0.98x (issue 21's 1x: still missed at 1e-7 ... 1e-9). What is left:
-regdae's IDA step is cheaper than the peer's (109k against 145k instructions at rtol 1e-9), but
-the IDA path runs at the tighter internal tolerance of doc/methods.md and takes 278 steps against
-the peer's 193 there; the setup costs 1.34M (0.66M of it IDACalcIC, which factors twice).
+1.20 / 1.61 / 1.08 / 0.76 / 0.98x (issue 21's 1x: still missed at 1e-7 ... 1e-9).
+
+Measured by hand on 2026-12-06 (issue 21: the step count; the same callgrind runs, one per rtol,
+IDA's counters from the summary, Newton iterations counted as linear solves): at the same error
+regdae takes the peer's steps. The error is the transient's: at every rtol the largest distance is
+at t = 0.01 or 0.02, and from t = 0.1 on (the chain at rest on its springs) every run's is below
+0.5% of it. regdae's 278 steps at rtol 1e-9 reach 5.1e-13, the peer's 193 2.4e-12
+(regdae's IDA runs at tau = 6.3e-11 there, doc/methods.md); interpolated at matched accuracy 1e-7
+/ 1e-8 / 1e-9 / 1e-10 / 1e-11 regdae takes 27 / 44 / 83 / 102 / 160 steps and the peer 27 / 23 /
+79 / 129 / 157, the same but at 1e-8, where the peer's run at rtol 1e-3 lands at 9.8e-9 and
+regdae's at 1.9e-8 (23 steps both, IDA at the same tolerance there). IDA's settings are the same
+in both: orders up to 5, IDA's own Jacobian reuse and convergence test, q and v in the error test
+and the multipliers out (regdae's u, y, s too), IDA's initial step towards the first output (at
+rtol 1e-6 3.6e-8 against 1.3e-7: tau, and 64 unknowns against 48 in the norm). Per step regdae
+takes 1.35 / 1.47 / 1.44 Newton iterations at rtol 1e-3 / 1e-6 / 1e-9 (the peer 1.48 / 1.49 /
+1.59) and 0.78 / 0.31 / 0.14 Jacobians (0.70 / 0.29 / 0.17), and its steps cost less (KLU and
+grouped differences against a band LU of IDA's difference quotients: at rtol 1e-3 IDA's steps take
+3.96M against the peer's 5.69M). The ratio at 1e-7 and 1e-8 is the work outside IDA's steps, at
+rtol 1e-3: the setup 1.34M (IDACalcIC 0.66M, the augmented system's patterns and ordering 0.33M),
+the monitor's sample at each step 1.13M (its sigma_min(GB) bound 0.43M, the work-energy balance
+0.25M) and the interpolation at the 100 outputs 0.41M. Tried and not kept: IDACalcIC always solves
+twice (the second pass after new error weights, each with a new Newton matrix and factorization);
+handing the second pass the first's matrix saves its difference quotient (12 residuals: 7.10M /
+14.10M / 34.83M -> 7.00M / 14.01M / 34.74M at rtol 1e-3 / 1e-6 / 1e-9, at matched accuracy 1.19 /
+1.59 / 1.08 / 0.75 / 0.98x, outputs identical here), but where the second pass iterates (the
+slider chains' singular start) the initial values move within IDACalcIC's Newton tolerance, and
+`trust family=chain_long` moved a cell from ok to warned (the 16-link slider chain at R = 1e-6: an
+unresolved pass, 1.06 -> 2.29 error weights against a bound of 10; `family=chain` kept its
+classes, 4 of 144 errors moved). IDA's fused vector operations (FN_VEnableFusedOps_Serial, outputs
+identical) cost more here: 14.13M and 35.51M at rtol 1e-6 and 1e-9.
 
 TXT
 # Issue 11: the small stiff chain, integrator=auto against hand-chosen configurations.
