@@ -29,8 +29,9 @@
 !!   plain IDA peer (drivers/common/chain_peer.f90, stabilized index 2, not regdae) at 1e-11
 !!   checked against 1e-10, and where the peer fails there the regdae reference below (column
 !!   ref_src); reference method the peer at R. slider: reference regdae itself (formulation =
-!!   augmented, rtol = atol = 1e-11, eps = 1e-16; check: 1e-10 with eps = 1e-14); no reference
-!!   method.
+!!   augmented, rtol = atol = 1e-11, eps = 1e-16; check: 1e-10 with eps = 1e-14); reference
+!!   method as on chain_long: the peer at R on the same constraints (N > 2) and Dormand-Prince on
+!!   the slider crank's reduced ODE at R (N = 2), over the outputs it reached.
 !! - chain_long: the same chains on [0, 10] (100 outputs), N = 2 ... 256: judged on the energy
 !!   change and the largest constraint violation at the outputs, in units of the tight regdae
 !!   run's own plus R times the scales; reference method the peer at R (plain, and with the
@@ -906,9 +907,11 @@ contains
                 'rtol = atol = 1e-11 checked against 1e-10; where either fails, the regdae reference (ref_src); '// &
                 'reference method: the peer at R'
             write (*, '(a)') '#   slider: reference from regdae itself (formulation=augmented, rtol = atol = 1e-11, '// &
-                'eps = 1e-16; check: 1e-10 with eps = 1e-14); no reference method (err_ref = 0)'
+                'eps = 1e-16; check: 1e-10 with eps = 1e-14); reference method: N > 2 the peer at R on the same '// &
+                'constraints (the sliders'' too), N = 2 (the slider crank) Dormand-Prince on its reduced ODE at R'
             write (*, '(a)') '#   extra columns: ref_src ref_chk (the norm at R of check - reference) '// &
-                'peer_status (the reference method''s status, none: no reference method)'
+                'peer_status (the reference method''s status: the peer''s 0 or IDA''s flag, Dormand-Prince''s '// &
+                'ok/diverged/timeout/failed; its err_ref over the outputs it reached)'
         end if
         cell = 0
         do iv = 1, 2
@@ -937,23 +940,30 @@ contains
         real(wp), intent(in) :: rtol, times(:)
         type(run_record) :: rec, rerun
         type(chain) :: p
-        real(wp) :: q0(2*links), v0(2*links), qpeer(2*links, size(times) + 1), err, err_ref, bound, ref_chk, seconds
+        real(wp) :: q0(2*links), v0(2*links), qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1)
+        real(wp) :: err, err_ref, bound, ref_chk, seconds
         integer :: peer_stat, steps, good
-        character(len=:), allocatable :: label, peer_text, peer_message
+        character(len=:), allocatable :: label, peer_text, peer_message, method
         label = trim(merge('slider', 'plain ', slider))
         if (cached%source == 'none') then
             call unjudged_chain_run(counts, cell, label, slider, links, rtol, times)
             return
         end if
-        err_ref = 0.0_wp
-        peer_stat = 0
-        peer_text = 'none'
-        if (.not. slider) then
-            call peer_run(links, .false., rtol, times, qpeer, peer_stat, steps, seconds, peer_message, peer_method_timeout)
+        ! the reference method, as on chain_long: the peer at R (plain, and with the sliders for
+        ! N > 2), N = 2 with the slider Dormand-Prince on the slider crank's reduced ODE; its
+        ! err_ref over the outputs it reached
+        if (.not. slider .or. links > 2) then
+            call peer_run(links, slider, rtol, times, qpeer, peer_stat, steps, seconds, peer_message, &
+                          peer_method_timeout)
             good = peer_good(qpeer(:, 2:))
-            err_ref = weighted_error(qpeer(:, 2:), cached%x, rtol, good)
             peer_text = itext(peer_stat)
+            method = 'peer'
+        else
+            call crank_method_joints(rtol, times, qpeer(:, 2:), vpeer(:, 2:), peer_stat, peer_message, peer_text)
+            good = finite_outputs(qpeer(:, 2:))
+            method = 'Dormand-Prince'
         end if
+        err_ref = weighted_error(qpeer(:, 2:), cached%x, rtol, good)
         bound = 10.0_wp*max(1.0_wp, err_ref)
         ref_chk = weighted_error(cached%check, cached%x, rtol, size(times))
         p = new_chain(links, slider, chain_gravity)
@@ -966,7 +976,7 @@ contains
         end if
         call judge_and_print(counts, cell, label, real(links, wp), times(size(times)), rtol, rec, err, err_ref, bound, &
                              ref_chk, rerun, ' '//cached%source//' '//etext(ref_chk)//' '//peer_text)
-        if (.not. slider .and. peer_stat /= 0) call write_note('reference method (peer) failed: ', peer_message)
+        if (peer_stat /= 0) call write_note('reference method ('//method//') failed: ', peer_message)
     end subroutine chain_cell
 
     subroutine chain_long_cell(counts, cell, slider, links, rtol, times)
@@ -977,7 +987,7 @@ contains
         type(run_record) :: rec, rerun
         type(chain) :: p
         real(wp) :: q0(2*links), v0(2*links), de, viol, de_unit, viol_unit, err, err_ref, bound, rerun_err, seconds
-        real(wp) :: qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1), crank_states(2, size(times))
+        real(wp) :: qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1)
         real(wp) :: de_ref, viol_ref
         integer :: code, rerun_stat, peer_stat, steps
         character(len=:), allocatable :: label, peer_text, peer_message
@@ -999,18 +1009,7 @@ contains
                           peer_method_timeout, vpeer)
             peer_text = itext(peer_stat)
         else
-            ! N = 2 with the slider is the slider crank: Dormand-Prince on its reduced ODE at R,
-            ! mapped to the joints, joint 1 = (sin th1, -cos th1), joint 2 = (2 sin th1, 0)
-            call oracle_run('chain2', pi/2, 0.0_wp, rtol, times, crank_states, peer_stat, peer_message, oracle_timeout)
-            qpeer(1, 2:) = sin(crank_states(1, :))
-            qpeer(2, 2:) = -cos(crank_states(1, :))
-            qpeer(3, 2:) = 2.0_wp*sin(crank_states(1, :))
-            qpeer(4, 2:) = 0.0_wp
-            vpeer(1, 2:) = crank_states(2, :)*cos(crank_states(1, :))
-            vpeer(2, 2:) = crank_states(2, :)*sin(crank_states(1, :))
-            vpeer(3, 2:) = 2.0_wp*crank_states(2, :)*cos(crank_states(1, :))
-            vpeer(4, 2:) = 0.0_wp
-            peer_text = oracle_text(peer_stat, crank_states)
+            call crank_method_joints(rtol, times, qpeer(:, 2:), vpeer(:, 2:), peer_stat, peer_message, peer_text)
         end if
         call method_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de_ref, viol_ref)
         err_ref = max(de_ref/de_unit, viol_ref/viol_unit)
@@ -1039,6 +1038,27 @@ contains
                         itext(peer_good(qpeer(:, 2:)))//' of '//itext(size(times))//' outputs')
         if (peer_stat /= 0) call write_note('reference method failed: ', peer_message)
     end subroutine chain_long_cell
+
+    ! The chain of 2 links with the slider is the slider crank: Dormand-Prince on its reduced ODE
+    ! at R from the chain's start (th1 = pi/2 at rest), mapped to the joints at `times`, joint 1 =
+    ! (sin th1, -cos th1), joint 2 = (2 sin th1, 0); `text` the reference method's column.
+    subroutine crank_method_joints(rtol, times, q, v, stat, message, text)
+        real(wp), intent(in) :: rtol, times(:)
+        real(wp), intent(out) :: q(:, :), v(:, :)   !! (4, size(times))
+        integer, intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: message, text
+        real(wp) :: crank_states(2, size(times))
+        call oracle_run('chain2', pi/2, 0.0_wp, rtol, times, crank_states, stat, message, oracle_timeout)
+        q(1, :) = sin(crank_states(1, :))
+        q(2, :) = -cos(crank_states(1, :))
+        q(3, :) = 2.0_wp*sin(crank_states(1, :))
+        q(4, :) = 0.0_wp
+        v(1, :) = crank_states(2, :)*cos(crank_states(1, :))
+        v(2, :) = crank_states(2, :)*sin(crank_states(1, :))
+        v(3, :) = 2.0_wp*crank_states(2, :)*cos(crank_states(1, :))
+        v(4, :) = 0.0_wp
+        text = oracle_text(stat, crank_states)
+    end subroutine crank_method_joints
 
     ! The energy change and the largest violation of a reference method's run (q, v at `times`)
     ! over the outputs it reached, against the chain's start (chain_start).
