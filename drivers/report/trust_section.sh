@@ -154,6 +154,23 @@ tight_ratio=${long_tight#*, }
 long_noref=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /no reference/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
         st = $0; sub(/.*status=/, "", st); sub(/ .*/, "", st); t = $0; sub(/.* at t = /, "", t); sub(/ .*/, "", t)
         printf "%sN = %s (status %s at t = %.3g)", (k++ ? ", " : ""), n, st, t }' "$long" 2>/dev/null || true)
+# --- the chains with sliders on [0, 1], from chain.txt: their classes; the cells of N > 2 judged
+# against the peer and those where it failed (N/R at t, or why it gave no result)
+short=$grids/chain.txt
+short_classes=$(awk '$1 ~ /^[0-9]+$/ && $3 == "slider" { n++; c[$8]++ }
+    END { split("ok warned silent false_alarm failed undecided no_reference", k, " ")
+          for (i = 1; i <= 7; i++) if (c[k[i]]) printf "%s%d %s", (m++ ? ", " : ""), c[k[i]], k[i]
+          if (!n) printf "?" }' "$short" 2>/dev/null || echo "?")
+short_peer=$(awk '$1 ~ /^[0-9]+$/ && $3 == "slider" && $4 + 0 > 2 && NF >= 17 && $17 != "none" { n++ } END { print n + 0 }' "$short" 2>/dev/null || echo 0)
+short_fail=$(awk '$1 ~ /^[0-9]+$/ { cur = ""
+            if ($3 == "slider" && $4 + 0 > 2 && NF >= 17 && $17 != "0" && $17 != "none") cur = sprintf("N = %d at R = %s", $4, $6)
+            next }
+        cur != "" && /^#   reference method \(peer\) failed: / { t = $0
+            if (t ~ /at t = /) { sub(/.*at t = /, "", t); sub(/ .*/, "", t); t = sprintf("t = %.2g", t) }
+            else if (t ~ /ran longer than/) { sub(/.*ran longer than /, "", t); sub(/ s .*/, "", t); t = "no result in " t " s" }
+            else t = "no result"
+            printf "%s%s (%s)", (n++ ? ", " : ""), cur, t; cur = "" }' "$short" 2>/dev/null || true)
+n_short_fail=$(count_list "$short_fail")
 
 cat <<TXT
 ## Trust grids: is a status ok right?
@@ -164,10 +181,10 @@ rtol = atol = R, each cell against a reference that does not come from regdae (\
 run by \`sh drivers/report/trust_grids.sh build\`, ${run_line}). A cell's error is the largest
 \|x_i - xref_i\| / (R \|xref_i\| + R) over its outputs; its bound 10 max(1, err_ref), err_ref the
 same error of a reference method at the same R (Dormand-Prince on the reduced ODE for the crank
-and the four-bar, the plain IDA peer for the plain chain, on [0, 10] too, and on [0, 10] for the
-chains of 4 ... 256 links with sliders (the peer on the same constraints, the sliders' too),
-Dormand-Prince on the slider crank's reduced ODE for the chain of 2 links with the slider on [0,
-10], none for the linear DAEs and the chains with sliders on [0, 1]). Classes: **ok** (status ok, error within the bound), **warned** (a warning status,
+and the four-bar, the plain IDA peer for the plain chain and for the chains of 4 ... 4096 links
+with sliders (the peer on the same constraints, the sliders' too), Dormand-Prince on the slider
+crank's reduced ODE for the chain of 2 links with the slider, on [0, 1] and [0, 10] alike, none
+for the linear DAEs). Classes: **ok** (status ok, error within the bound), **warned** (a warning status,
 x returned), **silent** (status ok, error above the bound; also a warned run whose outputs after
 its last warning jump above the bound, by 100x every error before, past a fold of the reference
 other than the warned pass's: a later silent departure), **false alarm** (a check stopped a run
@@ -217,7 +234,14 @@ The linear index-2 DAEs with GB ~ t^2 (S1) and t^4 (S2) under the three methods,
 
 The chain of N = 2 ... 4096 unit links, plain and with sliders, on [0, 1] and [0, 10] (chaotic
 there: the long grid judges the checks, the energy change and the constraint violation, in units of
-the tight run's own plus R times the scales, err = max(dE/dE_unit, viol/viol_unit)).
+the tight run's own plus R times the scales, err = max(dE/dE_unit, viol/viol_unit)). On [0, 1]
+the chains with sliders are compared with regdae's own tight run (formulation=augmented, rtol =
+atol = 1e-11, eps = 1e-16, checked against 1e-10 with eps = 1e-14) and judged against the long
+chains' reference methods at R: the peer on the same constraints for N = 4 ... 4096,
+Dormand-Prince on the slider crank's reduced ODE for N = 2, err_ref over the outputs the method
+reached. Their cells: ${short_classes}. Of the ${short_peer} cells of N > 2 the peer failed in
+${n_short_fail}${short_fail:+ (${short_fail})}; err_ref counts the outputs before the failure (where it
+failed before the first output, none: err_ref = 0 and the bound 10, as without a reference method).
 
 The cells that miss (silent, false alarm, undecided; the row's columns, then for a false alarm
 the run with the checks off), from \`trust_grids.sh\`'s \`baseline.txt\`:
