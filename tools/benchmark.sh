@@ -591,7 +591,7 @@ work_tol=0\`; medians of 9 by hand on 2026-11-29), which is most of the change o
 the issue-10 run (63x at 1e-4, 84x at 1e-6). The default path is the explicit one.
 
 **What followed** (issue 21): the Radau IIA integrator of order 5 these numbers proposed is
-`integrator=radau`, and `auto` hands small stiff problems of order 2 to it; its measurements
+\`integrator=radau\`, and \`auto\` hands small stiff problems of order 2 to it; its measurements
 against RADAU5 and the Dormand-Prince oracle are in [Radau IIA](#radau-iia).
 
 TXT
