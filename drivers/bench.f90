@@ -39,7 +39,7 @@ program bench_driver
     use pendulum_problem, only: pendulum_angle
     use theory_problems, only: theory_cases, new_theory_problem, theory_problem
     use driver_support, only: format_int, argument, split_key_value, num, die_usage, &
-                              warning_log, timing_option
+                              warning_log, timing_option, sort_ascending
     implicit none
     character(len=*), parameter :: prog = 'bench'
     real(wp), parameter :: pi = acos(-1.0_wp)
@@ -525,19 +525,9 @@ contains
 
     pure real(wp) function median(v)
         real(wp), intent(in) :: v(:)
-        real(wp) :: s(size(v)), tmp
-        integer :: i, j
+        real(wp) :: s(size(v))
         s = v
-        do i = 2, size(s)
-            tmp = s(i)
-            j = i - 1
-            do while (j >= 1)
-                if (s(j) <= tmp) exit
-                s(j + 1) = s(j)
-                j = j - 1
-            end do
-            s(j + 1) = tmp
-        end do
+        call sort_ascending(s)
         median = s((size(s) + 1)/2)
     end function median
 

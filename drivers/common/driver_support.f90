@@ -14,7 +14,7 @@ module driver_support
 
     !> The largest `nout` the drivers accept: their tables hold nout + 1 rows.
     integer, parameter, public :: max_nout = 1000000
-    public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage
+    public :: argument, split_key_value, num, elapsed_seconds, clock_start, die_usage, sort_ascending
 
     !> Accumulates the wall-clock time between start and stop calls: the solve
     !! (init and advances) apart from writing the output.
@@ -321,5 +321,22 @@ contains
         write (error_unit, '(a)') program_name//': '//text
         stop 2
     end subroutine die_usage
+
+    !> Insertion sort, ascending (the drivers' short lists: a few hundred values).
+    pure subroutine sort_ascending(a)
+        real(wp), intent(inout) :: a(:)
+        real(wp) :: x
+        integer :: i, j
+        do i = 2, size(a)
+            x = a(i)
+            j = i - 1
+            do while (j >= 1)
+                if (a(j) <= x) exit
+                a(j + 1) = a(j)
+                j = j - 1
+            end do
+            a(j + 1) = x
+        end do
+    end subroutine sort_ascending
 
 end module driver_support

@@ -6,7 +6,7 @@ module rates_measure
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use regdae
     use theory_problems, only: theory_problem
-    use driver_support, only: warning_log
+    use driver_support, only: warning_log, sort_ascending
     implicit none
     private
     public :: output_grid, measure_errors, converged_errors, vanishing_orders
@@ -22,21 +22,11 @@ contains
     function output_grid(refine) result(grid)
         integer, intent(in) :: refine
         real(wp), allocatable :: grid(:), near(:)
-        integer :: nu, j, k
-        real(wp) :: tmp
+        integer :: nu, j
         nu = 200*refine
         near = [(10.0_wp**(-real(j, wp)/(16*refine)), j=1, 160*refine)]
         grid = [([(t0 + (tf - t0)*real(j, wp)/real(nu, wp), j=0, nu)]), -near, near]
-        do j = 2, size(grid)   ! insertion sort: a few hundred points
-            tmp = grid(j)
-            k = j - 1
-            do while (k >= 1)
-                if (grid(k) <= tmp) exit
-                grid(k + 1) = grid(k)
-                k = k - 1
-            end do
-            grid(k + 1) = tmp
-        end do
+        call sort_ascending(grid)   ! a few hundred points
     end function output_grid
 
     !> One run from x*(-1): errors(1:4) = max |x - x*| for t < -delta, |t| <= delta,

@@ -7,8 +7,8 @@ module trust_crank
     use reference_ode, only: integrate_reference
     use xorshift_random, only: xorshift64, new_xorshift64
     use trust_support, only: tally, weighted_error, stopped_by_check, checks_off, write_note
-    use driver_support, only: num
-    use trust_grid, only: trust_setup, pi, mech_rtols, crank_gravity, ref_tol, ref_check_tol, sort
+    use driver_support, only: num, sort_ascending
+    use trust_grid, only: trust_setup, pi, mech_rtols, crank_gravity, ref_tol, ref_check_tol
     use trust_text, only: itext, etext, list_text
     use trust_runs, only: run_record, run_mechanical
     use trust_judge, only: judge_and_print, split_at_last_warning, fold_crossings, no_reference
@@ -89,7 +89,7 @@ contains
         do i = 10, 25
             angles(i) = gen%next_between(0.0_wp, pi)
         end do
-        call sort(angles)
+        call sort_ascending(angles)
     end function crank_angles
 
     subroutine crank_cell(setup, counts, cell, ith, th1, w1, rtol, times)

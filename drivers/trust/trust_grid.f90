@@ -9,7 +9,7 @@ module trust_grid
     use trust_text, only: itext
     implicit none
     private
-    public :: signed_log_uniform, sort
+    public :: signed_log_uniform
 
     !> pi.
     real(wp), parameter, public :: pi = acos(-1.0_wp)
@@ -90,22 +90,5 @@ contains
         sgn = merge(1.0_wp, -1.0_wp, gen%next_uniform() < 0.5_wp)
         x = sgn*10.0_wp**gen%next_between(lo, hi)
     end function signed_log_uniform
-
-    !> Insertion sort, ascending.
-    pure subroutine sort(a)
-        real(wp), intent(inout) :: a(:)
-        real(wp) :: x
-        integer :: i, j
-        do i = 2, size(a)
-            x = a(i)
-            j = i - 1
-            do while (j >= 1)
-                if (a(j) <= x) exit
-                a(j + 1) = a(j)
-                j = j - 1
-            end do
-            a(j + 1) = x
-        end do
-    end subroutine sort
 
 end module trust_grid

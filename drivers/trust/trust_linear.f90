@@ -6,8 +6,8 @@ module trust_linear
     use theory_problems, only: theory_problem, new_theory_problem
     use xorshift_random, only: xorshift64
     use trust_support, only: tally, weighted_error
-    use driver_support, only: num
-    use trust_grid, only: trust_setup, linear_rtols, sort
+    use driver_support, only: num, sort_ascending
+    use trust_grid, only: trust_setup, linear_rtols
     use trust_text, only: list_text
     use trust_runs, only: run_record, run_first_order
     use trust_judge, only: judge_and_print, split_at_last_warning
@@ -57,7 +57,7 @@ contains
                     problem%scale = scale(iv, ic)
                     name = cases(ic)//letters(iv)
                     times = [grid, singular_at(iv, ic)]
-                    call sort(times)
+                    call sort_ascending(times)
                     p1 = singular_at(iv, ic)
                     p2 = scale(iv, ic)
                 end if
