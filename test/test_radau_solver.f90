@@ -2,7 +2,8 @@
 !! results against independent references and against integrator=ida and
 !! integrator=dopri5 on the slider crank, the pendulum and the chain; the augmented
 !! formulation under Radau against the eliminated one and the references; the
-!! option's parsing and refusals; its statistics.
+!! option's parsing and refusals; its statistics. And the integrator alone on the car axis's
+!! index-3 form with RADAU5's conventions against RADAU5's step counts.
 module test_radau_solver
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use regdae
@@ -10,6 +11,9 @@ module test_radau_solver
     use pendulum_problem, only: pendulum_angle, new_pendulum
     use chain_problem, only: chain, new_chain, chain_start
     use car_axis_problem, only: car_axis, new_car_axis, car_axis_reference, car_axis_t_end, car_axis_x0, car_axis_v0
+    use car_axis_index3_problem, only: car_axis_index3, car_axis_index3_setup
+    use regdae_radau_iia, only: radau_integrator
+    use regdae_radau_system, only: radau_options, radau_stats
     use reference_ode, only: integrate_reference
     use regdae_testing, only: checker, test_case, new_test
     implicit none
@@ -29,6 +33,7 @@ contains
                  new_test('radau_pendulum', radau_pendulum), &
                  new_test('radau_chain', radau_chain), &
                  new_test('radau_car_axis', radau_car_axis), &
+                 new_test('radau_car_axis_index3', radau_car_axis_index3), &
                  new_test('radau_augmented_option', radau_augmented_option), &
                  new_test('radau_augmented_slider_crank', radau_augmented_slider_crank), &
                  new_test('radau_augmented_pendulum', radau_augmented_pendulum), &
@@ -396,5 +401,45 @@ contains
         end do
         write (*, '(a,3es10.2)') '    car axis position error at t = 3 (radau, ida, dopri5): ', err
     end subroutine radau_car_axis
+
+    ! The integrator alone on the car axis's index-3 form M u' = F (u = p, p', lambda), run as
+    ! RADAU5 runs it (the velocities' error scaled by h, the multipliers' by h^2, RADAU5's
+    ! tolerance transform, h0 = 1e-6): its accepted steps within 10% of RADAU5's 99 / 201 / 416
+    ! at rtol = atol = 1e-4 / 1e-6 / 1e-8 (issue 21's reference point; the same method and
+    ! step control, written from Hairer & Wanner IV.8: 10% for the Jacobian's difference
+    ! quotients and rounding). Without the transform the positions' error at t = 3 is within
+    ! 10 tol (1 + |p|) of the published solution.
+    subroutine radau_car_axis_index3(chk)
+        type(checker), intent(inout) :: chk
+        integer, parameter :: radau5_steps(3) = [99, 201, 416]
+        type(car_axis_index3) :: sys
+        type(radau_integrator) :: integrator
+        type(radau_options) :: opts
+        type(radau_stats) :: stats
+        real(wp) :: u0(10), u(10), tol, err
+        integer :: stat, i, mode
+        character(len=24) :: label
+        do mode = 1, 2
+            do i = 1, 3
+                tol = 10.0_wp**(-2*i - 2)
+                call car_axis_index3_setup(sys, tol, mode == 1, u0, opts)
+                u = huge(1.0_wp)
+                call integrator%start(sys, 0.0_wp, u0, opts, stat)
+                if (stat == regdae_success) call integrator%advance(sys, car_axis_t_end, u, stat, land=.true.)
+                stats = integrator%statistics()
+                write (label, '(a, es8.1)') merge('radau5 ', 'index3 ', mode == 1)//'tol ', tol
+                call chk%equal(stat, regdae_success, 'car axis index 3, '//trim(label)//': reaches t = 3')
+                err = maxval(abs(u(1:4) - car_axis_reference(1:4))/(1 + abs(car_axis_reference(1:4))))
+                if (mode == 1) then
+                    call chk%true(abs(real(stats%accepted, wp)/radau5_steps(i) - 1) <= 0.1_wp, &
+                                  'car axis index 3, '//trim(label)//': RADAU5''s steps within 10%')
+                    write (*, '(4x, a, i0, a, i0, a, es9.2)') 'car axis index 3, '//trim(label)//': steps ', &
+                        stats%accepted, ' (RADAU5 ', radau5_steps(i), '), position error ', err
+                else
+                    call chk%true(err <= 10*tol, 'car axis index 3, '//trim(label)//': positions within 10 tol')
+                end if
+            end do
+        end do
+    end subroutine radau_car_axis_index3
 
 end module test_radau_solver

@@ -63,6 +63,7 @@ bin/ex52 integrator=radau formulation=augmented
 bin/chain n_links=4 mass=1e-2 stiffness=1e4 damping=10 integrator=radau formulation=eliminated
 bin/chain n_links=4 mass=1e-2 stiffness=1e4 damping=10 integrator=radau formulation=augmented rtol=1e-6 atol=1e-6
 bin/car_axis
+bin/car_axis_index3
 bin/order3 eps=1e-9 rtol=1e-8 atol=1e-8
 bin/order3
 bin/redundant tf=3 nout=100
