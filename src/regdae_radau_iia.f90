@@ -83,6 +83,9 @@ module regdae_radau_iia
         procedure :: start => radau_start
         !> One accepted step (never past t_stop when given).
         procedure :: step => radau_step
+        !> F changed at the current point (its parameters were changed between steps):
+        !! F(t, u) evaluated again and a new Jacobian at the next step.
+        procedure :: refresh => radau_refresh
         !> Steps until tout is reached or passed; u(tout) from the continuous extension.
         procedure :: advance => radau_advance
         !> u(t) for t in the last step, from its collocation polynomial.
@@ -314,6 +317,29 @@ contains
         end do
         stat = self%stat
     end subroutine radau_step
+
+    !> The system's F changed between steps (its parameters were set anew, as the
+    !! monitor sets the augmented formulation's eps and weights): F(t, u) evaluated
+    !! again, and the next step takes a new Jacobian. Without it the step's start
+    !! keeps the old F(t0, u0): the error estimate uses it, and the Jacobian's
+    !! difference quotients take it as their base, (F_new(u + d e_j) - F_old(u))/d,
+    !! which on an algebraic row is off by (F_new - F_old)/d (measured: entries -1
+    !! computed as -324 ... 1777, and Newton diverging at every h, issue 21).
+    !! stat: regdae_success, or F's failure (the integrator then fails).
+    subroutine radau_refresh(self, sys, stat)
+        class(radau_integrator), intent(inout) :: self
+        class(radau_system), intent(inout) :: sys
+        integer, intent(out) :: stat
+        logical :: recoverable
+        stat = self%stat
+        if (stat /= regdae_success) return
+        call self%eval(sys, self%t, self%u, self%f0, stat, recoverable)
+        if (stat /= regdae_success) then
+            call self%fail(stat, 'radau: F failed after the system changed')
+            return
+        end if
+        self%need_jac = .true.
+    end subroutine radau_refresh
 
     !> Take the step of size h (Z converged, error accepted) and choose the next.
     subroutine accept(self, sys, h, h_new, landed, t_stop, stat)
