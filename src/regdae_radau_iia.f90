@@ -20,7 +20,8 @@
 !!   step and after a rejection, when err >= 1, once more with \(F(t_0, u_0 + err)\).
 !! - Step: \(h_{new} = h / q\), \(q = err^{1/4}/fac\) clamped to [1/8, 5], fac = 0.9 (2 kmax + 1)/(2 kmax + newt),
 !!   and Gustafsson's predictive \(q_G = (h_{old}/h)(err^2/err_{old})^{1/4}/fac\): \(q = \max(q, q_G)\).
-!!   The Jacobian is kept while \(\theta \le 0.001\); so is h (and the LU) while \(1 \le h_{new}/h \le 1.2\).
+!!   The Jacobian is kept while \(\theta \le 0.001\) (0.03 with algebraic rows, whose rate is O(h) even
+!!   with a fresh J); so is h (and the LU) while \(1 \le h_{new}/h \le 1.2\).
 !!
 !! The integrator integrates forward in time (t increasing).
 module regdae_radau_iia
@@ -41,6 +42,10 @@ module regdae_radau_iia
     real(wp), parameter :: quot_min = 1.0_wp/8      ! h_new <= 8 h
     real(wp), parameter :: quot_max = 5.0_wp        ! h_new >= h/5
     real(wp), parameter :: theta_jacobian = 1.0e-3_wp  ! keep J while the Newton rate stays below
+    ! the same with algebraic rows (M_ii = 0): there the rate with a fresh J is O(h), not
+    ! O(h^2) (J_aa's change over the step is not damped by h/gamma; measured 4.5 h on the
+    ! 4-link chain), and 1e-3 would take a new J at every step (doc/methods.md, "Radau IIA")
+    real(wp), parameter :: theta_jacobian_dae = 0.03_wp
     real(wp), parameter :: keep_low = 1.0_wp, keep_high = 1.2_wp  ! keep h (and the LU) for h_new/h in here
     real(wp), parameter :: theta_diverge = 0.99_wp  ! Newton diverges
     real(wp), parameter :: first_reject_factor = 0.1_wp   ! the first step rejected: h/10
@@ -78,6 +83,7 @@ module regdae_radau_iia
         logical :: jac_current = .false., need_jac = .true., lu_valid = .false.
         logical :: first = .true., after_reject = .false.
         real(wp) :: h_lu = 0, theta = 1, eta = 1, err_old = 1, h_acc_old = 0
+        real(wp) :: theta_keep = theta_jacobian   ! theta_jacobian, or theta_jacobian_dae with algebraic rows
     contains
         !> Start at (t0, u0) with the given options.
         procedure :: start => radau_start
@@ -149,6 +155,7 @@ contains
         self%mass = spread(1.0_wp, 1, n)
         if (allocated(opts%mass)) self%mass = opts%mass
         self%algebraic = any(self%mass == 0)
+        self%theta_keep = merge(theta_jacobian_dae, theta_jacobian, self%algebraic)
         self%dae_index = spread(1, 1, n)
         if (allocated(opts%dae_index)) self%dae_index = opts%dae_index
         self%in_test = spread(.true., 1, n)
@@ -371,13 +378,13 @@ contains
         if (self%after_reject) hn = min(hn, h)   ! no increase right after a rejection
         ratio = hn/h
         if (self%fixed) then
-            self%need_jac = self%theta > theta_jacobian
-        else if (self%theta <= theta_jacobian .and. ratio >= keep_low .and. ratio <= keep_high) then
+            self%need_jac = self%theta > self%theta_keep
+        else if (self%theta <= self%theta_keep .and. ratio >= keep_low .and. ratio <= keep_high) then
             self%h = h                          ! same h, same Jacobian, same LU
             self%need_jac = .false.
         else
             self%h = hn
-            self%need_jac = self%theta > theta_jacobian
+            self%need_jac = self%theta > self%theta_keep
         end if
         self%first = .false.
         self%after_reject = .false.

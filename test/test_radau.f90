@@ -1,7 +1,8 @@
 !> Tests of the Radau IIA integrator (regdae_radau_iia): its coefficients, its
 !! order at fixed steps, stiff accuracy (Prothero-Robinson), a stiff linear
 !! system and an index-1 DAE against exact solutions, tolerance proportionality,
-!! the step counts on Van der Pol, failures of F, and bad input.
+!! the step counts on Van der Pol, failures of F, a change of F between steps
+!! (`refresh`), and bad input.
 module test_radau
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_user_callback, &
@@ -63,6 +64,13 @@ module test_radau
         procedure :: rhs => index2_rhs
     end type index2_dae
 
+    !> u1' = -u1 + u2, 0 = p - u2 (M = diag(1, 0)): u2 = p; p is changed between steps.
+    type, extends(radau_system) :: shifted_dae
+        real(wp) :: p = 1
+    contains
+        procedure :: rhs => shifted_rhs
+    end type shifted_dae
+
     !> Van der Pol: y1' = y2, y2' = mu ((1 - y1^2) y2 - y1).
     type, extends(radau_system) :: van_der_pol
         real(wp) :: mu = 1.0e6_wp
@@ -92,7 +100,8 @@ contains
                  new_test('tolerance_proportionality', tolerance_proportionality), &
                  new_test('mass_and_jacobian', mass_and_jacobian), new_test('dense_output', dense_output), &
                  new_test('van_der_pol_counts', van_der_pol_counts), &
-                 new_test('rhs_failures', rhs_failures), new_test('bad_input', bad_input), &
+                 new_test('rhs_failures', rhs_failures), new_test('refresh_after_change', refresh_after_change), &
+                 new_test('bad_input', bad_input), &
                  new_test('newton_matrices', newton_matrices)]
     end function radau_tests
 
@@ -195,6 +204,18 @@ contains
             m(i, i) = d(i)
         end do
     end function diag
+
+    subroutine shifted_rhs(self, t, u, f, stat, recoverable)
+        class(shifted_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        f(1) = -u(1) + u(2)
+        f(2) = self%p - u(2) + 0*t
+        stat = regdae_success
+        recoverable = .true.
+    end subroutine shifted_rhs
 
     subroutine dae_rhs(self, t, u, f, stat, recoverable)
         class(index1_dae), intent(inout) :: self
@@ -486,6 +507,39 @@ contains
             call chk%true(err <= 10*opts%rtol, 'index-1 DAE within 10 rtol')
         end do
     end subroutine dae_index1_exact
+
+    !> F changed between steps (p: 1 -> 2 at t = 0.5, as the monitor changes the augmented
+    !! formulation's eps and weights): after `refresh` the next step takes a new Jacobian
+    !! (its difference quotients from the new F(t, u)) and the solution follows the new F:
+    !! u2 = 2, u1(1) = 2 + (u1(0.5) - 2) e^{-1/2}, u1(0.5) = 1 - e^{-1/2}.
+    subroutine refresh_after_change(chk)
+        type(checker), intent(inout) :: chk
+        type(shifted_dae) :: sys
+        type(radau_integrator) :: ri
+        type(radau_options) :: opts
+        real(wp) :: u(2), u1_half
+        integer :: stat, jacobians
+        type(radau_stats) :: st
+        opts%rtol = 1.0e-8_wp
+        opts%atol = 1.0e-8_wp
+        opts%mass = [1.0_wp, 0.0_wp]
+        call ri%start(sys, 0.0_wp, [0.0_wp, 1.0_wp], opts, stat)
+        call ri%advance(sys, 0.5_wp, u, stat, land=.true.)
+        call chk%equal(stat, regdae_success, 'steps to t = 0.5')
+        sys%p = 2
+        call ri%refresh(sys, stat)
+        call chk%equal(stat, regdae_success, 'refresh')
+        st = ri%statistics()
+        jacobians = st%jacobians
+        call ri%step(sys, stat)
+        st = ri%statistics()
+        call chk%equal(st%jacobians, jacobians + 1, 'a new Jacobian at the step after refresh')
+        call ri%advance(sys, 1.0_wp, u, stat, land=.true.)
+        call chk%equal(stat, regdae_success, 'steps to t = 1 with the new F')
+        u1_half = 1 - exp(-0.5_wp)
+        call chk%close(u(2), 2.0_wp, 1.0e-12_wp, 'u2 follows p')
+        call chk%close(u(1), 2 + (u1_half - 2)*exp(-0.5_wp), 1.0e-7_wp, 'u1 after the change')
+    end subroutine refresh_after_change
 
     !> The index-2 DAE with dae_index = (1, 2): the error of the index-2 component
     !! enters the test multiplied by h. Radau IIA's orders on index 2 (Hairer & Wanner
