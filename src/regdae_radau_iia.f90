@@ -20,7 +20,8 @@
 !!   step and after a rejection, when err >= 1, once more with \(F(t_0, u_0 + err)\).
 !! - Step: \(h_{new} = h / q\), \(q = err^{1/4}/fac\) clamped to [1/8, 5], fac = 0.9 (2 kmax + 1)/(2 kmax + newt),
 !!   and Gustafsson's predictive \(q_G = (h_{old}/h)(err^2/err_{old})^{1/4}/fac\): \(q = \max(q, q_G)\).
-!!   The Jacobian is kept while \(\theta \le 0.001\); so is h (and the LU) while \(1 \le h_{new}/h \le 1.2\).
+!!   The Jacobian is kept while \(\theta \le 0.001\) (0.03 with algebraic rows, whose rate is O(h) even
+!!   with a fresh J); so is h (and the LU) while \(1 \le h_{new}/h \le 1.2\).
 !!
 !! The integrator integrates forward in time (t increasing).
 module regdae_radau_iia
@@ -41,6 +42,10 @@ module regdae_radau_iia
     real(wp), parameter :: quot_min = 1.0_wp/8      ! h_new <= 8 h
     real(wp), parameter :: quot_max = 5.0_wp        ! h_new >= h/5
     real(wp), parameter :: theta_jacobian = 1.0e-3_wp  ! keep J while the Newton rate stays below
+    ! the same with algebraic rows (M_ii = 0): there the rate with a fresh J is O(h), not
+    ! O(h^2) (J_aa's change over the step is not damped by h/gamma; measured 4.5 h on the
+    ! 4-link chain), and 1e-3 would take a new J at every step (doc/methods.md, "Radau IIA")
+    real(wp), parameter :: theta_jacobian_dae = 0.03_wp
     real(wp), parameter :: keep_low = 1.0_wp, keep_high = 1.2_wp  ! keep h (and the LU) for h_new/h in here
     real(wp), parameter :: theta_diverge = 0.99_wp  ! Newton diverges
     real(wp), parameter :: first_reject_factor = 0.1_wp   ! the first step rejected: h/10
@@ -78,11 +83,15 @@ module regdae_radau_iia
         logical :: jac_current = .false., need_jac = .true., lu_valid = .false.
         logical :: first = .true., after_reject = .false.
         real(wp) :: h_lu = 0, theta = 1, eta = 1, err_old = 1, h_acc_old = 0
+        real(wp) :: theta_keep = theta_jacobian   ! theta_jacobian, or theta_jacobian_dae with algebraic rows
     contains
         !> Start at (t0, u0) with the given options.
         procedure :: start => radau_start
         !> One accepted step (never past t_stop when given).
         procedure :: step => radau_step
+        !> F changed at the current point (its parameters were changed between steps):
+        !! F(t, u) evaluated again and a new Jacobian at the next step.
+        procedure :: refresh => radau_refresh
         !> Steps until tout is reached or passed; u(tout) from the continuous extension.
         procedure :: advance => radau_advance
         !> u(t) for t in the last step, from its collocation polynomial.
@@ -146,6 +155,7 @@ contains
         self%mass = spread(1.0_wp, 1, n)
         if (allocated(opts%mass)) self%mass = opts%mass
         self%algebraic = any(self%mass == 0)
+        self%theta_keep = merge(theta_jacobian_dae, theta_jacobian, self%algebraic)
         self%dae_index = spread(1, 1, n)
         if (allocated(opts%dae_index)) self%dae_index = opts%dae_index
         self%in_test = spread(.true., 1, n)
@@ -315,6 +325,29 @@ contains
         stat = self%stat
     end subroutine radau_step
 
+    !> The system's F changed between steps (its parameters were set anew, as the
+    !! monitor sets the augmented formulation's eps and weights): F(t, u) evaluated
+    !! again, and the next step takes a new Jacobian. Without it the step's start
+    !! keeps the old F(t0, u0): the error estimate uses it, and the Jacobian's
+    !! difference quotients take it as their base, (F_new(u + d e_j) - F_old(u))/d,
+    !! which on an algebraic row is off by (F_new - F_old)/d (measured: entries -1
+    !! computed as -324 ... 1777, and Newton diverging at every h, issue 21).
+    !! stat: regdae_success, or F's failure (the integrator then fails).
+    subroutine radau_refresh(self, sys, stat)
+        class(radau_integrator), intent(inout) :: self
+        class(radau_system), intent(inout) :: sys
+        integer, intent(out) :: stat
+        logical :: recoverable
+        stat = self%stat
+        if (stat /= regdae_success) return
+        call self%eval(sys, self%t, self%u, self%f0, stat, recoverable)
+        if (stat /= regdae_success) then
+            call self%fail(stat, 'radau: F failed after the system changed')
+            return
+        end if
+        self%need_jac = .true.
+    end subroutine radau_refresh
+
     !> Take the step of size h (Z converged, error accepted) and choose the next.
     subroutine accept(self, sys, h, h_new, landed, t_stop, stat)
         class(radau_integrator), intent(inout) :: self
@@ -345,13 +378,13 @@ contains
         if (self%after_reject) hn = min(hn, h)   ! no increase right after a rejection
         ratio = hn/h
         if (self%fixed) then
-            self%need_jac = self%theta > theta_jacobian
-        else if (self%theta <= theta_jacobian .and. ratio >= keep_low .and. ratio <= keep_high) then
+            self%need_jac = self%theta > self%theta_keep
+        else if (self%theta <= self%theta_keep .and. ratio >= keep_low .and. ratio <= keep_high) then
             self%h = h                          ! same h, same Jacobian, same LU
             self%need_jac = .false.
         else
             self%h = hn
-            self%need_jac = self%theta > theta_jacobian
+            self%need_jac = self%theta > self%theta_keep
         end if
         self%first = .false.
         self%after_reject = .false.
@@ -368,7 +401,7 @@ contains
         integer, intent(out) :: newt
         integer, intent(out) :: stat
         logical, intent(out) :: recoverable
-        real(wp) :: s, eta, dn, dn_old, theta, fg, fa, fb
+        real(wp) :: s, eta, dn, dn_old, theta, theta_max, fg, fa, fb
         integer :: i, k, n
 
         n = self%n
@@ -390,6 +423,7 @@ contains
         fb = self%rc%beta/h
         eta = max(self%eta, epsilon(1.0_wp))**0.8_wp
         theta = 0
+        theta_max = 0
         dn_old = 1
         newt = 0
         do while (newt < self%max_newton)
@@ -414,6 +448,7 @@ contains
             if (.not. ieee_is_finite(dn)) return
             if (newt > 1) then
                 theta = dn/dn_old
+                theta_max = max(theta_max, theta)
                 if (theta >= theta_diverge) return
                 eta = theta/(1 - theta)
                 if (theta**(self%max_newton - newt)/(1 - theta)*dn > self%kappa) return
@@ -429,6 +464,14 @@ contains
         if (converged) then
             self%eta = eta
             self%theta = theta
+            ! With algebraic rows the last ratio is no rate when the last increment fell to
+            ! the rounding level (1e-8 after 0.1, 0.016 on radau/dae_index1_exact): carried
+            ! into the next step's eta_0 it ends an iteration after one increment of 25
+            ! weights, and as theta it keeps J. The slowest ratio of the iteration instead.
+            if (self%algebraic .and. newt > 1) then
+                self%theta = theta_max
+                self%eta = theta_max/(1 - theta_max)
+            end if
         end if
     end subroutine newton
 

@@ -108,6 +108,7 @@ contains
         character(len=:), allocatable, intent(out) :: msg
         real(wp), intent(in), optional :: h0, zp(:), y(:)
         type(radau_options) :: ro
+        logical :: changed
         associate (core => self%core)
             if (self%started) self%before = add_stats(self%before, self%radau%statistics())
             ro%rtol = core%opts%rtol
@@ -124,6 +125,7 @@ contains
                 call self%dae%consistent(t, z(1:core%nx), z(core%nx + 1:core%n), self%uu, stat, msg)
                 if (stat /= regdae_success) return
                 call self%radau%start(self%dae, t, self%uu, ro, stat)
+                call self%dae%note_parameters(changed)   ! the parameters F(t0, u0) was taken with
             else
                 self%ode%model => core%model
                 self%ode%failure = ''
@@ -154,8 +156,13 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(inout) :: msg
         character(len=:), allocatable :: failure
+        logical :: changed
+        stat = regdae_success
         if (self%on_augmented) then
-            call step_on(self%dae)
+            ! the monitor may have set new eps or weights since the last step
+            call self%dae%note_parameters(changed)
+            if (changed) call self%radau%refresh(self%dae, stat)
+            if (stat == regdae_success) call step_on(self%dae)
             failure = self%dae%failure
         else
             call step_on(self%ode)

@@ -1,15 +1,16 @@
 !> Tests of the Radau IIA integrator (regdae_radau_iia): its coefficients, its
 !! order at fixed steps, stiff accuracy (Prothero-Robinson), a stiff linear
 !! system and an index-1 DAE against exact solutions, tolerance proportionality,
-!! the step counts on Van der Pol, failures of F, and bad input.
+!! the step counts on Van der Pol, failures of F, a change of F between steps
+!! (`refresh`), and bad input; the Newton matrices' LU in test_radau_linear.
 module test_radau
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_user_callback, &
-                             regdae_err_not_initialized, regdae_err_integration, regdae_err_singular
+                             regdae_err_not_initialized, regdae_err_integration
     use regdae_radau_tableau, only: radau_coefficients, radau_iia_coefficients
     use regdae_radau_system, only: radau_system, radau_options, radau_stats
     use regdae_radau_iia, only: radau_integrator
-    use regdae_radau_linear, only: radau_newton_matrices
+    use test_radau_linear, only: radau_linear_tests
     use regdae_testing, only: checker, test_case, new_test
     implicit none
     private
@@ -63,6 +64,13 @@ module test_radau
         procedure :: rhs => index2_rhs
     end type index2_dae
 
+    !> u1' = -u1 + u2, 0 = p - u2 (M = diag(1, 0)): u2 = p; p is changed between steps.
+    type, extends(radau_system) :: shifted_dae
+        real(wp) :: p = 1
+    contains
+        procedure :: rhs => shifted_rhs
+    end type shifted_dae
+
     !> Van der Pol: y1' = y2, y2' = mu ((1 - y1^2) y2 - y1).
     type, extends(radau_system) :: van_der_pol
         real(wp) :: mu = 1.0e6_wp
@@ -92,8 +100,8 @@ contains
                  new_test('tolerance_proportionality', tolerance_proportionality), &
                  new_test('mass_and_jacobian', mass_and_jacobian), new_test('dense_output', dense_output), &
                  new_test('van_der_pol_counts', van_der_pol_counts), &
-                 new_test('rhs_failures', rhs_failures), new_test('bad_input', bad_input), &
-                 new_test('newton_matrices', newton_matrices)]
+                 new_test('rhs_failures', rhs_failures), new_test('refresh_after_change', refresh_after_change), &
+                 new_test('bad_input', bad_input), radau_linear_tests()]
     end function radau_tests
 
     ! ---------------------------------------------------------------- problems
@@ -195,6 +203,18 @@ contains
             m(i, i) = d(i)
         end do
     end function diag
+
+    subroutine shifted_rhs(self, t, u, f, stat, recoverable)
+        class(shifted_dae), intent(inout) :: self
+        real(wp), intent(in) :: t, u(:)
+        real(wp), intent(out) :: f(:)
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        f(1) = -u(1) + u(2)
+        f(2) = self%p - u(2) + 0*t
+        stat = regdae_success
+        recoverable = .true.
+    end subroutine shifted_rhs
 
     subroutine dae_rhs(self, t, u, f, stat, recoverable)
         class(index1_dae), intent(inout) :: self
@@ -487,6 +507,39 @@ contains
         end do
     end subroutine dae_index1_exact
 
+    !> F changed between steps (p: 1 -> 2 at t = 0.5, as the monitor changes the augmented
+    !! formulation's eps and weights): after `refresh` the next step takes a new Jacobian
+    !! (its difference quotients from the new F(t, u)) and the solution follows the new F:
+    !! u2 = 2, u1(1) = 2 + (u1(0.5) - 2) e^{-1/2}, u1(0.5) = 1 - e^{-1/2}.
+    subroutine refresh_after_change(chk)
+        type(checker), intent(inout) :: chk
+        type(shifted_dae) :: sys
+        type(radau_integrator) :: ri
+        type(radau_options) :: opts
+        real(wp) :: u(2), u1_half
+        integer :: stat, jacobians
+        type(radau_stats) :: st
+        opts%rtol = 1.0e-8_wp
+        opts%atol = 1.0e-8_wp
+        opts%mass = [1.0_wp, 0.0_wp]
+        call ri%start(sys, 0.0_wp, [0.0_wp, 1.0_wp], opts, stat)
+        call ri%advance(sys, 0.5_wp, u, stat, land=.true.)
+        call chk%equal(stat, regdae_success, 'steps to t = 0.5')
+        sys%p = 2
+        call ri%refresh(sys, stat)
+        call chk%equal(stat, regdae_success, 'refresh')
+        st = ri%statistics()
+        jacobians = st%jacobians
+        call ri%step(sys, stat)
+        st = ri%statistics()
+        call chk%equal(st%jacobians, jacobians + 1, 'a new Jacobian at the step after refresh')
+        call ri%advance(sys, 1.0_wp, u, stat, land=.true.)
+        call chk%equal(stat, regdae_success, 'steps to t = 1 with the new F')
+        u1_half = 1 - exp(-0.5_wp)
+        call chk%close(u(2), 2.0_wp, 1.0e-12_wp, 'u2 follows p')
+        call chk%close(u(1), 2 + (u1_half - 2)*exp(-0.5_wp), 1.0e-7_wp, 'u1 after the change')
+    end subroutine refresh_after_change
+
     !> The index-2 DAE with dae_index = (1, 2): the error of the index-2 component
     !! enters the test multiplied by h. Radau IIA's orders on index 2 (Hairer & Wanner
     !! II, VII.4): 5 for y, 3 for z at the step points.
@@ -711,67 +764,5 @@ contains
         end subroutine expect_bad
     end subroutine bad_input
 
-    ! The Newton matrices' LU and solves, the module's own (n <= 16) and LAPACK's (n = 20):
-    ! E_1 x = b and E_2 (x + i y) = b + i c for matrices that need row exchanges (J with
-    ! scattered large entries) and a singular M, checked by their residuals: a backward-stable
-    ! LU leaves a few u ||E|| ||x||, and 1e-12 relative to ||E|| ||x|| is ample at n <= 20.
-    ! The rounding floor (on the algebraic row of M) the same way, and 0 for an ODE (n = 1).
-    subroutine newton_matrices(chk)
-        type(checker), intent(inout) :: chk
-        integer, parameter :: sizes(3) = [1, 5, 20]
-        real(wp), parameter :: fr = 0.3_wp, fa = 0.2_wp, fb = 0.7_wp
-        type(radau_newton_matrices) :: lin
-        real(wp), allocatable :: jac(:, :), mass(:), b(:), c(:), x(:), y(:), e1(:, :), rho(:), fl(:)
-        complex(wp), allocatable :: e2(:, :), r(:)
-        integer :: i, j, k, n, stat
-        character(len=8) :: tag
-        do k = 1, size(sizes)
-            n = sizes(k)
-            write (tag, '(i0)') n
-            allocate (jac(n, n), mass(n), b(n), c(n), fl(n))
-            do j = 1, n
-                do i = 1, n
-                    jac(i, j) = sin(real(3*i*i + 7*j, wp))   ! scattered large entries: rows are exchanged
-                end do
-                b(j) = cos(real(j, wp))
-                c(j) = sin(real(2*j, wp))
-            end do
-            mass = 1.0_wp
-            if (n > 1) mass(2) = 0.0_wp             ! a singular M, as in a DAE
-            call lin%init(n)
-            call lin%factor(jac, mass, fr, fa, fb, stat)
-            call chk%equal(stat, regdae_success, 'newton matrices factored, n = '//trim(tag))
-            e1 = -jac
-            e2 = cmplx(-jac, 0.0_wp, wp)
-            do i = 1, n
-                e1(i, i) = e1(i, i) + fr*mass(i)
-                e2(i, i) = e2(i, i) + cmplx(fa, fb, wp)*mass(i)
-            end do
-            x = b
-            call lin%solve_real(x)
-            call chk%true(maxval(abs(matmul(e1, x) - b)) <= 1.0e-12_wp*maxval(abs(e1))*max(1.0_wp, maxval(abs(x))), &
-                          'real Newton system solved, n = '//trim(tag))
-            x = b
-            y = c
-            call lin%solve_complex(x, y)
-            r = matmul(e2, cmplx(x, y, wp)) - cmplx(b, c, wp)
-            call chk%true(maxval(abs(r)) <= 1.0e-12_wp*maxval(abs(e2))*max(1.0_wp, maxval(abs(cmplx(x, y, wp)))), &
-                          'complex Newton system solved, n = '//trim(tag))
-            ! the rounding floor at u = b, F = c: |E_1^-1 rho|, rho = eps_m (|F| + |J| |u|) on the algebraic rows
-            rho = merge(epsilon(1.0_wp)*(abs(c) + matmul(abs(jac), abs(b))), 0.0_wp, mass == 0)
-            call lin%rounding_floor(jac, mass, b, c, fl)
-            x = rho
-            call lin%solve_real(x)
-            call chk%true(all(fl == abs(x)) .and. maxval(abs(matmul(e1, x) - rho)) <= &
-                          1.0e-12_wp*maxval(abs(e1))*max(maxval(rho), maxval(abs(x))), &
-                          'rounding floor |E_1^-1 rho| on the algebraic rows, n = '//trim(tag))
-            call chk%true(n > 1 .eqv. any(fl > 0), 'rounding floor nonzero where M has an algebraic row, n = '//trim(tag))
-            deallocate (jac, mass, b, c, fl)
-        end do
-        ! an exactly singular E_1 (J = fr M in column 1): the status the step control expects
-        call lin%init(2)
-        call lin%factor(reshape([fr, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2]), [1.0_wp, 1.0_wp], fr, fa, fb, stat)
-        call chk%equal(stat, regdae_err_singular, 'an exactly singular Newton matrix reported')
-    end subroutine newton_matrices
 
 end module test_radau
