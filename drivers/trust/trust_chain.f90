@@ -1,8 +1,8 @@
 !> drivers/trust's families chain (t in [0, 1], N = 2 ... 4096) and chain_long (t in [0, 10],
 !! N = 2 ... 256): the chain of N links, plain and with sliders, against the plain IDA peer at
 !! 1e-11 or regdae's own tight run (chain), or judged on the energy change and the violation in
-!! units of the tight run's (chain_long); reference methods the peer at R and Dormand-Prince on
-!! the slider crank's reduced ODE.
+!! units of a tight run's (chain_long: the slider chain's reduced ODE up to N = 64, else regdae);
+!! reference methods the peer at R and Dormand-Prince on the slider crank's reduced ODE.
 module trust_chain
     use regdae, only: wp, solver_options, formulation_augmented
     use chain_problem, only: chain, new_chain, chain_start, chain_slider_reduced, chain_slider_joints, chain_energy_of, &
@@ -70,8 +70,10 @@ contains
             write (*, '(a)') '#   judged on the energy change dE = max |E - E(0)| and the violation max |g| at the '// &
                 'outputs: err = max(dE/dE_unit, viol/viol_unit), dE_unit = dE_tight + R E_scale, viol_unit = '// &
                 'viol_tight + R (1 + q_scale)'
-            write (*, '(a)') '#   (dE_tight, viol_tight: the tight run, regdae formulation=augmented rtol = atol = 1e-11 '// &
-                'eps = 1e-16; E_scale: the largest potential-energy drop of that run; q_scale: its max |q|)'
+            write (*, '(a)') '#   (dE_tight, viol_tight: the tight run''s; E_scale: the largest potential-energy drop of that '// &
+                'run; q_scale: its max |q|; the tight run: slider N <= '//itext(reduced_max_links)//' the slider chain''s '// &
+                'reduced ODE in its crank angles (CVODE 1e-13, checked at 1e-12; regdae''s tight run a cross-check), '// &
+                'else regdae formulation=augmented rtol = atol = 1e-11 eps = 1e-16)'
             write (*, '(a)') '#   reference method: the peer at R (plain IDA, not regdae), plain and with the sliders '// &
                 '(N > 2: the peer on the same constraints, the sliders'' too); slider N = 2 (the slider crank) '// &
                 'Dormand-Prince on its reduced ODE at R; its err_ref the same over the outputs it reached (after a '// &
@@ -321,7 +323,6 @@ contains
         integer :: s11, s10, steps
         logical :: peer_ok
         type(run_record) :: tight
-        type(chain_reference) :: reduced
         character(len=:), allocatable :: m11, m10, text, rtext, check_text
         if (cached%links == links .and. (cached%slider .eqv. slider) .and. cached%tf == times(size(times))) return
         cached%links = links
@@ -346,22 +347,24 @@ contains
                 cached%check = q10(:, 2:)
             end if
         end if
-        if (.not. peer_ok) call regdae_reference(cached, slider, links, times, text, tight)
-        ! chain_long's slider chains: the reduced ODE (up to reduced_max_links), the reference where
-        ! the tight regdae run is stopped, else a cross-check of regdae's; against the regdae run over
-        ! the outputs that run reached
+        ! chain_long's slider chains up to reduced_max_links: the reduced ODE, regdae's tight run a
+        ! cross-check (over the outputs it reached); the regdae reference where the ODE fails
         if (long .and. slider .and. links <= reduced_max_links) then
-            call reduced_reference(reduced, links, times, rtext)
-            if (cached%source == 'none') then
-                text = text//rtext
-                if (reduced%source /= 'none') cached = reduced
-            end if
-            if (reduced%source /= 'none' .and. tight%good > 0) &
-                check_text = ' vs the reduced ODE (CVODE '//etext(ref_tol)//') over the '//itext(tight%good)// &
-                             ' outputs regdae 1e-11 reached: norm(1e-8)='// &
-                             etext(weighted_error(tight%x, reduced%x, 1.0e-8_wp, tight%good))// &
-                             ' (to t = 1: '//etext(weighted_error(tight%x, reduced%x, 1.0e-8_wp, &
-                                                                   min(tight%good, count(times <= 1.0_wp))))//')'
+            call reduced_reference(cached, links, times, rtext)
+            text = text//rtext
+        end if
+        if (cached%source == 'none' .and. .not. peer_ok) then
+            call regdae_reference(cached, slider, links, times, text, tight)
+        else if (cached%source == 'reduced') then
+            call regdae_run(slider, links, times, chain_ref_tol, chain_ref_eps, tight)
+            check_text = ' vs regdae 1e-11 (status='//itext(tight%stat)//' at t = '//num(tight%st%t)//', '// &
+                         itext(int(tight%st%steps))//' steps)'
+            if (tight%good > 0) &
+                check_text = check_text//' dE='//etext(maxval(abs(tight%energy(:tight%good) - tight%energy0)))// &
+                             ' viol='//etext(maxval(tight%violation(:tight%good)))//' over the '//itext(tight%good)// &
+                             ' outputs it reached: norm(1e-8)='// &
+                             etext(weighted_error(tight%x, cached%x, 1.0e-8_wp, tight%good))//' (to t = 1: '// &
+                             etext(weighted_error(tight%x, cached%x, 1.0e-8_wp, min(tight%good, count(times <= 1.0_wp))))//')'
         end if
         if (cached%source /= 'none') then
             text = text//'source='//cached%source//' check: max|diff|='// &
@@ -395,28 +398,16 @@ contains
         character(len=:), allocatable, intent(inout) :: text
         type(run_record), intent(out) :: tight   !! the tight run (also when stopped)
         type(run_record) :: loose
-        type(solver_options) :: opts
-        type(chain) :: p
-        real(wp) :: q0(2*links), v0(2*links), v_ref(size(times))
+        real(wp) :: v_ref(size(times))
         integer :: k
-        p = new_chain(links, slider, chain_gravity)
-        call chain_start(p, q0, v0)
-        opts = solver_options()
-        opts%formulation = formulation_augmented
-        opts%rtol = chain_ref_tol
-        opts%atol = chain_ref_tol
-        opts%eps = chain_ref_eps
-        call run_mechanical(p, q0, v0, times, opts, 3600.0_wp, tight)
+        call regdae_run(slider, links, times, chain_ref_tol, chain_ref_eps, tight)
         if (tight%stat < 0) then
             ! A tight run that regdae's own checks stop is no reference: the cells are not judged.
             text = text//'regdae 1e-11 status='//itext(tight%stat)//' at t = '//num(tight%st%t)//' ('// &
                    tight%message(1:min(80, len(tight%message)))//'): no reference; '
             return
         end if
-        opts%rtol = chain_check_tol
-        opts%atol = chain_check_tol
-        opts%eps = chain_check_eps
-        call run_mechanical(p, q0, v0, times, opts, 3600.0_wp, loose)
+        call regdae_run(slider, links, times, chain_check_tol, chain_check_eps, loose)
         text = text//'regdae 1e-11 status='//itext(tight%stat)//' ('//num(tight%seconds)//' s, '// &
                itext(int(tight%st%steps))//' steps), 1e-10 status='//itext(loose%stat)//' ('//num(loose%seconds)//' s); '
         if (loose%stat < 0) then
@@ -436,6 +427,25 @@ contains
         text = text//'tight run: dE='//etext(cached%energy_change)//' viol='//etext(cached%violation)// &
                ' E_scale='//etext(cached%energy_scale)//' q_scale='//etext(cached%q_scale)//'; '
     end subroutine regdae_reference
+
+    ! A regdae run of a chain for a reference: formulation=augmented, rtol = atol = tol, eps.
+    subroutine regdae_run(slider, links, times, tol, eps, rec)
+        logical, intent(in) :: slider
+        integer, intent(in) :: links
+        real(wp), intent(in) :: times(:), tol, eps
+        type(run_record), intent(out) :: rec
+        type(solver_options) :: opts
+        type(chain) :: p
+        real(wp) :: q0(2*links), v0(2*links)
+        p = new_chain(links, slider, chain_gravity)
+        call chain_start(p, q0, v0)
+        opts = solver_options()
+        opts%formulation = formulation_augmented
+        opts%rtol = tol
+        opts%atol = tol
+        opts%eps = eps
+        call run_mechanical(p, q0, v0, times, opts, 3600.0_wp, rec)
+    end subroutine regdae_run
 
     ! The reference of the slider chain of `links` links from the reduced ODE (chain_problem's
     ! chain_slider_reduced, CVODE at ref_tol) from chain_start (every crank at pi/2, at rest),
