@@ -21,9 +21,13 @@
 !! The stiff variant (`stiffness` k, `damping` c, light `joint_mass`): every joint
 !! also hangs on a vertical spring and dashpot, forces -k y_i - c y_i' (light
 !! bodies on stiff springs: fast damped modes of frequency sqrt(k/m)).
+!!
+!! The slider chain's reduced ODE (`chain_slider_reduced`, unit links and masses, no springs):
+!! its exact reference for any even N, as the slider crank's is for N = 2.
 module chain_problem
     use regdae, only: wp, mechanical_problem, mechanical_structure, sparsity_pattern, diagonal_pattern, &
                       empty_pattern, pattern_from_entries
+    use reference_ode, only: ode_system
     implicit none
     private
 
@@ -49,7 +53,26 @@ module chain_problem
         procedure :: invariant => chain_energy
     end type chain
 
-    public :: new_chain, chain_start, chain_energy_of, chain_violation
+    !> The slider chain (unit links and masses, gravity g, N = 2K even) in the angles
+    !! \(\varphi_k\) of its cranks (link 2k-1 from the vertical), on the branch where each rod
+    !! mirrors its crank, the one through the start chain_start (\(\varphi_k = \pi/2\)):
+    !! \(p_{2k-1} = (X_{k-1} + \sin\varphi_k, -\cos\varphi_k)\), \(p_{2k} = (X_k, 0)\),
+    !! \(X_k = X_{k-1} + 2\sin\varphi_k\), \(X_0 = 0\). With \(q = \Phi(\varphi)\), \(J = \Phi'\):
+    !! \(J^T J \ddot\varphi = J^T (f - h)\), \(h = \sum_k \partial^2\Phi/\partial\varphi_k^2\,
+    !! \dot\varphi_k^2\), f the weights. J has full column rank everywhere (column k holds the
+    !! unit vector \((\cos\varphi_k, \sin\varphi_k)\) at joint 2k-1, where the earlier columns
+    !! are 0), so the ODE is regular through the folds (\(\sin\varphi_k = 0\)) where G loses rank;
+    !! the smooth motion stays on this branch there unless \(\dot\varphi_k = 0\) at the fold.
+    !! N = 2 is slider_crank_reduced. State y = (\(\varphi_1 \dots \varphi_K, \dot\varphi_1 \dots
+    !! \dot\varphi_K\)).
+    type, extends(ode_system), public :: chain_slider_reduced
+        integer :: links = 2
+        real(wp) :: gravity = 9.81_wp
+    contains
+        procedure :: rhs => slider_reduced_rhs
+    end type chain_slider_reduced
+
+    public :: new_chain, chain_start, chain_energy_of, chain_violation, chain_slider_joints
 
 contains
 
@@ -271,5 +294,75 @@ contains
         val = 0.5_wp*self%joint_mass*sum(v**2) + self%joint_mass*self%gravity*sum(x(2::2)) + &
               0.5_wp*self%stiffness*sum(x(2::2)**2)
     end subroutine chain_energy
+
+    !> The joints q and their velocities v (2N each) of the slider chain at the reduced state
+    !! y (chain_slider_reduced), and J (2N, K) = dq/dphi, h (2N) = the quadratic part of q''.
+    pure subroutine chain_slider_joints(y, q, v, jac, h)
+        real(wp), intent(in) :: y(:)   !! (2K): the angles, then their rates
+        real(wp), intent(out) :: q(:), v(:)
+        real(wp), intent(out), optional :: jac(:, :), h(:)
+        real(wp) :: jl(2*size(y), size(y)/2), hl(2*size(y)), s, c, w, x_left, hx_left
+        integer :: k, n_pairs, col
+        n_pairs = size(y)/2
+        jl = 0.0_wp
+        hl = 0.0_wp
+        x_left = 0.0_wp
+        hx_left = 0.0_wp
+        do k = 1, n_pairs
+            s = sin(y(k))
+            c = cos(y(k))
+            w = y(n_pairs + k)
+            q(4*k - 3) = x_left + s
+            q(4*k - 2) = -c
+            q(4*k - 1) = x_left + 2.0_wp*s
+            q(4*k) = 0.0_wp
+            x_left = q(4*k - 1)
+            ! the x of joints 2k-1 and 2k move with every earlier crank (2 cos each), y only with its own
+            do col = 1, k - 1
+                jl(4*k - 3, col) = jl(4*k - 5, col)
+                jl(4*k - 1, col) = jl(4*k - 5, col)
+            end do
+            jl(4*k - 3, k) = c
+            jl(4*k - 2, k) = s
+            jl(4*k - 1, k) = 2.0_wp*c
+            hl(4*k - 3) = hx_left - s*w**2
+            hl(4*k - 2) = c*w**2
+            hl(4*k - 1) = hx_left - 2.0_wp*s*w**2
+            hx_left = hl(4*k - 1)
+        end do
+        v = matmul(jl, y(n_pairs + 1:))
+        if (present(jac)) jac = jl
+        if (present(h)) h = hl
+    end subroutine chain_slider_joints
+
+    ! The reduced ODE: J^T J phi'' = J^T (f - h), by Cholesky (J^T J is positive definite).
+    subroutine slider_reduced_rhs(self, t, y, ydot)
+        class(chain_slider_reduced), intent(inout) :: self
+        real(wp), intent(in) :: t, y(:)
+        real(wp), intent(out) :: ydot(:)
+        real(wp) :: q(2*self%links), v(2*self%links), jac(2*self%links, self%links/2), h(2*self%links)
+        real(wp) :: f(2*self%links), a(self%links/2, self%links/2), b(self%links/2)
+        integer :: k, j, n_pairs
+        n_pairs = self%links/2
+        call chain_slider_joints(y, q, v, jac, h)
+        f = 0.0_wp
+        f(2::2) = -self%gravity
+        a = matmul(transpose(jac), jac)
+        b = matmul(transpose(jac), f - h)
+        do k = 1, n_pairs   ! a = L L^T, L in the lower triangle
+            a(k, k) = sqrt(a(k, k) - sum(a(k, :k - 1)**2))
+            do j = k + 1, n_pairs
+                a(j, k) = (a(j, k) - sum(a(j, :k - 1)*a(k, :k - 1)))/a(k, k)
+            end do
+        end do
+        do k = 1, n_pairs
+            b(k) = (b(k) - sum(a(k, :k - 1)*b(:k - 1)))/a(k, k)
+        end do
+        do k = n_pairs, 1, -1
+            b(k) = (b(k) - sum(a(k + 1:, k)*b(k + 1:)))/a(k, k)
+        end do
+        ydot(:n_pairs) = y(n_pairs + 1:)
+        ydot(n_pairs + 1:) = b
+    end subroutine slider_reduced_rhs
 
 end module chain_problem

@@ -105,7 +105,8 @@ run_line=$(head -n 1 "$grids/summaries.txt" | sed 's/^# //')
 
 # --- the long chains' reference methods, from chain_long.txt (rows, their '#   ' notes, the
 # '# [part 1] reference' lines): cell 1 (plain N = 2), 49 (slider N = 2) and 67 (slider N = 16)
-# at R = 1e-3; the slider cells of N > 2 whose peer failed; the sliders without a reference.
+# at R = 1e-3; the slider cells of N > 2 whose peer failed; the sliders' units from the reduced
+# ODE against regdae's tight run; the sliders without a reference.
 long=$grids/chain_long.txt
 long_cell() { # long_cell CELL: "err err_ref bound class dE dE_unit dE_ref", "? ..." if absent
     awk -v c="$1" '$1 == c && $2 == "chain_long" { found = 1; e = $9; r = $10; b = $11; k = $8; d = $15; u = $16; next }
@@ -137,9 +138,9 @@ n_late=$(count_list "$fail_late")
 # folds passed at the tight runs' outputs, per N, and the slider sizes without a reference (why)
 long_folds=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /folds passed/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
         f = $NF; sub(/.*=/, "", f); printf "%sN = %s: %s", (k++ ? ", " : ""), n, f }' "$long" 2>/dev/null || true)
-# the slider chains of N >= 16: the tight regdae run's energy change (in the units) against the
-# peer's at R = 1e-8: "smallest largest tight dE, smallest largest ratio"
-long_tight=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /tight run: dE=/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
+# the slider chains of N >= 16 whose units come from regdae: the tight regdae run's energy change (in
+# the units) against the peer's at R = 1e-8: "smallest largest tight dE, smallest largest ratio"
+long_tight=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /tight run: dE=/ && /source=regdae/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
         d = $0; sub(/.*tight run: dE=/, "", d); sub(/ .*/, "", d); if (n + 0 >= 16) tight[n + 0] = d + 0 }
     $1 ~ /^[0-9]+$/ { cur = ($3 == "slider" && $6 == "1.0E-08" && $4 + 0 >= 16) ? $4 + 0 : 0; next }
     cur && /^#   reference method: dE=/ { split($4, a, "="); if (a[2] + 0 > 0) peer[cur] = a[2] + 0; cur = 0 }
@@ -151,6 +152,15 @@ small_warned=$(awk '$1 ~ /^[0-9]+$/ && $3 == "slider" && $4 + 0 >= 16 && ($6 == 
     END { printf "%d of the %d", w, n }' "$long" 2>/dev/null || echo "? of the ?")
 tight_range=${long_tight%,*}
 tight_ratio=${long_tight#*, }
+# the slider chains whose units come from the reduced ODE: "N = n (dE d; regdae's tight run: status s, dE d)"
+long_reduced=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /source=reduced/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
+        d = $0; sub(/.*tight run: dE=/, "", d); sub(/ .*/, "", d)
+        st = "?"; dr = "?"; t = "?"
+        if ($0 ~ /vs regdae 1e-11 \(status=/) { st = $0; sub(/.*vs regdae 1e-11 \(status=/, "", st); sub(/ .*/, "", st)
+            t = $0; sub(/.*vs regdae 1e-11 \(status=[^ ]* at t = /, "", t); sub(/,.*/, "", t)
+            dr = $0; sub(/.*vs regdae 1e-11 \(status=[^)]*\) dE=/, "", dr); sub(/ .*/, "", dr) }
+        printf "%sN = %s: %.2g (regdae %s at t = %.3g%s)", (k++ ? "; " : ""), n, d, st, t, (dr == "?" ? "" : sprintf(", %.2g", dr)) }' \
+    "$long" 2>/dev/null || true)
 long_noref=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /no reference/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
         st = $0; sub(/.*status=/, "", st); sub(/ .*/, "", st); t = $0; sub(/.* at t = /, "", t); sub(/ .*/, "", t)
         printf "%sN = %s (status %s at t = %.3g)", (k++ ? ", " : ""), n, st, t }' "$long" 2>/dev/null || true)
@@ -331,11 +341,18 @@ regdae's ${c1_err} and ${c49_err}): judged without them, against the units alone
 run of this grid), 22 cells were silent, 16 plain and 6 with sliders. The slider chain of 16 links
 at R = 1e-3, silent against the units alone, is ${c67_class} against the peer: its energy changes by
 ${c67_de} against a unit of ${c67_unit} (${c67_err} units), the peer's by ${c67_deref} (${c67_ref}
-units: the bound ${c67_bound}). Not judged for want of a reference: ${long_noref:-none}; there the tight
-regdae run (1e-11, eps = 1e-16, the source of the units) is stopped by its own checks, and the peer
-at 1e-11 is no substitute (it stops at a fold: N = 4 at t = 3.66, N = 8 at t = 1.63, by hand).
-The units carry the tight regdae run's own energy change, which on the slider chains of 16 ... 256
-links (${tight_range}) is ${tight_ratio} times the peer's at R = 1e-8: at small R regdae's energy
+units: the bound ${c67_bound}). The units of the slider chains of 2 ... 64 links come from their
+reduced ODE, not from regdae: the chain in its N/2 crank angles on the branch where each rod mirrors
+its crank (the start's), regular through the folds (\`chain_slider_reduced\` in
+\`drivers/problems/chain_problem.f90\`, tested against the full equations), by CVODE at 1e-13, its
+scales checked at 1e-12; regdae's tight run (1e-11, eps = 1e-16) is a cross-check there. Their
+energy change, and in brackets the tight regdae run's status, the time it reached and its energy
+change: ${long_reduced:-?}. Until the reduced ODE the slider chains of 4 and 8 links were not
+judged: their tight regdae run, then the source of the units, is stopped by its drift check (-113
+at t = 9.16 and 8.24), and the peer at 1e-11 is no substitute (it stops at a fold: N = 4 at t =
+3.66, N = 8 at t = 1.63, by hand). Not judged for want of a reference: ${long_noref:-none}. The
+units of the slider chains of 128 and 256 links still carry the tight regdae run's own energy
+change (${tight_range}), ${tight_ratio} times the peer's at R = 1e-8: at small R regdae's energy
 change there is about its tight run's, err about 1 and the bound 10, while plain IDA's is far
 smaller; ${small_warned} cells of N >= 16 at R = 1e-7, 1e-8 end with a warning. Against R E_scale alone (the energy part,
 the tight term left out; at d355198, by hand) no slider cell with status ok is above its bound

@@ -1,17 +1,18 @@
 !> drivers/trust's families chain (t in [0, 1], N = 2 ... 4096) and chain_long (t in [0, 10],
 !! N = 2 ... 256): the chain of N links, plain and with sliders, against the plain IDA peer at
 !! 1e-11 or regdae's own tight run (chain), or judged on the energy change and the violation in
-!! units of the tight run's (chain_long); reference methods the peer at R and Dormand-Prince on
-!! the slider crank's reduced ODE.
+!! units of a tight run's (chain_long: the slider chain's reduced ODE up to N = 64, else regdae);
+!! reference methods the peer at R and Dormand-Prince on the slider crank's reduced ODE.
 module trust_chain
     use regdae, only: wp, solver_options, formulation_augmented
-    use chain_problem, only: chain, new_chain, chain_start
+    use chain_problem, only: chain, new_chain, chain_start, chain_slider_reduced, chain_slider_joints, chain_energy_of, &
+                             chain_violation
     use slider_crank_problem, only: slider_crank_reduced
     use reference_ode, only: integrate_reference
     use trust_support, only: tally, weighted_error, verdict, cell_class, stopped_by_check, checks_off, write_row, &
                              write_note, class_no_reference
     use driver_support, only: num
-    use trust_grid, only: trust_setup, pi, mech_rtols, chain_gravity, ref_tol
+    use trust_grid, only: trust_setup, pi, mech_rtols, chain_gravity, ref_tol, ref_check_tol
     use trust_text, only: itext, etext
     use trust_runs, only: run_record, run_mechanical
     use trust_judge, only: judge_and_print, notes
@@ -24,13 +25,16 @@ module trust_chain
     !> The regdae reference's tolerance and eps, and its check's.
     real(wp), parameter :: chain_ref_tol = 1.0e-11_wp, chain_ref_eps = 1.0e-16_wp
     real(wp), parameter :: chain_check_tol = 1.0e-10_wp, chain_check_eps = 1.0e-14_wp
+    !> The longest slider chain of chain_long integrated by its reduced ODE (a dense K x K solve
+    !! per evaluation, K = N/2).
+    integer, parameter :: reduced_max_links = 64
 
     !> A chain reference, kept for the cells of one (variant, N).
     type :: chain_reference
         logical :: slider = .false.
         integer :: links = 0
         real(wp) :: tf = 0.0_wp
-        character(len=:), allocatable :: source   !! 'peer', 'regdae' or 'none'
+        character(len=:), allocatable :: source   !! 'peer', 'regdae', 'reduced' (the slider chain's reduced ODE) or 'none'
         real(wp), allocatable :: x(:, :), check(:, :)
         real(wp) :: energy_change = 0.0_wp, violation = 0.0_wp, energy_scale = 0.0_wp, q_scale = 0.0_wp
     end type chain_reference
@@ -66,8 +70,10 @@ contains
             write (*, '(a)') '#   judged on the energy change dE = max |E - E(0)| and the violation max |g| at the '// &
                 'outputs: err = max(dE/dE_unit, viol/viol_unit), dE_unit = dE_tight + R E_scale, viol_unit = '// &
                 'viol_tight + R (1 + q_scale)'
-            write (*, '(a)') '#   (dE_tight, viol_tight: the tight run, regdae formulation=augmented rtol = atol = 1e-11 '// &
-                'eps = 1e-16; E_scale: the largest potential-energy drop of that run; q_scale: its max |q|)'
+            write (*, '(a)') '#   (dE_tight, viol_tight: the tight run''s; E_scale: the largest potential-energy drop of that '// &
+                'run; q_scale: its max |q|; the tight run: slider N <= '//itext(reduced_max_links)//' the slider chain''s '// &
+                'reduced ODE in its crank angles (CVODE 1e-13, checked at 1e-12; regdae''s tight run a cross-check), '// &
+                'else regdae formulation=augmented rtol = atol = 1e-11 eps = 1e-16)'
             write (*, '(a)') '#   reference method: the peer at R (plain IDA, not regdae), plain and with the sliders '// &
                 '(N > 2: the peer on the same constraints, the sliders'' too); slider N = 2 (the slider crank) '// &
                 'Dormand-Prince on its reduced ODE at R; its err_ref the same over the outputs it reached (after a '// &
@@ -316,7 +322,8 @@ contains
         real(wp) :: q11(2*links, size(times) + 1), q10(2*links, size(times) + 1), t11, t10
         integer :: s11, s10, steps
         logical :: peer_ok
-        character(len=:), allocatable :: m11, m10, text
+        type(run_record) :: tight
+        character(len=:), allocatable :: m11, m10, text, rtext, check_text
         if (cached%links == links .and. (cached%slider .eqv. slider) .and. cached%tf == times(size(times))) return
         cached%links = links
         cached%slider = slider
@@ -325,6 +332,7 @@ contains
         peer_ok = .false.
         s11 = -1
         s10 = -1
+        check_text = ''
         text = '# reference '//trim(merge('chain_long', 'chain     ', long))//' '// &
                trim(merge('slider', 'plain ', slider))//' N='//itext(links)//': '
         if (.not. slider .and. .not. long) then
@@ -339,7 +347,25 @@ contains
                 cached%check = q10(:, 2:)
             end if
         end if
-        if (.not. peer_ok) call regdae_reference(cached, slider, links, times, text)
+        ! chain_long's slider chains up to reduced_max_links: the reduced ODE, regdae's tight run a
+        ! cross-check (over the outputs it reached); the regdae reference where the ODE fails
+        if (long .and. slider .and. links <= reduced_max_links) then
+            call reduced_reference(cached, links, times, rtext)
+            text = text//rtext
+        end if
+        if (cached%source == 'none' .and. .not. peer_ok) then
+            call regdae_reference(cached, slider, links, times, text, tight)
+        else if (cached%source == 'reduced') then
+            call regdae_run(slider, links, times, chain_ref_tol, chain_ref_eps, tight)
+            check_text = ' vs regdae 1e-11 (status='//itext(tight%stat)//' at t = '//num(tight%st%t)//', '// &
+                         itext(int(tight%st%steps))//' steps)'
+            if (tight%good > 0) &
+                check_text = check_text//' dE='//etext(maxval(abs(tight%energy(:tight%good) - tight%energy0)))// &
+                             ' viol='//etext(maxval(tight%violation(:tight%good)))//' over the '//itext(tight%good)// &
+                             ' outputs it reached: norm(1e-8)='// &
+                             etext(weighted_error(tight%x, cached%x, 1.0e-8_wp, tight%good))//' (to t = 1: '// &
+                             etext(weighted_error(tight%x, cached%x, 1.0e-8_wp, min(tight%good, count(times <= 1.0_wp))))//')'
+        end if
         if (cached%source /= 'none') then
             text = text//'source='//cached%source//' check: max|diff|='// &
                    etext(maxval(abs(cached%check - cached%x)))//' norm(1e-8)='// &
@@ -354,6 +380,7 @@ contains
             end if
             if (slider .and. links == 2) text = text//' vs the reduced ODE (CVODE 1e-13): norm(1e-8)='// &
                                                 etext(crank_cross_check(cached, times))
+            text = text//check_text
             if (slider) text = text//' folds passed (sign changes of x_2k - x_2k-2 between outputs, all pairs; '// &
                                'a lower bound)='//itext(fold_passes(cached%x))
         end if
@@ -363,35 +390,24 @@ contains
     ! The regdae reference of a chain (formulation=augmented, 1e-11, eps = 1e-16) and its
     ! check (1e-10, eps = 1e-14). Fills `cached`; a run that regdae's own checks stop leaves
     ! cached%source = 'none' (no reference: the cells are run but not judged).
-    subroutine regdae_reference(cached, slider, links, times, text)
+    subroutine regdae_reference(cached, slider, links, times, text, tight)
         type(chain_reference), intent(inout) :: cached   !! the reference, kept for the cells of one (variant, N)
         logical, intent(in) :: slider
         integer, intent(in) :: links
         real(wp), intent(in) :: times(:)
         character(len=:), allocatable, intent(inout) :: text
-        type(run_record) :: tight, loose
-        type(solver_options) :: opts
-        type(chain) :: p
-        real(wp) :: q0(2*links), v0(2*links), v_ref(size(times))
+        type(run_record), intent(out) :: tight   !! the tight run (also when stopped)
+        type(run_record) :: loose
+        real(wp) :: v_ref(size(times))
         integer :: k
-        p = new_chain(links, slider, chain_gravity)
-        call chain_start(p, q0, v0)
-        opts = solver_options()
-        opts%formulation = formulation_augmented
-        opts%rtol = chain_ref_tol
-        opts%atol = chain_ref_tol
-        opts%eps = chain_ref_eps
-        call run_mechanical(p, q0, v0, times, opts, 3600.0_wp, tight)
+        call regdae_run(slider, links, times, chain_ref_tol, chain_ref_eps, tight)
         if (tight%stat < 0) then
             ! A tight run that regdae's own checks stop is no reference: the cells are not judged.
             text = text//'regdae 1e-11 status='//itext(tight%stat)//' at t = '//num(tight%st%t)//' ('// &
                    tight%message(1:min(80, len(tight%message)))//'): no reference; '
             return
         end if
-        opts%rtol = chain_check_tol
-        opts%atol = chain_check_tol
-        opts%eps = chain_check_eps
-        call run_mechanical(p, q0, v0, times, opts, 3600.0_wp, loose)
+        call regdae_run(slider, links, times, chain_check_tol, chain_check_eps, loose)
         text = text//'regdae 1e-11 status='//itext(tight%stat)//' ('//num(tight%seconds)//' s, '// &
                itext(int(tight%st%steps))//' steps), 1e-10 status='//itext(loose%stat)//' ('//num(loose%seconds)//' s); '
         if (loose%stat < 0) then
@@ -411,6 +427,90 @@ contains
         text = text//'tight run: dE='//etext(cached%energy_change)//' viol='//etext(cached%violation)// &
                ' E_scale='//etext(cached%energy_scale)//' q_scale='//etext(cached%q_scale)//'; '
     end subroutine regdae_reference
+
+    ! A regdae run of a chain for a reference: formulation=augmented, rtol = atol = tol, eps.
+    subroutine regdae_run(slider, links, times, tol, eps, rec)
+        logical, intent(in) :: slider
+        integer, intent(in) :: links
+        real(wp), intent(in) :: times(:), tol, eps
+        type(run_record), intent(out) :: rec
+        type(solver_options) :: opts
+        type(chain) :: p
+        real(wp) :: q0(2*links), v0(2*links)
+        p = new_chain(links, slider, chain_gravity)
+        call chain_start(p, q0, v0)
+        opts = solver_options()
+        opts%formulation = formulation_augmented
+        opts%rtol = tol
+        opts%atol = tol
+        opts%eps = eps
+        call run_mechanical(p, q0, v0, times, opts, 3600.0_wp, rec)
+    end subroutine regdae_run
+
+    ! The reference of the slider chain of `links` links from the reduced ODE (chain_problem's
+    ! chain_slider_reduced, CVODE at ref_tol) from chain_start (every crank at pi/2, at rest),
+    ! its check at ref_check_tol; the units as regdae_reference's from the joints at the outputs.
+    ! Accepted (cached%source = 'reduced') when both runs succeed and agree on the units' scales
+    ! (E_scale, q_scale) within reduced_scale_tol.
+    subroutine reduced_reference(cached, links, times, text)
+        type(chain_reference), intent(out) :: cached   !! the reference (source 'reduced', else 'none')
+        integer, intent(in) :: links
+        real(wp), intent(in) :: times(:)
+        character(len=:), allocatable, intent(out) :: text
+        real(wp), parameter :: reduced_scale_tol = 1.0e-3_wp
+        type(chain_slider_reduced) :: ode
+        type(chain) :: p
+        real(wp) :: y0(links), tight(links, size(times)), loose(links, size(times)), q0(2*links), v0(2*links)
+        real(wp) :: q(2*links, size(times)), v(2*links, size(times)), qc(2*links, size(times)), vc(2*links, size(times))
+        real(wp) :: e0, de, viol, e_scale, q_scale, e_scale_chk, q_scale_chk, scale_diff
+        integer :: s_tight, s_loose, k
+        cached%slider = .true.
+        cached%links = links
+        cached%tf = times(size(times))
+        cached%source = 'none'
+        ode%links = links
+        ode%gravity = chain_gravity
+        y0(:links/2) = pi/2
+        y0(links/2 + 1:) = 0.0_wp
+        call integrate_reference(ode, 0.0_wp, y0, times, tight, ref_tol, ref_tol, s_tight)
+        call integrate_reference(ode, 0.0_wp, y0, times, loose, ref_check_tol, ref_check_tol, s_loose)
+        text = 'reduced ODE (CVODE) '//etext(ref_tol)//' status='//itext(s_tight)//', '//etext(ref_check_tol)// &
+               ' status='//itext(s_loose)//'; '
+        if (s_tight /= 0 .or. s_loose /= 0) then
+            text = text//'no reference; '
+            return
+        end if
+        p = new_chain(links, .true., chain_gravity)
+        call chain_start(p, q0, v0)
+        e0 = chain_energy_of(p, q0, v0)
+        de = 0.0_wp
+        viol = 0.0_wp
+        do k = 1, size(times)
+            call chain_slider_joints(tight(:, k), q(:, k), v(:, k))
+            call chain_slider_joints(loose(:, k), qc(:, k), vc(:, k))
+            de = max(de, abs(chain_energy_of(p, q(:, k), v(:, k)) - e0))
+            viol = max(viol, chain_violation(p, q(:, k)))
+        end do
+        e_scale = chain_gravity*maxval(abs(sum(q(2::2, :), dim=1)))   ! potential energy (unit masses); 0 at the start
+        q_scale = maxval(abs(q))
+        e_scale_chk = chain_gravity*maxval(abs(sum(qc(2::2, :), dim=1)))
+        q_scale_chk = maxval(abs(qc))
+        scale_diff = max(abs(e_scale_chk - e_scale)/e_scale, abs(q_scale_chk - q_scale)/q_scale)
+        text = text//'tight run: dE='//etext(de)//' viol='//etext(viol)//' E_scale='//etext(e_scale)//' q_scale='// &
+               etext(q_scale)//'; check: E_scale='//etext(e_scale_chk)//' q_scale='//etext(q_scale_chk)// &
+               ' (relative difference '//etext(scale_diff)//'); '
+        if (.not. scale_diff <= reduced_scale_tol) then
+            text = text//'the scales differ by more than '//etext(reduced_scale_tol)//': no reference; '
+            return
+        end if
+        cached%source = 'reduced'
+        cached%x = q
+        cached%check = qc
+        cached%energy_change = de
+        cached%violation = viol
+        cached%energy_scale = e_scale
+        cached%q_scale = q_scale
+    end subroutine reduced_reference
 
     ! N = 2 with the slider is the slider crank (unit masses and links, g = 9.81) from
     ! th1 = th2 = pi/2 at rest: joint 1 = (sin th1, -cos th1), joint 2 = (2 sin th1, 0).
