@@ -79,7 +79,7 @@ contains
         shift = 0.0_wp
         if (self%deficiency <= 0) then
             ! full rank seen (or the first call): the plain estimate
-            call assemble(0.0_wp, info)
+            call self%factor_saddle(0.0_wp, info)
             ok = (info == 0)
             if (ok) call iterate(0, sigma, ok)
             if (ok .and. (sigma > null_tol .or. self%deficiency == 0)) then
@@ -104,7 +104,7 @@ contains
             return
         end if
         shift = sqrt(epsilon(1.0_wp))*scale
-        call assemble(shift, info)
+        call self%factor_saddle(shift, info)
         if (info /= 0) then
             sigma = 0.0_wp
             return
@@ -144,28 +144,6 @@ contains
                 end do
             end associate
         end subroutine scale_constraint_jacobian
-
-        ! K = [M G^T; G -shift I] in band storage, factored (info: dgbtrf's)
-        subroutine assemble(sh, info)
-            real(wp), intent(in) :: sh
-            integer, intent(out) :: info
-            self%kband = 0.0_wp
-            associate (mp => self%st%mass, gp => self%st%constraint)
-                do i = 1, self%n
-                    do k = mp%row_start(i), mp%row_start(i + 1) - 1
-                        call put(i, mp%cols(k), self%mvals(k))
-                    end do
-                end do
-                do i = 1, self%m
-                    do k = gp%row_start(i), gp%row_start(i + 1) - 1
-                        call put(self%n + i, gp%cols(k), self%gvals(k))
-                        call put(gp%cols(k), self%n + i, self%gvals(k))
-                    end do
-                    if (sh > 0.0_wp) call put(self%n + i, self%n + i, -sh)
-                end do
-            end associate
-            call dgbtrf(nk, nk, self%kl, self%ku, self%kband, size(self%kband, 1), self%kpiv, info)
-        end subroutine assemble
 
         ! Inverse iteration on (GB + shift I) orthogonal to nullv(:, 1:nn): the quotient in est
         subroutine iterate(nn, est, ok)
@@ -213,7 +191,28 @@ contains
                 previous = est
             end do
         end subroutine iterate
+    end procedure augmented_sigma_min
 
+    module procedure augmented_factor_saddle
+        integer :: i, k, nk
+        nk = self%n + self%m
+        self%kband = 0.0_wp
+        associate (mp => self%st%mass, gp => self%st%constraint)
+            do i = 1, self%n
+                do k = mp%row_start(i), mp%row_start(i + 1) - 1
+                    call put(i, mp%cols(k), self%mvals(k))
+                end do
+            end do
+            do i = 1, self%m
+                do k = gp%row_start(i), gp%row_start(i + 1) - 1
+                    call put(self%n + i, gp%cols(k), self%gvals(k))
+                    call put(gp%cols(k), self%n + i, self%gvals(k))
+                end do
+                if (shift > 0.0_wp) call put(self%n + i, self%n + i, -shift)
+            end do
+        end associate
+        call dgbtrf(nk, nk, self%kl, self%ku, self%kband, size(self%kband, 1), self%kpiv, info)
+    contains
         ! K(i, j) = val in LAPACK band storage (row kl + ku + 1 + i - j of column j)
         subroutine put(i, j, val)
             integer, intent(in) :: i, j
@@ -223,7 +222,17 @@ contains
             b = self%knew(j)
             self%kband(self%kl + self%ku + 1 + a - b, b) = self%kband(self%kl + self%ku + 1 + a - b, b) + val
         end subroutine put
-    end procedure augmented_sigma_min
+    end procedure augmented_factor_saddle
+
+    module procedure augmented_solve_saddle
+        integer :: nk, info
+        nk = self%n + self%m
+        self%kwork(self%knew(1:self%n)) = a
+        self%kwork(self%knew(self%n + 1:nk)) = b
+        call dgbtrs('N', nk, self%kl, self%ku, 1, self%kband, size(self%kband, 1), self%kpiv, self%kwork, nk, info)
+        x = self%kwork(self%knew(1:self%n))
+        z = self%kwork(self%knew(self%n + 1:nk))
+    end procedure augmented_solve_saddle
 
     module procedure augmented_diagonal_scales
         real(wp) :: row, diag

@@ -24,7 +24,9 @@
 !! (direct and Baumgarte use the defect itself in the y row and have no u, s).
 !! Index 2 (option `index=2`) is the same with gamma0 = 0, gamma1 = gamma and c:
 !! the regularized velocity constraint. The algebraic unknowns u, y, s leave
-!! the error test; their initial values come from IDA's IDACalcIC.
+!! the error test; their initial values at a start come from solves of the
+!! saddle-point matrix (`consistent_start`, submodule `regdae_augmented_start`),
+!! else (and at a restart or a switch to IDA) from IDA's IDACalcIC.
 !!
 !! The unknowns are renumbered by reverse Cuthill-McKee on the Newton matrix's
 !! pattern, so that a chain of bodies gives a band of fixed width.
@@ -101,6 +103,14 @@ module regdae_augmented_system
         !> max_i (GB)_ii (with M's diagonal) and max_i |G_i| of the M and G of the last
         !! sigma_min_gb (the automatic eps and drift bound, regdae_scales).
         procedure :: diagonal_scales => augmented_diagonal_scales
+        !> K = [M G^T; G -shift I] with the M and G in mvals, gvals, factored in band storage
+        !! (info: LAPACK dgbtrf's).
+        procedure :: factor_saddle => augmented_factor_saddle
+        !> [x; z] = K^{-1} [a; b] with the K of the last factor_saddle.
+        procedure :: solve_saddle => augmented_solve_saddle
+        !> IDA's consistent u(t0), u'(t0) from q0, v0 by solves of K (submodule
+        !! regdae_augmented_start); .false. where that does not serve (IDACalcIC then).
+        procedure :: consistent_start => augmented_consistent_start
     end type augmented_system
 
     ! The conditioning (submodule regdae_augmented_conditioning).
@@ -117,6 +127,27 @@ module regdae_augmented_system
             class(augmented_system), intent(in) :: self
             real(wp), intent(out) :: gb, g
         end subroutine augmented_diagonal_scales
+
+        module subroutine augmented_factor_saddle(self, shift, info)
+            class(augmented_system), intent(inout) :: self
+            real(wp), intent(in) :: shift   !! >= 0: -shift I in the (2, 2) block
+            integer, intent(out) :: info
+        end subroutine augmented_factor_saddle
+
+        module subroutine augmented_solve_saddle(self, a, b, x, z)
+            class(augmented_system), intent(inout) :: self
+            real(wp), intent(in) :: a(:), b(:)    !! lengths n, m
+            real(wp), intent(out) :: x(:), z(:)   !! lengths n, m
+        end subroutine augmented_solve_saddle
+    end interface
+
+    ! The consistent start (submodule regdae_augmented_start).
+    interface
+        module logical function augmented_consistent_start(self, t, u, up) result(done)
+            class(augmented_system), intent(inout) :: self
+            real(wp), intent(in) :: t
+            real(wp), intent(inout) :: u(:), up(:)   !! in: initial_guess's; out (done): consistent
+        end function augmented_consistent_start
     end interface
 
 

@@ -109,6 +109,9 @@ module regdae_ida_backend
         ! a restart or a write into state() forgets it): interpolate there again is a no-op
         logical :: interpolated = .false.
         real(wp) :: t_interpolated = 0.0_wp
+        ! u' at t_interpolated not yet computed: slope() takes it from IDA's interpolant (the
+        ! slope of an output time is read only where the monitor's sample or the caller needs it)
+        logical :: slope_pending = .false.
     contains
         !> Create the SUNDIALS context, vectors, IDA memory and the linear solver.
         procedure :: create => backend_create
@@ -194,6 +197,7 @@ contains
         real(c_double), pointer :: p(:)
         type(c_ptr) :: user_data
         self%interpolated = .false.
+        self%slope_pending = .false.
 
         user_data = c_null_ptr
         select type (self)
@@ -362,6 +366,7 @@ contains
         real(c_double), pointer :: p(:)
         integer(c_int) :: ierr
         self%interpolated = .false.
+        self%slope_pending = .false.
         stat = regdae_success
         msg = ''
         id => FN_VNew_Serial(int(self%neq, c_long), self%sunctx)
@@ -394,6 +399,7 @@ contains
         integer(c_int) :: flag
         real(wp) :: t_before
         self%interpolated = .false.
+        self%slope_pending = .false.
 
         self%pending_stat = regdae_success
         if (len(self%pending_message) > 0) self%pending_message = ''
@@ -427,6 +433,7 @@ contains
         integer(c_int) :: flag
         real(wp) :: t_before
         self%interpolated = .false.
+        self%slope_pending = .false.
 
         self%pending_stat = regdae_success
         if (len(self%pending_message) > 0) self%pending_message = ''
@@ -483,6 +490,7 @@ contains
         integer, intent(out) :: stat
         real(c_double), pointer :: p(:)
         self%interpolated = .false.
+        self%slope_pending = .false.
         call self%get_statistics(self%carried)   ! FIDAReInit zeroes IDA's counters: keep them
         self%carried%jac_res_evals = 0           ! (counted by regdae itself, not reset)
         self%carried%res_evals = self%carried%res_evals - self%jac_res_evals
@@ -503,14 +511,14 @@ contains
             return
         end if
         ierr = int(FIDAGetDky(self%ida_mem, t, 0_c_int, self%uu))
-        if (ierr == 0) ierr = int(FIDAGetDky(self%ida_mem, t, 1_c_int, self%up))
         self%interpolated = (ierr == 0)
+        self%slope_pending = self%interpolated   ! u' there: slope() computes it when asked
         self%t_interpolated = t
     end subroutine backend_interpolate
 
     subroutine backend_forget_interpolation(self)
         class(ida_backend), intent(inout) :: self
-        self%interpolated = .false.
+        self%interpolated = .false.   ! (a pending slope stays: IDA's interpolant is unchanged)
     end subroutine backend_forget_interpolation
 
     function backend_state(self) result(u)
@@ -522,6 +530,9 @@ contains
     function backend_slope(self) result(up)
         class(ida_backend), intent(in) :: self
         real(c_double), pointer :: up(:)
+        integer(c_int) :: ierr
+        ! (IDAGetDky at a time inside the last step, where interpolate succeeded: it cannot fail)
+        if (self%slope_pending) ierr = FIDAGetDky(self%ida_mem, self%t_interpolated, 1_c_int, self%up)
         up => FN_VGetArrayPointer(self%up)
     end function backend_slope
 
@@ -538,6 +549,7 @@ contains
         class(ida_backend), intent(inout) :: self
         integer(c_int) :: ierr
         self%interpolated = .false.
+        self%slope_pending = .false.
         if (c_associated(self%ida_mem)) then   ! the counters of a later IDA continue from these
             call self%get_statistics(self%carried)
             self%carried%jac_res_evals = 0

@@ -222,7 +222,8 @@ module regdae_monitor
         !! half a time scale after the last look)?
         procedure :: weights_due => monitor_weights_due
         !> Does a sample at t need the full sample (`sample`), or do the work-energy
-        !! balance's energies (`sample_work`) do: is a singular interval near?
+        !! balance's energies (`sample_work`) do: is a singular interval near? (The time since the
+        !! last full sample counts at a step's end; at an output inside a step once an interval was seen.)
         procedure :: full_sample_due => monitor_full_sample_due
         !> The near level: sigma_min(GB) below it, a singular interval may be near
         !! (`near_factor` times the singular threshold and the layer's); huge before the
@@ -498,11 +499,13 @@ contains
 
     ! The full sample is due (doc/methods.md, "The full sample where a singular interval may
     ! be near") unless the last two full samples lie above the near level, outside singular
-    ! intervals and layers, less than far_gap motion times ago, and a falling sigma_min(GB)
-    ! is less than halfway (in time) to the near level along their secant.
-    logical function monitor_full_sample_due(self, t) result(due)
+    ! intervals and layers, less than far_gap motion times ago (at a step's end; at an output
+    ! inside a step too once a singular interval was seen), and a falling
+    ! sigma_min(GB) is less than halfway (in time) to the near level along their secant.
+    logical function monitor_full_sample_due(self, t, inside_step) result(due)
         class(solution_monitor), intent(in) :: self
         real(wp), intent(in) :: t
+        logical, intent(in) :: inside_step   !! t is an output time inside the last step (its end is sampled)
         real(wp) :: near, since
         due = .true.
         if (.not. (self%sigma_before >= 0.0_wp)) return   ! no full sample yet (or its sigma was NaN)
@@ -511,7 +514,7 @@ contains
         if (.not. (self%sigma_last >= near .and. self%sigma_before >= near)) return
         if (.not. (self%motion_time() < huge(1.0_wp))) return   ! no time scale: every sample full
         since = t - self%t_sigma_before
-        if (.not. (since < far_gap*self%motion_time())) return
+        if (.not. (since < far_gap*self%motion_time() .or. (inside_step .and. self%n_singular == 0))) return
         ! sigma falling (the secant of the last two full samples): the next full sample
         ! halfway to where the secant reaches the near level
         if (self%slope_before < 0.0_wp) then

@@ -350,7 +350,7 @@ contains
 
     ! The augmented formulation (regdae_augmented_system): the sparse residual on
     ! IDA with a dense, band or sparse linear solver, consistent initial values by
-    ! IDACalcIC, the diagnostics from IDA's state; with integrator=radau, Radau IIA
+    ! solves of the saddle-point matrix (consistent_start) or else IDACalcIC, the diagnostics from IDA's state; with integrator=radau, Radau IIA
     ! on the same system as an index-1 DAE (regdae_radau_augmented), dense LU,
     ! consistent initial values by its own Newton steps on the algebraic rows.
     module procedure solver_start_augmented
@@ -360,7 +360,7 @@ contains
         type(radau_adapter), pointer :: radau
         real(wp), allocatable :: u0(:), up0(:), id(:)
         character(len=:), allocatable :: msg
-        logical :: on_radau
+        logical :: on_radau, consistent
 
         core => self%core
         core%opts = opts
@@ -414,13 +414,14 @@ contains
             end if
         else
             ida => ida_in_slot(core)
+            consistent = sys%consistent_start(t0, u0, up0)
             call ida%ida%create(sys, core%opts, core%linear_solver, core%excluded, t0, u0, up0, stat, msg, &
                                 sys%tolerance_vector(core%atol_z(1:problem%n), core%atol_z(problem%n + 1:), opts%atol))
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, msg)
                 return
             end if
-            call ida%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
+            if (.not. consistent) call ida%ida%calc_ic(id, t0 + 1.0e-3_wp*max(1.0_wp, abs(t0)), stat, msg)
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, 'at the initial point: '//msg)
                 return

@@ -80,7 +80,7 @@ contains
         end if
         u => core%stiff%state()
         up => core%stiff%slope()
-        if (.not. core%monitor%full_sample_due(t)) then
+        if (.not. core%monitor%full_sample_due(t, t < core%stiff%time())) then
             if (t < core%stiff%time()) return   ! an output time inside the step: its end serves the balance
             if (work_sampled(core, t, u(1:core%n), up(1:core%n))) return
         end if
@@ -126,8 +126,24 @@ contains
     subroutine sample_augmented(core, t)
         type(solver_core), intent(inout), target :: core
         real(wp), intent(in) :: t
-        real(c_double), pointer :: u(:), up(:)
         type(augmented_system), pointer :: sys
+        logical :: full
+        sys => core%stiff%augmented()
+        full = .true.
+        if (associated(sys)) full = core%monitor%full_sample_due(t, t < core%stiff%time())
+        ! an output time inside the step: its end serves the balance
+        if (.not. full .and. t < core%stiff%time()) return
+        call sample_augmented_state(core, t, sys, full)
+    end subroutine sample_augmented
+
+    ! sample_augmented's sample at t, full or the work-energy balance's alone; sys: IDA's
+    ! augmented system (not associated: the full sample's values without it).
+    subroutine sample_augmented_state(core, t, sys, full)
+        type(solver_core), intent(inout), target :: core
+        real(wp), intent(in) :: t
+        type(augmented_system), pointer, intent(in) :: sys
+        logical, intent(in) :: full
+        real(c_double), pointer :: u(:), up(:)
         real(wp), target :: z(2*core%nx), dz(2*core%nx)   ! (q, v) and its slope: one block each
         real(wp) :: a(core%nx), y(core%m), drift, invariant, sigma, kinetic, power, gb, g, sums(2)
         real(wp), pointer :: q(:), v(:)
@@ -136,9 +152,7 @@ contains
         v => z(core%nx + 1:2*core%nx)
         u => core%stiff%state()
         up => core%stiff%slope()
-        sys => core%stiff%augmented()
-        if (associated(sys) .and. .not. core%monitor%full_sample_due(t)) then
-            if (t < core%stiff%time()) return   ! an output time inside the step: its end serves the balance
+        if (.not. full) then
             call sys%unpack(u, up, q=q, v=v)
         else
             drift = 0.0_wp
@@ -170,7 +184,7 @@ contains
             call core%monitor%sample_work(t, kinetic, power, wstat, core%monitor%energy_tolerance(sums, q, v), &
                                           sys%problem, z, dz, sys%st%mass, sys%st%mass_constant)
         end if
-    end subroutine sample_augmented
+    end subroutine sample_augmented_state
 
     ! The automatic weights of the augmented formulation follow the motion: a new
     ! look at the rate at (t, q, v) with the accelerations a (IDA's v'); new
