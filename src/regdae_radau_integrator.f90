@@ -11,6 +11,10 @@
 !! and v with excluded=vy) and a, which IDA's vector does not hold (a stays in
 !! with exclusion=off). Its state() and slope() are then the augmented vector and
 !! its derivative in IDA's order (v' = a), and `augmented()` the system.
+!! Before each step it compares the system's parameters (eps and the weights, which
+!! the monitor sets between steps) with those of the last step and, when they
+!! changed, has Radau evaluate F at the step's start again and take a new Jacobian
+!! (`refresh`), on either formulation.
 !! Its `advance` is `regdae_implicit_steps`'s loop over Radau's single steps, the
 !! monitor sampling every accepted step's end and the output time, in time order,
 !! like the IDA integrator; with integrator=auto the loop asks the switching
@@ -41,6 +45,8 @@ module regdae_radau_integrator
         character(len=:), allocatable :: failure   !! the model's message at F's last failure ('' none)
     contains
         procedure :: rhs => eliminated_rhs
+        !> (eps, w): the parameters of F the monitor sets between steps.
+        procedure :: parameters => eliminated_parameters
     end type eliminated_ode
 
     !> Radau IIA on the core's model (see the module documentation).
@@ -52,6 +58,7 @@ module regdae_radau_integrator
         real(wp), allocatable :: uu(:), uup(:)         !! dae: the unknowns U = (x, a) and U'
         type(radau_stats) :: before                    !! the counters of the earlier starts
         real(wp), allocatable :: z(:), zp(:)           !! the state and slope at the time reached (or interpolated)
+        real(wp), allocatable :: seen(:)               !! the system's parameters F(t0, u0) was taken with
         logical :: started = .false.                   !! radau holds a started state
     contains   ! the interface's procedures (regdae_integrator documents them)
         procedure :: start => radau_start
@@ -98,6 +105,12 @@ contains
         if (stat /= regdae_success) self%failure = self%model%message
     end subroutine eliminated_rhs
 
+    function eliminated_parameters(self) result(p)
+        class(eliminated_ode), intent(in) :: self
+        real(wp), allocatable :: p(:)
+        p = [self%model%eps, self%model%w]
+    end function eliminated_parameters
+
     !> Start (again) at (t, z): the core's tolerances (rtol, the state's atol), the
     !! error test without the excluded components, the first step h0 when given (> 0).
     !! On the augmented system z is (q, v) and the algebraic unknowns are computed.
@@ -108,7 +121,6 @@ contains
         character(len=:), allocatable, intent(out) :: msg
         real(wp), intent(in), optional :: h0, zp(:), y(:)
         type(radau_options) :: ro
-        logical :: changed
         associate (core => self%core)
             if (self%started) self%before = add_stats(self%before, self%radau%statistics())
             ro%rtol = core%opts%rtol
@@ -125,7 +137,7 @@ contains
                 call self%dae%consistent(t, z(1:core%nx), z(core%nx + 1:core%n), self%uu, stat, msg)
                 if (stat /= regdae_success) return
                 call self%radau%start(self%dae, t, self%uu, ro, stat)
-                call self%dae%note_parameters(changed)   ! the parameters F(t0, u0) was taken with
+                self%seen = self%dae%parameters()
             else
                 self%ode%model => core%model
                 self%ode%failure = ''
@@ -136,6 +148,7 @@ contains
                 ro%error_test = .not. core%excluded(1:core%n)
                 if (.not. any(ro%error_test)) deallocate (ro%error_test)
                 call self%radau%start(self%ode, t, z, ro, stat)
+                self%seen = self%ode%parameters()
             end if
             self%started = .true.
             msg = ''
@@ -156,13 +169,8 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(inout) :: msg
         character(len=:), allocatable :: failure
-        logical :: changed
-        stat = regdae_success
         if (self%on_augmented) then
-            ! the monitor may have set new eps or weights since the last step
-            call self%dae%note_parameters(changed)
-            if (changed) call self%radau%refresh(self%dae, stat)
-            if (stat == regdae_success) call step_on(self%dae)
+            call step_on(self%dae)
             failure = self%dae%failure
         else
             call step_on(self%ode)
@@ -176,6 +184,12 @@ contains
     contains
         subroutine step_on(sys)
             class(radau_system), intent(inout) :: sys
+            ! the monitor may have set new eps or weights since the last step: F(t0, u0) anew
+            if (.not. same_values(sys%parameters(), self%seen)) then
+                self%seen = sys%parameters()
+                call self%radau%refresh(sys, stat)
+                if (stat /= regdae_success) return
+            end if
             if (self%core%opts%stop_at_output) then
                 call self%radau%step(sys, stat, tout)
             else
@@ -183,6 +197,13 @@ contains
             end if
         end subroutine step_on
     end subroutine radau_step_towards
+
+    ! a and b of the same size and equal entry by entry
+    pure logical function same_values(a, b) result(same)
+        real(wp), intent(in) :: a(:), b(:)
+        same = size(a) == size(b)
+        if (same) same = all(a == b)
+    end function same_values
 
     !> The state and slope at the end of the last step.
     subroutine radau_to_step_end(self)

@@ -23,6 +23,8 @@ module regdae_radau_system
         procedure :: has_jacobian => system_has_no_jacobian
         !> dF/du at (t, u), f = F(t, u) given (default: none, sets stat < 0).
         procedure :: jacobian => system_no_jacobian
+        !> The parameters of F that its owner may set between steps (default: none).
+        procedure :: parameters => system_no_parameters
     end type radau_system
 
     abstract interface
@@ -148,6 +150,16 @@ contains
         class(radau_system), intent(in) :: self
         system_has_no_jacobian = .false.
     end function system_has_no_jacobian
+
+    !> The default `parameters`: none. A system whose F has parameters set between
+    !! steps (regdae's eps and weights, which the monitor sets) returns them; its owner
+    !! compares them before each step and calls the integrator's `refresh` when they
+    !! changed, since the integrator keeps F(t, u) of the current point.
+    function system_no_parameters(self) result(p)
+        class(radau_system), intent(in) :: self
+        real(wp), allocatable :: p(:)
+        allocate (p(0))
+    end function system_no_parameters
 
     !> The default `jacobian`: none (the integrator uses difference quotients
     !! unless `has_jacobian` says otherwise).
