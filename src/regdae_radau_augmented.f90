@@ -44,6 +44,7 @@ module regdae_radau_augmented
         real(wp), allocatable :: mass(:)     !! the diagonal of M, size neq + n
         integer :: jacobian_evals = 0        !! residual evaluations of the grouped Jacobians
         character(len=:), allocatable :: failure   !! the residual's message at its last failure ('' none)
+        real(wp) :: seen(3) = 0.0_wp         !! (eps, gamma0, gamma1) at the last `parameters_changed`
         ! the groups of columns (group_cols(group_start(c):group_start(c+1)-1)) and column j's rows
         integer :: ngroups = 0
         integer, allocatable :: group_start(:), group_cols(:)
@@ -62,8 +63,8 @@ module regdae_radau_augmented
         procedure :: tolerances => dae_tolerances
         !> x and x' (IDA's order) from U and U': q' = v, v' = a, the rest from U'.
         procedure :: augmented_pair => dae_augmented_pair
-        !> (eps, gamma0, gamma1): the parameters of F the monitor sets between steps.
-        procedure :: parameters => dae_parameters
+        !> Whether eps, gamma0 or gamma1 changed since the last call (which records them).
+        procedure :: note_parameters => dae_note_parameters
     end type augmented_dae
 
 contains
@@ -247,11 +248,16 @@ contains
         atol(self%neq + 1:) = atol_a
     end function dae_tolerances
 
-    function dae_parameters(self) result(p)
-        class(augmented_dae), intent(in) :: self
-        real(wp), allocatable :: p(:)
-        p = [self%sys%eps, self%sys%gamma0, self%sys%gamma1]
-    end function dae_parameters
+    !> Whether the augmented system's eps, gamma0 or gamma1 (which the monitor sets
+    !! between steps) differ from their values at the last call; records them.
+    subroutine dae_note_parameters(self, changed)
+        class(augmented_dae), intent(inout) :: self
+        logical, intent(out) :: changed
+        real(wp) :: now(3)
+        now = [self%sys%eps, self%sys%gamma0, self%sys%gamma1]
+        changed = any(now /= self%seen)
+        self%seen = now
+    end subroutine dae_note_parameters
 
     !> x = U(1:neq) and x' (IDA's order): q' = v and v' = a from U, the algebraic
     !! unknowns' derivatives from U'.

@@ -43,10 +43,12 @@ module regdae_radau_integrator
         type(regularized_dae), pointer :: model => null()
         real(wp), allocatable :: y(:)   !! the multiplier of the last evaluation
         character(len=:), allocatable :: failure   !! the model's message at F's last failure ('' none)
+        real(wp) :: seen_eps = 0.0_wp                !! the model's eps at the last `note_parameters`
+        real(wp), allocatable :: seen_w(:)           !! its weights w there
     contains
         procedure :: rhs => eliminated_rhs
-        !> (eps, w): the parameters of F the monitor sets between steps.
-        procedure :: parameters => eliminated_parameters
+        !> Whether eps or the weights changed since the last call (which records them).
+        procedure :: note_parameters => eliminated_note_parameters
     end type eliminated_ode
 
     !> Radau IIA on the core's model (see the module documentation).
@@ -58,7 +60,6 @@ module regdae_radau_integrator
         real(wp), allocatable :: uu(:), uup(:)         !! dae: the unknowns U = (x, a) and U'
         type(radau_stats) :: before                    !! the counters of the earlier starts
         real(wp), allocatable :: z(:), zp(:)           !! the state and slope at the time reached (or interpolated)
-        real(wp), allocatable :: seen(:)               !! the system's parameters F(t0, u0) was taken with
         logical :: started = .false.                   !! radau holds a started state
     contains   ! the interface's procedures (regdae_integrator documents them)
         procedure :: start => radau_start
@@ -105,11 +106,18 @@ contains
         if (stat /= regdae_success) self%failure = self%model%message
     end subroutine eliminated_rhs
 
-    function eliminated_parameters(self) result(p)
-        class(eliminated_ode), intent(in) :: self
-        real(wp), allocatable :: p(:)
-        p = [self%model%eps, self%model%w]
-    end function eliminated_parameters
+    !> Whether the model's eps or weights w (which the monitor sets between steps)
+    !! differ from their values at the last call; records them.
+    subroutine eliminated_note_parameters(self, changed)
+        class(eliminated_ode), intent(inout) :: self
+        logical, intent(out) :: changed
+        changed = (self%model%eps /= self%seen_eps) .or. .not. allocated(self%seen_w)
+        if (.not. changed) changed = size(self%seen_w) /= size(self%model%w)
+        if (.not. changed) changed = any(self%model%w /= self%seen_w)
+        if (.not. changed) return
+        self%seen_eps = self%model%eps
+        self%seen_w = self%model%w
+    end subroutine eliminated_note_parameters
 
     !> Start (again) at (t, z): the core's tolerances (rtol, the state's atol), the
     !! error test without the excluded components, the first step h0 when given (> 0).
@@ -121,6 +129,7 @@ contains
         character(len=:), allocatable, intent(out) :: msg
         real(wp), intent(in), optional :: h0, zp(:), y(:)
         type(radau_options) :: ro
+        logical :: changed
         associate (core => self%core)
             if (self%started) self%before = add_stats(self%before, self%radau%statistics())
             ro%rtol = core%opts%rtol
@@ -137,7 +146,7 @@ contains
                 call self%dae%consistent(t, z(1:core%nx), z(core%nx + 1:core%n), self%uu, stat, msg)
                 if (stat /= regdae_success) return
                 call self%radau%start(self%dae, t, self%uu, ro, stat)
-                self%seen = self%dae%parameters()
+                call self%dae%note_parameters(changed)   ! the parameters F(t0, u0) was taken with
             else
                 self%ode%model => core%model
                 self%ode%failure = ''
@@ -148,7 +157,7 @@ contains
                 ro%error_test = .not. core%excluded(1:core%n)
                 if (.not. any(ro%error_test)) deallocate (ro%error_test)
                 call self%radau%start(self%ode, t, z, ro, stat)
-                self%seen = self%ode%parameters()
+                call self%ode%note_parameters(changed)
             end if
             self%started = .true.
             msg = ''
@@ -184,9 +193,10 @@ contains
     contains
         subroutine step_on(sys)
             class(radau_system), intent(inout) :: sys
+            logical :: changed
             ! the monitor may have set new eps or weights since the last step: F(t0, u0) anew
-            if (.not. same_values(sys%parameters(), self%seen)) then
-                self%seen = sys%parameters()
+            call sys%note_parameters(changed)
+            if (changed) then
                 call self%radau%refresh(sys, stat)
                 if (stat /= regdae_success) return
             end if
@@ -197,13 +207,6 @@ contains
             end if
         end subroutine step_on
     end subroutine radau_step_towards
-
-    ! a and b of the same size and equal entry by entry
-    pure logical function same_values(a, b) result(same)
-        real(wp), intent(in) :: a(:), b(:)
-        same = size(a) == size(b)
-        if (same) same = all(a == b)
-    end function same_values
 
     !> The state and slope at the end of the last step.
     subroutine radau_to_step_end(self)

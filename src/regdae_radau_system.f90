@@ -23,8 +23,9 @@ module regdae_radau_system
         procedure :: has_jacobian => system_has_no_jacobian
         !> dF/du at (t, u), f = F(t, u) given (default: none, sets stat < 0).
         procedure :: jacobian => system_no_jacobian
-        !> The parameters of F that its owner may set between steps (default: none).
-        procedure :: parameters => system_no_parameters
+        !> Whether the parameters of F that its owner may set between steps changed since
+        !! the last call, which records them (default: F has none, .false.).
+        procedure :: note_parameters => system_no_parameters
     end type radau_system
 
     abstract interface
@@ -151,15 +152,15 @@ contains
         system_has_no_jacobian = .false.
     end function system_has_no_jacobian
 
-    !> The default `parameters`: none. A system whose F has parameters set between
-    !! steps (regdae's eps and weights, which the monitor sets) returns them; its owner
-    !! compares them before each step and calls the integrator's `refresh` when they
-    !! changed, since the integrator keeps F(t, u) of the current point.
-    function system_no_parameters(self) result(p)
-        class(radau_system), intent(in) :: self
-        real(wp), allocatable :: p(:)
-        allocate (p(0))
-    end function system_no_parameters
+    !> The default `note_parameters`: F has no parameters set between steps. A system
+    !! whose F has some (regdae's eps and weights, which the monitor sets) says whether
+    !! they changed; its owner asks before each step and calls the integrator's
+    !! `refresh` when they did, since the integrator keeps F(t, u) of the current point.
+    subroutine system_no_parameters(self, changed)
+        class(radau_system), intent(inout) :: self
+        logical, intent(out) :: changed
+        changed = .false.
+    end subroutine system_no_parameters
 
     !> The default `jacobian`: none (the integrator uses difference quotients
     !! unless `has_jacobian` says otherwise).
