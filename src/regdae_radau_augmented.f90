@@ -44,7 +44,7 @@ module regdae_radau_augmented
         real(wp), allocatable :: mass(:)     !! the diagonal of M, size neq + n
         integer :: jacobian_evals = 0        !! residual evaluations of the grouped Jacobians
         character(len=:), allocatable :: failure   !! the residual's message at its last failure ('' none)
-        real(wp) :: seen(3) = 0.0_wp         !! (eps, gamma0, gamma1) at the last `parameters_changed`
+        real(wp) :: seen(3) = 0.0_wp         !! (eps, gamma0, gamma1) at the last `note_parameters`
         ! the groups of columns (group_cols(group_start(c):group_start(c+1)-1)) and column j's rows
         integer :: ngroups = 0
         integer, allocatable :: group_start(:), group_cols(:)

@@ -326,12 +326,12 @@ contains
     end subroutine radau_step
 
     !> The system's F changed between steps (its parameters were set anew, as the
-    !! monitor sets the augmented formulation's eps and weights): F(t, u) evaluated
-    !! again, and the next step takes a new Jacobian. Without it the step's start
-    !! keeps the old F(t0, u0): the error estimate uses it, and the Jacobian's
-    !! difference quotients take it as their base, (F_new(u + d e_j) - F_old(u))/d,
-    !! which on an algebraic row is off by (F_new - F_old)/d (measured: entries -1
-    !! computed as -324 ... 1777, and Newton diverging at every h, issue 21).
+    !! monitor sets regdae's eps and weights): F(t, u) evaluated again, and the next
+    !! step takes a new Jacobian. Without it the step's start keeps the old F(t0, u0):
+    !! the error estimate uses it, and the Jacobian's difference quotients take it as
+    !! their base, (F_new(u + d e_j) - F_old(u))/d, off by (F_new - F_old)/d (on an
+    !! algebraic row measured: entries -1 computed as -324 ... 1777, and Newton
+    !! diverging at every h, issue 21).
     !! stat: regdae_success, or F's failure (the integrator then fails).
     subroutine radau_refresh(self, sys, stat)
         class(radau_integrator), intent(inout) :: self

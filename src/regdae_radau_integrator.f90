@@ -11,6 +11,10 @@
 !! and v with excluded=vy) and a, which IDA's vector does not hold (a stays in
 !! with exclusion=off). Its state() and slope() are then the augmented vector and
 !! its derivative in IDA's order (v' = a), and `augmented()` the system.
+!! Before each step it compares the system's parameters (eps and the weights, which
+!! the monitor sets between steps) with those of the last step and, when they
+!! changed, has Radau evaluate F at the step's start again and take a new Jacobian
+!! (`refresh`), on either formulation.
 !! Its `advance` is `regdae_implicit_steps`'s loop over Radau's single steps, the
 !! monitor sampling every accepted step's end and the output time, in time order,
 !! like the IDA integrator; with integrator=auto the loop asks the switching
@@ -39,8 +43,12 @@ module regdae_radau_integrator
         type(regularized_dae), pointer :: model => null()
         real(wp), allocatable :: y(:)   !! the multiplier of the last evaluation
         character(len=:), allocatable :: failure   !! the model's message at F's last failure ('' none)
+        real(wp) :: seen_eps = 0.0_wp                !! the model's eps at the last `note_parameters`
+        real(wp), allocatable :: seen_w(:)           !! its weights w there
     contains
         procedure :: rhs => eliminated_rhs
+        !> Whether eps or the weights changed since the last call (which records them).
+        procedure :: note_parameters => eliminated_note_parameters
     end type eliminated_ode
 
     !> Radau IIA on the core's model (see the module documentation).
@@ -98,6 +106,19 @@ contains
         if (stat /= regdae_success) self%failure = self%model%message
     end subroutine eliminated_rhs
 
+    !> Whether the model's eps or weights w (which the monitor sets between steps)
+    !! differ from their values at the last call; records them.
+    subroutine eliminated_note_parameters(self, changed)
+        class(eliminated_ode), intent(inout) :: self
+        logical, intent(out) :: changed
+        changed = (self%model%eps /= self%seen_eps) .or. .not. allocated(self%seen_w)
+        if (.not. changed) changed = size(self%seen_w) /= size(self%model%w)
+        if (.not. changed) changed = any(self%model%w /= self%seen_w)
+        if (.not. changed) return
+        self%seen_eps = self%model%eps
+        self%seen_w = self%model%w
+    end subroutine eliminated_note_parameters
+
     !> Start (again) at (t, z): the core's tolerances (rtol, the state's atol), the
     !! error test without the excluded components, the first step h0 when given (> 0).
     !! On the augmented system z is (q, v) and the algebraic unknowns are computed.
@@ -136,6 +157,7 @@ contains
                 ro%error_test = .not. core%excluded(1:core%n)
                 if (.not. any(ro%error_test)) deallocate (ro%error_test)
                 call self%radau%start(self%ode, t, z, ro, stat)
+                call self%ode%note_parameters(changed)
             end if
             self%started = .true.
             msg = ''
@@ -156,13 +178,8 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(inout) :: msg
         character(len=:), allocatable :: failure
-        logical :: changed
-        stat = regdae_success
         if (self%on_augmented) then
-            ! the monitor may have set new eps or weights since the last step
-            call self%dae%note_parameters(changed)
-            if (changed) call self%radau%refresh(self%dae, stat)
-            if (stat == regdae_success) call step_on(self%dae)
+            call step_on(self%dae)
             failure = self%dae%failure
         else
             call step_on(self%ode)
@@ -176,6 +193,13 @@ contains
     contains
         subroutine step_on(sys)
             class(radau_system), intent(inout) :: sys
+            logical :: changed
+            ! the monitor may have set new eps or weights since the last step: F(t0, u0) anew
+            call sys%note_parameters(changed)
+            if (changed) then
+                call self%radau%refresh(sys, stat)
+                if (stat /= regdae_success) return
+            end if
             if (self%core%opts%stop_at_output) then
                 call self%radau%step(sys, stat, tout)
             else

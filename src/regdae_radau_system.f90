@@ -23,6 +23,9 @@ module regdae_radau_system
         procedure :: has_jacobian => system_has_no_jacobian
         !> dF/du at (t, u), f = F(t, u) given (default: none, sets stat < 0).
         procedure :: jacobian => system_no_jacobian
+        !> Whether the parameters of F that its owner may set between steps changed since
+        !! the last call, which records them (default: F has none, .false.).
+        procedure :: note_parameters => system_no_parameters
     end type radau_system
 
     abstract interface
@@ -148,6 +151,16 @@ contains
         class(radau_system), intent(in) :: self
         system_has_no_jacobian = .false.
     end function system_has_no_jacobian
+
+    !> The default `note_parameters`: F has no parameters set between steps. A system
+    !! whose F has some (regdae's eps and weights, which the monitor sets) says whether
+    !! they changed; its owner asks before each step and calls the integrator's
+    !! `refresh` when they did, since the integrator keeps F(t, u) of the current point.
+    subroutine system_no_parameters(self, changed)
+        class(radau_system), intent(inout) :: self
+        logical, intent(out) :: changed
+        changed = .false.
+    end subroutine system_no_parameters
 
     !> The default `jacobian`: none (the integrator uses difference quotients
     !! unless `has_jacobian` says otherwise).

@@ -32,6 +32,7 @@ contains
                  new_test('radau_slider_crank', radau_slider_crank), &
                  new_test('radau_pendulum', radau_pendulum), &
                  new_test('radau_chain', radau_chain), &
+                 new_test('radau_refresh_eliminated', radau_refresh_eliminated), &
                  new_test('radau_car_axis', radau_car_axis), &
                  new_test('radau_car_axis_index3', radau_car_axis_index3), &
                  new_test('radau_augmented_option', radau_augmented_option), &
@@ -153,6 +154,36 @@ contains
         call chk%true(diff(2) <= 1.0e-6_wp, 'chain: radau = dopri5 within 1e-6')
         write (*, '(a,2es10.2)') '    chain of 4, radau against ida and dopri5: ', diff
     end subroutine radau_chain
+
+    ! The chain of 4 links at rtol = atol = 1e-4 to t = 1 in one advance, integrator=radau
+    ! on the eliminated formulation: the monitor's automatic weights change at t = 0.95
+    ! (gamma0 222 -> 910), and F(t0, u0) of the next step must be the new one (the adapter's
+    ! refresh). With the old F kept the Jacobian was off by up to 2e5 and the error estimate
+    ! by F's change: q(1) off by 6e-4 (6 rtol) against dopri5 at 1e-10; refreshed 5e-6.
+    subroutine radau_refresh_eliminated(chk)
+        type(checker), intent(inout) :: chk
+        type(regdae_solver) :: solver
+        type(solver_options) :: opts
+        type(chain) :: p
+        real(wp) :: q0(8), v0(8), q(8, 2), diff
+        integer :: stat, i
+        p = new_chain(4, .false., 9.81_wp)
+        call chain_start(p, q0, v0)
+        do i = 1, 2
+            opts = solver_options()
+            opts%rtol = merge(1.0e-4_wp, 1.0e-10_wp, i == 1)
+            opts%atol = opts%rtol
+            opts%integrator = merge(integrator_radau, integrator_dopri5, i == 1)
+            opts%formulation = formulation_eliminated
+            call solver%init(p, 0.0_wp, q0, v0, opts, stat)
+            if (stat >= 0) call solver%advance(1.0_wp, q(:, i), stat=stat)
+            call chk%equal(stat, regdae_success, 'chain of 4 to t = 1, '//integrator_name(opts%integrator))
+            call solver%destroy()
+        end do
+        diff = maxval(abs(q(:, 1) - q(:, 2)))
+        call chk%true(diff <= 1.0e-4_wp, 'chain at rtol 1e-4: radau within rtol of dopri5 after the weights changed')
+        write (*, '(a,es10.2)') '    chain of 4 at 1e-4, radau against dopri5 at 1e-10: ', diff
+    end subroutine radau_refresh_eliminated
 
     ! integrator=radau takes formulation=augmented (and auto, eliminated), refuses
     ! multiplier and the band and sparse linear solvers (IDA's), each with a message.
