@@ -495,6 +495,20 @@ unresolved pass, 1.06 -> 2.29 error weights against a bound of 10; `family=chain
 classes, 4 of 144 errors moved). IDA's fused vector operations (FN_VEnableFusedOps_Serial, outputs
 identical) cost more here: 14.13M and 35.51M at rtol 1e-6 and 1e-9.
 
+Measured by hand on 2026-12-06 (issue 21, the fixed costs above; callgrind, inclusive instructions
+of `solver_init_second` and `solver_advance` against the peer's `run_chain_peer`, damping=10):
+output times inside an IDA step are no longer full samples of the monitor until a singular
+interval has been seen (122 -> 17 full samples at rtol 1e-3), the augmented formulation's
+consistent start comes from band solves of the saddle-point matrix (IDACalcIC only as a fallback)
+and the interpolant's slope at an output is computed only when it is read (doc/methods.md). At
+rtol 1e-3 / 1e-4 / 1e-5 / 1e-6 / 1e-7 / 1e-8 / 1e-9: 7.14 / 9.44 / 10.81 / 14.16 / 19.50 / 25.99 /
+35.03M before, 5.70 / 7.48 / 9.38 / 12.70 / 18.05 / 24.38 / 33.44M after, the peer's 5.85 / 7.29 /
+11.16 / 12.65 / 15.83 / 22.99 / 27.92M; errors unchanged. At matched accuracy 1e-7 / 1e-8 / 1e-9 /
+1e-10 / 1e-11 (against regdae at rtol 1e-11 with eps 1e-14, first crossings): 1.22 / 1.62 / 1.09 /
+0.76 / 0.99x -> 0.97 / 1.35 / 0.98 / 0.69 / 0.92x. Issue 21's 1x: met at 1e-7, 1e-9 ... 1e-11,
+missed at 1e-8, where the peer's run at rtol 1e-3 lands at 9.8e-9 and regdae's at 1.9e-8 in the
+same 23 steps.
+
 TXT
 # Issue 11: the small stiff chain, integrator=auto against hand-chosen configurations.
 awk -f "$(dirname "$0")/chain_errors.awk" "$raw/chain_switch.txt" >"$out/switch_rows.txt"
