@@ -250,7 +250,7 @@ the chains with sliders of 2 ... 64 links are compared with their reduced ODE (b
 4096 links with regdae's own tight run (formulation=augmented, rtol = atol = 1e-11, eps = 1e-16,
 checked against 1e-10 with eps = 1e-14); the plain chains with the peer at 1e-11 (checked at
 1e-10) where both succeed (N = 2 ... 32), else with their reduced ODE in the N link angles
-(\`chain_plain_reduced\`, N = 64 and 128), else with regdae's tight run (N = 256 ... 4096). The
+(\`chain_plain_reduced\`, N = 64 ... 256), else with regdae's tight run (N = 512 ... 4096). The
 chains with sliders are judged against the long chains' reference methods at R: the peer on the same constraints for N = 4 ... 4096,
 Dormand-Prince on the slider crank's reduced ODE for N = 2, err_ref over the outputs the method
 reached. Their cells: ${short_classes}. Of the ${short_peer} cells of N > 2 the peer failed in

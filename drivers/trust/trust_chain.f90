@@ -1,8 +1,8 @@
 !> drivers/trust's families chain (t in [0, 1], N = 2 ... 4096) and chain_long (t in [0, 10],
 !! N = 2 ... 256): the chain of N links, plain and with sliders, against the plain IDA peer at
-!! 1e-11, the chain's reduced ODE (slider N <= 64, plain up to plain_reduced_max_links) or
+!! 1e-11, the chain's reduced ODE (slider N <= 64, plain N <= 256 where the peer fails) or
 !! regdae's own tight run beyond (chain), or judged on the energy change and the violation in
-!! units of a tight run's (chain_long: the reduced ODE within the same limits, else regdae);
+!! units of a tight run's (chain_long: the reduced ODE, slider N <= 64, plain N <= 128, else regdae);
 !! reference methods the peer at R and Dormand-Prince on the slider crank's reduced ODE.
 module trust_chain
     use regdae, only: wp, solver_options, formulation_augmented
@@ -26,10 +26,10 @@ module trust_chain
     !> The regdae reference's tolerance and eps, and its check's.
     real(wp), parameter :: chain_ref_tol = 1.0e-11_wp, chain_ref_eps = 1.0e-16_wp
     real(wp), parameter :: chain_check_tol = 1.0e-10_wp, chain_check_eps = 1.0e-14_wp
-    !> The longest slider chain integrated by its reduced ODE (a dense K x K solve per
-    !! evaluation, K = N/2), and the longest plain chain (a dense N x N solve: on [0, 10] 4.4 s cpu
-    !! for the CVODE run at 1e-13 at N = 128, over 90 s at N = 256).
-    integer, parameter :: reduced_max_links = 64, plain_reduced_max_links = 128
+    !> The longest chains integrated by their reduced ODE: slider (a dense K x K solve per
+    !! evaluation, K = N/2) on both families; plain (a dense N x N solve) on [0, 10] (CVODE at
+    !! 1e-13: 4.4 s cpu at N = 128, over 90 s at N = 256) and on [0, 1] (1.7 s at N = 256).
+    integer, parameter :: reduced_max_links = 64, plain_max_links_long = 128, plain_max_links_short = 256
 
     !> A chain reference, kept for the cells of one (variant, N).
     type :: chain_reference
@@ -73,7 +73,7 @@ contains
                 'outputs: err = max(dE/dE_unit, viol/viol_unit), dE_unit = dE_tight + R E_scale, viol_unit = '// &
                 'viol_tight + R (1 + q_scale)'
             write (*, '(a)') '#   (dE_tight, viol_tight: the tight run''s; E_scale: the largest potential-energy drop of that '// &
-                'run; q_scale: its max |q|; the tight run: '//reduced_text()//', else regdae formulation=augmented '// &
+                'run; q_scale: its max |q|; the tight run: '//reduced_text(long)//', else regdae formulation=augmented '// &
                 'rtol = atol = 1e-11 eps = 1e-16)'
             write (*, '(a)') '#   reference method: the peer at R (plain IDA, not regdae), plain and with the sliders '// &
                 '(N > 2: the peer on the same constraints, the sliders'' too); slider N = 2 (the slider crank) '// &
@@ -84,7 +84,7 @@ contains
         else
             write (*, '(a)') '#   reference: plain the peer (plain IDA, band, stabilized index 2, not regdae) at '// &
                 'rtol = atol = 1e-11 checked against 1e-10; where either fails, and for the sliders, the reduced ODE: '// &
-                reduced_text()//'; beyond, from regdae itself (formulation=augmented, rtol = atol = 1e-11, '// &
+                reduced_text(long)//'; beyond, from regdae itself (formulation=augmented, rtol = atol = 1e-11, '// &
                 'eps = 1e-16; check: 1e-10 with eps = 1e-14); ref_src says which'
             write (*, '(a)') '#   reference method: plain the peer at R; slider N > 2 the peer at R on the same '// &
                 'constraints (the sliders'' too), N = 2 (the slider crank) Dormand-Prince on its reduced ODE at R'
@@ -113,12 +113,23 @@ contains
     end subroutine chain_family
 
     ! Where the reduced ODE is the reference, for the families' header lines.
-    function reduced_text() result(text)
+    function reduced_text(long) result(text)
+        logical, intent(in) :: long   !! chain_long
         character(len=:), allocatable :: text
         text = 'slider N <= '//itext(reduced_max_links)//' the slider chain''s reduced ODE in its crank angles, plain N <= '// &
-               itext(plain_reduced_max_links)//' the plain chain''s in its link angles (CVODE 1e-13, checked at 1e-12; '// &
+               itext(reduced_limit(.false., long))//' the plain chain''s in its link angles (CVODE 1e-13, checked at 1e-12; '// &
                'regdae''s tight run a cross-check)'
     end function reduced_text
+
+    ! The longest chain of the variant integrated by its reduced ODE on chain (t in [0, 1]) or chain_long.
+    pure integer function reduced_limit(slider, long) result(limit)
+        logical, intent(in) :: slider, long
+        if (slider) then
+            limit = reduced_max_links
+        else
+            limit = merge(plain_max_links_long, plain_max_links_short, long)
+        end if
+    end function reduced_limit
 
     ! A cell of the family chain: positions against the reference at the outputs.
     subroutine chain_cell(setup, cached, counts, cell, slider, links, rtol, times)
@@ -357,9 +368,9 @@ contains
             end if
         end if
         ! where the peer is not the reference, the chain's reduced ODE up to its limit (slider
-        ! reduced_max_links, plain plain_reduced_max_links), regdae's tight run a cross-check (over
+        ! reduced_max_links, plain plain_max_links_long or _short), regdae's tight run a cross-check (over
         ! the outputs it reached); the regdae reference where the ODE fails or beyond the limit
-        if (.not. peer_ok .and. links <= merge(reduced_max_links, plain_reduced_max_links, slider)) then
+        if (.not. peer_ok .and. links <= reduced_limit(slider, long)) then
             call reduced_reference(cached, slider, links, times, rtext)
             text = text//rtext
         end if
