@@ -9,7 +9,8 @@ module test_mechanics
     use regdae_velocity_index2, only: velocity_index2_problem, new_velocity_index2
     use slider_crank_problem, only: slider_crank, slider_crank_reduced, new_slider_crank
     use pendulum_problem, only: pendulum, pendulum_angle, new_pendulum
-    use chain_problem, only: chain, new_chain, chain_slider_reduced, chain_slider_joints, chain_violation
+    use chain_problem, only: chain, new_chain, chain_slider_reduced, chain_slider_joints, chain_violation, &
+                             chain_plain_reduced, chain_plain_joints
     use reference_ode, only: integrate_reference
     use regdae_ida_backend, only: ida_relative_tolerance
     use regdae_testing, only: checker, test_case, new_test
@@ -36,6 +37,7 @@ contains
         type(test_case), allocatable :: tests(:)
         tests = [new_test('reduced_ode_matches_full_equations', reduced_ode_matches_full), &
                  new_test('slider_chain_reduced_matches_full', slider_chain_reduced_matches_full), &
+                 new_test('plain_chain_reduced_matches_full', plain_chain_reduced_matches_full), &
                  new_test('mechanical_b_by_hand', mechanical_b_by_hand), &
                  new_test('curvature_difference_quotient', curvature_difference_quotient), &
                  new_test('velocity_index2_jacobian', velocity_index2_jacobian), &
@@ -55,50 +57,92 @@ contains
         type(chain_slider_reduced) :: ode
         type(slider_crank_reduced) :: crank
         type(chain) :: p
-        real(wp), allocatable :: y(:), yd(:), q(:), v(:), jac(:, :), h(:), gx(:, :), curv(:), kkt(:, :), rhs(:)
+        real(wp), allocatable :: y(:), yd(:), q(:), v(:), jac(:, :), h(:)
         real(wp) :: yc(2)
-        integer, allocatable :: ipiv(:)
-        integer :: links, k, n, m, info, stat, pairs, trial
+        integer :: links, k, n, pairs, trial
         do links = 2, 8, 2
             pairs = links/2
             n = 2*links
             p = new_chain(links, .true., 9.81_wp)
-            m = p%m
             ode%links = links
             ode%gravity = 9.81_wp
             do trial = 1, 3
                 y = [(0.3_wp + 0.9_wp*k + 0.4_wp*trial, k=1, pairs), (1.7_wp - 0.8_wp*k*trial, k=1, pairs)]
-                allocate (yd(2*pairs), q(n), v(n), jac(n, pairs), h(n), gx(m, n), curv(m), kkt(n + m, n + m), &
-                          rhs(n + m), ipiv(n + m))
+                allocate (yd(2*pairs), q(n), v(n), jac(n, pairs), h(n))
                 call ode%rhs(0.0_wp, y, yd)
                 call chain_slider_joints(y, q, v, jac, h)
-                stat = 0
-                call p%constraint_jacobian(0.0_wp, q, gx, stat)
-                call p%constraint_curvature(0.0_wp, q, v, curv, stat)
-                call chk%close(chain_violation(p, q), 0.0_wp, 1.0e-13_wp, 'reduced joints on the constraints')
-                call chk%close(maxval(abs(matmul(gx, v))), 0.0_wp, 1.0e-12_wp, 'G v = 0')
-                kkt = 0.0_wp
-                do k = 1, n
-                    kkt(k, k) = 1.0_wp
-                end do
-                kkt(1:n, n + 1:) = transpose(gx)
-                kkt(n + 1:, 1:n) = gx
-                rhs = 0.0_wp
-                rhs(2:n:2) = -9.81_wp
-                rhs(n + 1:) = -curv
-                call dgesv(n + m, 1, kkt, n + m, ipiv, rhs, n + m, info)
-                call chk%equal(info, 0, 'full system solved')
-                call chk%close(maxval(abs(matmul(jac, yd(pairs + 1:)) + h - rhs(1:n))), 0.0_wp, &
-                               1.0e-10_wp*max(1.0_wp, maxval(abs(rhs(1:n)))), 'q'''' reduced = full, N = '//char(48 + links))
+                call check_against_full(chk, p, q, v, matmul(jac, yd(pairs + 1:)) + h, 'slider, N = '//char(48 + links))
                 if (links == 2) then
                     crank%gravity = 9.81_wp
                     call crank%rhs(0.0_wp, y, yc)
                     call chk%close(yd(2), yc(2), 1.0e-13_wp*max(1.0_wp, abs(yc(2))), 'N = 2: the slider crank''s')
                 end if
-                deallocate (yd, q, v, jac, h, gx, curv, kkt, rhs, ipiv)
+                deallocate (yd, q, v, jac, h)
             end do
         end do
     end subroutine slider_chain_reduced_matches_full
+
+    ! The plain chain's reduced ODE (drivers/trust's reference of the plain chains) against the
+    ! full equations of chain_problem: the joints it maps to are on the constraints with G v = 0,
+    ! and its accelerations q''_i = sum_{j <= i} [(cos, sin) theta_j'' + (-sin, cos) theta_j'^2]
+    ! are those of the index-1 system [I G^T; G 0] (q'', lambda) = (f, -g_xx(v, v)).
+    subroutine plain_chain_reduced_matches_full(chk)
+        type(checker), intent(inout) :: chk
+        type(chain_plain_reduced) :: ode
+        type(chain) :: p
+        real(wp), allocatable :: y(:), yd(:), q(:), v(:), acc(:)
+        real(wp) :: a(2)
+        integer :: links, k, trial
+        do links = 1, 6
+            ode = chain_plain_reduced(links=links, gravity=9.81_wp)
+            p = new_chain(links, .false., ode%gravity)
+            do trial = 1, 3
+                y = [(0.3_wp + 0.9_wp*k + 0.4_wp*trial, k=1, links), (1.7_wp - 0.8_wp*k*trial, k=1, links)]
+                allocate (yd(2*links), q(2*links), v(2*links), acc(2*links))
+                call ode%rhs(0.0_wp, y, yd)
+                call chain_plain_joints(y, q, v)
+                a = 0.0_wp
+                do k = 1, links
+                    a = a + [cos(y(k)), sin(y(k))]*yd(links + k) + [-sin(y(k)), cos(y(k))]*y(links + k)**2
+                    acc(2*k - 1:2*k) = a
+                end do
+                call check_against_full(chk, p, q, v, acc, 'plain, N = '//char(48 + links))
+                deallocate (yd, q, v, acc)
+            end do
+        end do
+    end subroutine plain_chain_reduced_matches_full
+
+    ! A reduced ODE's state against the chain's full equations (unit masses, g = 9.81): its
+    ! joints q on the constraints, G v = 0, and its accelerations `acc` those of the index-1
+    ! system [I G^T; G 0] (q'', lambda) = (f, -g_xx(v, v)).
+    subroutine check_against_full(chk, p, q, v, acc, label)
+        type(checker), intent(inout) :: chk
+        type(chain), intent(inout) :: p
+        real(wp), intent(in) :: q(:), v(:), acc(:)
+        character(len=*), intent(in) :: label
+        real(wp) :: gx(p%m, p%n), curv(p%m), kkt(p%n + p%m, p%n + p%m), x(p%n + p%m)
+        integer :: ipiv(p%n + p%m), k, n, m, info, stat
+        m = p%m
+        n = p%n
+        stat = 0
+        call p%constraint_jacobian(0.0_wp, q, gx, stat)
+        call p%constraint_curvature(0.0_wp, q, v, curv, stat)
+        call chk%close(chain_violation(p, q), 0.0_wp, 1.0e-13_wp, label//': reduced joints on the constraints')
+        call chk%close(maxval(abs(matmul(gx, v))), 0.0_wp, 1.0e-12_wp, label//': G v = 0')
+        kkt = 0.0_wp
+        do k = 1, n
+            kkt(k, k) = 1.0_wp
+        end do
+        kkt(1:n, n + 1:) = transpose(gx)
+        kkt(n + 1:, 1:n) = gx
+        x = 0.0_wp
+        x(2:n:2) = -9.81_wp
+        x(n + 1:) = -curv
+        call dgesv(n + m, 1, kkt, n + m, ipiv, x, n + m, info)
+        call chk%equal(info, 0, label//': full system solved')
+        call chk%close(maxval(abs(acc - x(1:n))), 0.0_wp, 1.0e-10_wp*max(1.0_wp, maxval(abs(x(1:n)))), &
+                       label//': q'''' reduced = full')
+    end subroutine check_against_full
 
     ! On the branch th2 = pi - th1, w2 = -w1, the full equations (5.2)-(5.3),
     ! solved as the index-1 system [M G^T; G 0] (th'', lambda_m) = (f, -g_xx(w, w)),

@@ -23,7 +23,8 @@
 !! bodies on stiff springs: fast damped modes of frequency sqrt(k/m)).
 !!
 !! The slider chain's reduced ODE (`chain_slider_reduced`, unit links and masses, no springs):
-!! its exact reference for any even N, as the slider crank's is for N = 2.
+!! its exact reference for any even N, as the slider crank's is for N = 2; the plain chain's
+!! (`chain_plain_reduced`): the pendulum chain in its N joint angles.
 module chain_problem
     use regdae, only: wp, mechanical_problem, mechanical_structure, sparsity_pattern, diagonal_pattern, &
                       empty_pattern, pattern_from_entries
@@ -53,6 +54,12 @@ module chain_problem
         procedure :: invariant => chain_energy
     end type chain
 
+    !> A chain of unit links and masses written as an ODE in its angles (no springs).
+    type, abstract, extends(ode_system), public :: chain_reduced
+        integer :: links = 2   !! N
+        real(wp) :: gravity = 9.81_wp
+    end type chain_reduced
+
     !> The slider chain (unit links and masses, gravity g, N = 2K even) in the angles
     !! \(\varphi_k\) of its cranks (link 2k-1 from the vertical), on the branch where each rod
     !! mirrors its crank, the one through the start chain_start (\(\varphi_k = \pi/2\)):
@@ -65,14 +72,26 @@ module chain_problem
     !! the smooth motion stays on this branch there unless \(\dot\varphi_k = 0\) at the fold.
     !! N = 2 is slider_crank_reduced. State y = (\(\varphi_1 \dots \varphi_K, \dot\varphi_1 \dots
     !! \dot\varphi_K\)).
-    type, extends(ode_system), public :: chain_slider_reduced
-        integer :: links = 2
-        real(wp) :: gravity = 9.81_wp
+    type, extends(chain_reduced), public :: chain_slider_reduced
     contains
         procedure :: rhs => slider_reduced_rhs
     end type chain_slider_reduced
 
-    public :: new_chain, chain_start, chain_energy_of, chain_violation, chain_slider_joints
+    !> The plain chain (unit links and masses, gravity g, no springs) in the angles \(\theta_i\)
+    !! of its links from the downward vertical: \(p_i = \sum_{j \le i} (\sin\theta_j, -\cos\theta_j)\).
+    !! Lagrange's equations, with \(c_{jk} = N + 1 - \max(j, k)\) (the joints beyond both links):
+    !! \(\sum_k c_{jk} [\cos(\theta_j - \theta_k) \ddot\theta_k + \sin(\theta_j - \theta_k)
+    !! \dot\theta_k^2] = -g (N + 1 - j) \sin\theta_j\); the mass matrix
+    !! \(c_{jk} \cos(\theta_j - \theta_k)\) is positive definite at every configuration (the plain
+    !! chain has no singular one), solved dense by Cholesky: O(N^3) per evaluation. The start
+    !! chain_start is \(\theta_i = \pi/2\) at rest. State y = (\(\theta_1 \dots \theta_N,
+    !! \dot\theta_1 \dots \dot\theta_N\)).
+    type, extends(chain_reduced), public :: chain_plain_reduced
+    contains
+        procedure :: rhs => plain_reduced_rhs
+    end type chain_plain_reduced
+
+    public :: new_chain, chain_start, chain_energy_of, chain_violation, chain_slider_joints, chain_plain_joints
 
 contains
 
@@ -342,27 +361,88 @@ contains
         real(wp), intent(out) :: ydot(:)
         real(wp) :: q(2*self%links), v(2*self%links), jac(2*self%links, self%links/2), h(2*self%links)
         real(wp) :: f(2*self%links), a(self%links/2, self%links/2), b(self%links/2)
-        integer :: k, j, n_pairs
+        integer :: n_pairs
         n_pairs = self%links/2
         call chain_slider_joints(y, q, v, jac, h)
         f = 0.0_wp
         f(2::2) = -self%gravity
         a = matmul(transpose(jac), jac)
         b = matmul(transpose(jac), f - h)
-        do k = 1, n_pairs   ! a = L L^T, L in the lower triangle
-            a(k, k) = sqrt(a(k, k) - sum(a(k, :k - 1)**2))
-            do j = k + 1, n_pairs
-                a(j, k) = (a(j, k) - sum(a(j, :k - 1)*a(k, :k - 1)))/a(k, k)
-            end do
-        end do
-        do k = 1, n_pairs
-            b(k) = (b(k) - sum(a(k, :k - 1)*b(:k - 1)))/a(k, k)
-        end do
-        do k = n_pairs, 1, -1
-            b(k) = (b(k) - sum(a(k + 1:, k)*b(k + 1:)))/a(k, k)
-        end do
+        call cholesky_solve(a, b)
         ydot(:n_pairs) = y(n_pairs + 1:)
         ydot(n_pairs + 1:) = b
     end subroutine slider_reduced_rhs
+
+    !> The joints q and their velocities v (2N each) of the plain chain at the reduced state y
+    !! (chain_plain_reduced): \(p_i = \sum_{j \le i} (\sin\theta_j, -\cos\theta_j)\).
+    pure subroutine chain_plain_joints(y, q, v)
+        real(wp), intent(in) :: y(:)   !! (2N): the angles, then their rates
+        real(wp), intent(out) :: q(:), v(:)
+        real(wp) :: p(2), w(2)
+        integer :: i, links
+        links = size(y)/2
+        p = 0.0_wp
+        w = 0.0_wp
+        do i = 1, links
+            p = p + [sin(y(i)), -cos(y(i))]
+            w = w + [cos(y(i)), sin(y(i))]*y(links + i)
+            q(2*i - 1:2*i) = p
+            v(2*i - 1:2*i) = w
+        end do
+    end subroutine chain_plain_joints
+
+    ! The plain chain's Lagrange equations (chain_plain_reduced), with cos(a - b) and sin(a - b)
+    ! expanded so that the right side costs O(N^2) trigonometric-free products.
+    subroutine plain_reduced_rhs(self, t, y, ydot)
+        class(chain_plain_reduced), intent(inout) :: self
+        real(wp), intent(in) :: t, y(:)
+        real(wp), intent(out) :: ydot(:)
+        real(wp) :: s(self%links), c(self%links), w2(self%links), a(self%links, self%links), b(self%links)
+        real(wp) :: weight, sum_c, sum_s
+        integer :: j, k, n
+        n = self%links
+        s = sin(y(:n))
+        c = cos(y(:n))
+        w2 = y(n + 1:)**2
+        do j = 1, n
+            do k = 1, j
+                a(k, j) = real(n + 1 - j, wp)*(c(j)*c(k) + s(j)*s(k))   ! upper triangle, max(j, k) = j
+            end do
+        end do
+        do j = 1, n
+            sum_c = 0.0_wp
+            sum_s = 0.0_wp
+            do k = 1, n
+                weight = real(n + 1 - max(j, k), wp)*w2(k)
+                sum_c = sum_c + weight*c(k)
+                sum_s = sum_s + weight*s(k)
+            end do
+            ! - sum_k c_jk sin(th_j - th_k) w_k^2 - g (N + 1 - j) sin th_j
+            b(j) = -(s(j)*sum_c - c(j)*sum_s) - self%gravity*real(n + 1 - j, wp)*s(j)
+        end do
+        call cholesky_solve(a, b)
+        ydot(:n) = y(n + 1:)
+        ydot(n + 1:) = b
+    end subroutine plain_reduced_rhs
+
+    ! b := A^-1 b for A symmetric positive definite, given in its upper triangle (overwritten by
+    ! U, A = U^T U; columns contiguous).
+    pure subroutine cholesky_solve(a, b)
+        real(wp), intent(inout) :: a(:, :), b(:)
+        integer :: j, k, n
+        n = size(b)
+        do k = 1, n
+            a(k, k) = sqrt(a(k, k) - sum(a(:k - 1, k)**2))
+            do j = k + 1, n
+                a(k, j) = (a(k, j) - sum(a(:k - 1, k)*a(:k - 1, j)))/a(k, k)
+            end do
+        end do
+        do k = 1, n
+            b(k) = (b(k) - sum(a(:k - 1, k)*b(:k - 1)))/a(k, k)
+        end do
+        do k = n, 1, -1
+            b(k) = (b(k) - sum(a(k, k + 1:)*b(k + 1:)))/a(k, k)
+        end do
+    end subroutine cholesky_solve
 
 end module chain_problem

@@ -245,9 +245,13 @@ The linear index-2 DAEs with GB ~ t^2 (S1) and t^4 (S2) under the three methods,
 The chain of N = 2 ... 4096 unit links, plain and with sliders, on [0, 1] and [0, 10] (chaotic
 there: the long grid judges the checks, the energy change and the constraint violation, in units of
 the tight run's own plus R times the scales, err = max(dE/dE_unit, viol/viol_unit)). On [0, 1]
-the chains with sliders are compared with regdae's own tight run (formulation=augmented, rtol =
-atol = 1e-11, eps = 1e-16, checked against 1e-10 with eps = 1e-14) and judged against the long
-chains' reference methods at R: the peer on the same constraints for N = 4 ... 4096,
+the chains with sliders of 2 ... 64 links are compared with their reduced ODE (below; CVODE at
+1e-13, checked at 1e-12, regdae's tight run a cross-check on the reference line), those of 128 ...
+4096 links with regdae's own tight run (formulation=augmented, rtol = atol = 1e-11, eps = 1e-16,
+checked against 1e-10 with eps = 1e-14); the plain chains with the peer at 1e-11 (checked at
+1e-10) where both succeed (N = 2 ... 32), else with their reduced ODE in the N link angles
+(\`chain_plain_reduced\`, N = 64 ... 256), else with regdae's tight run (N = 512 ... 4096). The
+chains with sliders are judged against the long chains' reference methods at R: the peer on the same constraints for N = 4 ... 4096,
 Dormand-Prince on the slider crank's reduced ODE for N = 2, err_ref over the outputs the method
 reached. Their cells: ${short_classes}. Of the ${short_peer} cells of N > 2 the peer failed in
 ${n_short_fail}${short_fail:+ (${short_fail})}; err_ref counts the outputs before the failure (where it
@@ -345,7 +349,11 @@ units: the bound ${c67_bound}). The units of the slider chains of 2 ... 64 links
 reduced ODE, not from regdae: the chain in its N/2 crank angles on the branch where each rod mirrors
 its crank (the start's), regular through the folds (\`chain_slider_reduced\` in
 \`drivers/problems/chain_problem.f90\`, tested against the full equations), by CVODE at 1e-13, its
-scales checked at 1e-12; regdae's tight run (1e-11, eps = 1e-16) is a cross-check there. Their
+scales checked at 1e-12; regdae's tight run (1e-11, eps = 1e-16) is a cross-check there. So do
+those of the plain chains of 2 ... 128 links: the chain in its N link angles (Lagrange's equations,
+a dense N x N mass matrix by Cholesky, \`chain_plain_reduced\`, tested against the full equations;
+4.4 s of CVODE at N = 128, over 90 s at N = 256, so the plain chain of 256 links keeps regdae's
+tight run). The slider chains'
 energy change, and in brackets the tight regdae run's status, the time it reached and its energy
 change: ${long_reduced:-?}. Until the reduced ODE the slider chains of 4 and 8 links were not
 judged: their tight regdae run, then the source of the units, is stopped by its drift check (-113

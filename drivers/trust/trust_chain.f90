@@ -1,14 +1,15 @@
 !> drivers/trust's families chain (t in [0, 1], N = 2 ... 4096) and chain_long (t in [0, 10],
 !! N = 2 ... 256): the chain of N links, plain and with sliders, against the plain IDA peer at
-!! 1e-11 or regdae's own tight run (chain), or judged on the energy change and the violation in
-!! units of a tight run's (chain_long: the slider chain's reduced ODE up to N = 64, else regdae);
+!! 1e-11, the chain's reduced ODE (slider N <= 64, plain N <= 256 where the peer fails) or
+!! regdae's own tight run beyond (chain), or judged on the energy change and the violation in
+!! units of a tight run's (chain_long: the reduced ODE, slider N <= 64, plain N <= 128, else regdae);
 !! reference methods the peer at R and Dormand-Prince on the slider crank's reduced ODE.
 module trust_chain
     use regdae, only: wp, solver_options, formulation_augmented
     use chain_problem, only: chain, new_chain, chain_start, chain_slider_reduced, chain_slider_joints, chain_energy_of, &
-                             chain_violation
+                             chain_violation, chain_plain_reduced, chain_plain_joints
     use slider_crank_problem, only: slider_crank_reduced
-    use reference_ode, only: integrate_reference
+    use reference_ode, only: integrate_reference, ode_system
     use trust_support, only: tally, weighted_error, verdict, cell_class, stopped_by_check, checks_off, write_row, &
                              write_note, class_no_reference
     use driver_support, only: num
@@ -25,16 +26,17 @@ module trust_chain
     !> The regdae reference's tolerance and eps, and its check's.
     real(wp), parameter :: chain_ref_tol = 1.0e-11_wp, chain_ref_eps = 1.0e-16_wp
     real(wp), parameter :: chain_check_tol = 1.0e-10_wp, chain_check_eps = 1.0e-14_wp
-    !> The longest slider chain of chain_long integrated by its reduced ODE (a dense K x K solve
-    !! per evaluation, K = N/2).
-    integer, parameter :: reduced_max_links = 64
+    !> The longest chains integrated by their reduced ODE: slider (a dense K x K solve per
+    !! evaluation, K = N/2) on both families; plain (a dense N x N solve) on [0, 10] (CVODE at
+    !! 1e-13: 4.4 s cpu at N = 128, over 90 s at N = 256) and on [0, 1] (1.7 s at N = 256).
+    integer, parameter :: reduced_max_links = 64, plain_max_links_long = 128, plain_max_links_short = 256
 
     !> A chain reference, kept for the cells of one (variant, N).
     type :: chain_reference
         logical :: slider = .false.
         integer :: links = 0
         real(wp) :: tf = 0.0_wp
-        character(len=:), allocatable :: source   !! 'peer', 'regdae', 'reduced' (the slider chain's reduced ODE) or 'none'
+        character(len=:), allocatable :: source   !! 'peer', 'regdae', 'reduced' (the chain's reduced ODE) or 'none'
         real(wp), allocatable :: x(:, :), check(:, :)
         real(wp) :: energy_change = 0.0_wp, violation = 0.0_wp, energy_scale = 0.0_wp, q_scale = 0.0_wp
     end type chain_reference
@@ -71,9 +73,8 @@ contains
                 'outputs: err = max(dE/dE_unit, viol/viol_unit), dE_unit = dE_tight + R E_scale, viol_unit = '// &
                 'viol_tight + R (1 + q_scale)'
             write (*, '(a)') '#   (dE_tight, viol_tight: the tight run''s; E_scale: the largest potential-energy drop of that '// &
-                'run; q_scale: its max |q|; the tight run: slider N <= '//itext(reduced_max_links)//' the slider chain''s '// &
-                'reduced ODE in its crank angles (CVODE 1e-13, checked at 1e-12; regdae''s tight run a cross-check), '// &
-                'else regdae formulation=augmented rtol = atol = 1e-11 eps = 1e-16)'
+                'run; q_scale: its max |q|; the tight run: '//reduced_text(long)//', else regdae formulation=augmented '// &
+                'rtol = atol = 1e-11 eps = 1e-16)'
             write (*, '(a)') '#   reference method: the peer at R (plain IDA, not regdae), plain and with the sliders '// &
                 '(N > 2: the peer on the same constraints, the sliders'' too); slider N = 2 (the slider crank) '// &
                 'Dormand-Prince on its reduced ODE at R; its err_ref the same over the outputs it reached (after a '// &
@@ -81,11 +82,11 @@ contains
             write (*, '(a)') '#   extra columns: dE dE_unit viol viol_unit method (the reference method''s status: the '// &
                 'peer''s 0 or IDA''s flag, Dormand-Prince''s ok/diverged/timeout/failed); a note gives its dE and viol'
         else
-            write (*, '(a)') '#   plain: reference the peer (plain IDA, band, stabilized index 2, not regdae) at '// &
-                'rtol = atol = 1e-11 checked against 1e-10; where either fails, the regdae reference (ref_src); '// &
-                'reference method: the peer at R'
-            write (*, '(a)') '#   slider: reference from regdae itself (formulation=augmented, rtol = atol = 1e-11, '// &
-                'eps = 1e-16; check: 1e-10 with eps = 1e-14); reference method: N > 2 the peer at R on the same '// &
+            write (*, '(a)') '#   reference: plain the peer (plain IDA, band, stabilized index 2, not regdae) at '// &
+                'rtol = atol = 1e-11 checked against 1e-10; where either fails, and for the sliders, the reduced ODE: '// &
+                reduced_text(long)//'; beyond, from regdae itself (formulation=augmented, rtol = atol = 1e-11, '// &
+                'eps = 1e-16; check: 1e-10 with eps = 1e-14); ref_src says which'
+            write (*, '(a)') '#   reference method: plain the peer at R; slider N > 2 the peer at R on the same '// &
                 'constraints (the sliders'' too), N = 2 (the slider crank) Dormand-Prince on its reduced ODE at R'
             write (*, '(a)') '#   extra columns: ref_src ref_chk (the norm at R of check - reference) '// &
                 'peer_status (the reference method''s status: the peer''s 0 or IDA''s flag, Dormand-Prince''s '// &
@@ -110,6 +111,25 @@ contains
         end do
         write (*, '(a)') counts%summary(name)
     end subroutine chain_family
+
+    ! Where the reduced ODE is the reference, for the families' header lines.
+    function reduced_text(long) result(text)
+        logical, intent(in) :: long   !! chain_long
+        character(len=:), allocatable :: text
+        text = 'slider N <= '//itext(reduced_max_links)//' the slider chain''s reduced ODE in its crank angles, plain N <= '// &
+               itext(reduced_limit(.false., long))//' the plain chain''s in its link angles (CVODE 1e-13, checked at 1e-12; '// &
+               'regdae''s tight run a cross-check)'
+    end function reduced_text
+
+    ! The longest chain of the variant integrated by its reduced ODE on chain (t in [0, 1]) or chain_long.
+    pure integer function reduced_limit(slider, long) result(limit)
+        logical, intent(in) :: slider, long
+        if (slider) then
+            limit = reduced_max_links
+        else
+            limit = merge(plain_max_links_long, plain_max_links_short, long)
+        end if
+    end function reduced_limit
 
     ! A cell of the family chain: positions against the reference at the outputs.
     subroutine chain_cell(setup, cached, counts, cell, slider, links, rtol, times)
@@ -347,13 +367,14 @@ contains
                 cached%check = q10(:, 2:)
             end if
         end if
-        ! chain_long's slider chains up to reduced_max_links: the reduced ODE, regdae's tight run a
-        ! cross-check (over the outputs it reached); the regdae reference where the ODE fails
-        if (long .and. slider .and. links <= reduced_max_links) then
-            call reduced_reference(cached, links, times, rtext)
+        ! where the peer is not the reference, the chain's reduced ODE up to its limit (slider
+        ! reduced_max_links, plain plain_max_links_long or _short), regdae's tight run a cross-check (over
+        ! the outputs it reached); the regdae reference where the ODE fails or beyond the limit
+        if (.not. peer_ok .and. links <= reduced_limit(slider, long)) then
+            call reduced_reference(cached, slider, links, times, rtext)
             text = text//rtext
         end if
-        if (cached%source == 'none' .and. .not. peer_ok) then
+        if (cached%source == 'none') then
             call regdae_reference(cached, slider, links, times, text, tight)
         else if (cached%source == 'reduced') then
             call regdae_run(slider, links, times, chain_ref_tol, chain_ref_eps, tight)
@@ -362,17 +383,18 @@ contains
             if (tight%good > 0) &
                 check_text = check_text//' dE='//etext(maxval(abs(tight%energy(:tight%good) - tight%energy0)))// &
                              ' viol='//etext(maxval(tight%violation(:tight%good)))//' over the '//itext(tight%good)// &
-                             ' outputs it reached: norm(1e-8)='// &
-                             etext(weighted_error(tight%x, cached%x, 1.0e-8_wp, tight%good))//' (to t = 1: '// &
+                             ' outputs it reached: norm(1e-8)='//etext(weighted_error(tight%x, cached%x, 1.0e-8_wp, tight%good))
+            if (long .and. tight%good > 0) &
+                check_text = check_text//' (to t = 1: '// &
                              etext(weighted_error(tight%x, cached%x, 1.0e-8_wp, min(tight%good, count(times <= 1.0_wp))))//')'
         end if
         if (cached%source /= 'none') then
             text = text//'source='//cached%source//' check: max|diff|='// &
                    etext(maxval(abs(cached%check - cached%x)))//' norm(1e-8)='// &
                    etext(weighted_error(cached%check, cached%x, 1.0e-8_wp, size(times)))
-            ! Cross-checks: the regdae reference of the plain chain against the peer's runs that
-            ! succeeded; the slider chain's N = 2 against the slider crank's reduced ODE.
-            if (.not. slider .and. .not. long .and. cached%source == 'regdae') then
+            ! Cross-checks: the regdae or reduced reference of the plain chain against the peer's
+            ! runs that succeeded; the slider chain's N = 2 against the slider crank's reduced ODE.
+            if (.not. slider .and. .not. long .and. cached%source /= 'peer') then
                 if (s11 == 0) text = text//' vs peer 1e-11: norm(1e-8)='// &
                                      etext(weighted_error(q11(:, 2:), cached%x, 1.0e-8_wp, size(times)))
                 if (s10 == 0) text = text//' vs peer 1e-10: norm(1e-8)='// &
@@ -447,47 +469,63 @@ contains
         call run_mechanical(p, q0, v0, times, opts, 3600.0_wp, rec)
     end subroutine regdae_run
 
-    ! The reference of the slider chain of `links` links from the reduced ODE (chain_problem's
-    ! chain_slider_reduced, CVODE at ref_tol) from chain_start (every crank at pi/2, at rest),
-    ! its check at ref_check_tol; the units as regdae_reference's from the joints at the outputs.
-    ! Accepted (cached%source = 'reduced') when both runs succeed and agree on the units' scales
-    ! (E_scale, q_scale) within reduced_scale_tol.
-    subroutine reduced_reference(cached, links, times, text)
+    ! The reference of the chain of `links` links from its reduced ODE (chain_problem's
+    ! chain_slider_reduced in the crank angles, or chain_plain_reduced in the link angles; CVODE
+    ! at ref_tol) from chain_start (every angle pi/2, at rest), its check at ref_check_tol; the
+    ! units as regdae_reference's from the joints at the outputs. Accepted (cached%source =
+    ! 'reduced') when both runs succeed and agree on the units' scales (E_scale, q_scale) within
+    ! reduced_scale_tol.
+    subroutine reduced_reference(cached, slider, links, times, text)
         type(chain_reference), intent(out) :: cached   !! the reference (source 'reduced', else 'none')
+        logical, intent(in) :: slider
         integer, intent(in) :: links
         real(wp), intent(in) :: times(:)
         character(len=:), allocatable, intent(out) :: text
         real(wp), parameter :: reduced_scale_tol = 1.0e-3_wp
-        type(chain_slider_reduced) :: ode
+        class(ode_system), allocatable :: ode
         type(chain) :: p
-        real(wp) :: y0(links), tight(links, size(times)), loose(links, size(times)), q0(2*links), v0(2*links)
+        real(wp), allocatable :: y0(:), tight(:, :), loose(:, :)
+        real(wp) :: q0(2*links), v0(2*links)
         real(wp) :: q(2*links, size(times)), v(2*links, size(times)), qc(2*links, size(times)), vc(2*links, size(times))
-        real(wp) :: e0, de, viol, e_scale, q_scale, e_scale_chk, q_scale_chk, scale_diff
-        integer :: s_tight, s_loose, k
-        cached%slider = .true.
+        real(wp) :: e0, de, viol, e_scale, q_scale, e_scale_chk, q_scale_chk, scale_diff, cpu0, cpu1
+        integer :: s_tight, s_loose, k, angles
+        cached%slider = slider
         cached%links = links
         cached%tf = times(size(times))
         cached%source = 'none'
-        ode%links = links
-        ode%gravity = chain_gravity
-        y0(:links/2) = pi/2
-        y0(links/2 + 1:) = 0.0_wp
+        if (slider) then
+            angles = links/2
+            ode = chain_slider_reduced(links=links, gravity=chain_gravity)
+        else
+            angles = links
+            ode = chain_plain_reduced(links=links, gravity=chain_gravity)
+        end if
+        allocate (y0(2*angles), tight(2*angles, size(times)), loose(2*angles, size(times)))
+        y0(:angles) = pi/2
+        y0(angles + 1:) = 0.0_wp
+        call cpu_time(cpu0)
         call integrate_reference(ode, 0.0_wp, y0, times, tight, ref_tol, ref_tol, s_tight)
+        call cpu_time(cpu1)
         call integrate_reference(ode, 0.0_wp, y0, times, loose, ref_check_tol, ref_check_tol, s_loose)
-        text = 'reduced ODE (CVODE) '//etext(ref_tol)//' status='//itext(s_tight)//', '//etext(ref_check_tol)// &
-               ' status='//itext(s_loose)//'; '
+        text = 'reduced ODE (CVODE) '//etext(ref_tol)//' status='//itext(s_tight)//' ('//num(cpu1 - cpu0)// &
+               ' s cpu), '//etext(ref_check_tol)//' status='//itext(s_loose)//'; '
         if (s_tight /= 0 .or. s_loose /= 0) then
             text = text//'no reference; '
             return
         end if
-        p = new_chain(links, .true., chain_gravity)
+        p = new_chain(links, slider, chain_gravity)
         call chain_start(p, q0, v0)
         e0 = chain_energy_of(p, q0, v0)
         de = 0.0_wp
         viol = 0.0_wp
         do k = 1, size(times)
-            call chain_slider_joints(tight(:, k), q(:, k), v(:, k))
-            call chain_slider_joints(loose(:, k), qc(:, k), vc(:, k))
+            if (slider) then
+                call chain_slider_joints(tight(:, k), q(:, k), v(:, k))
+                call chain_slider_joints(loose(:, k), qc(:, k), vc(:, k))
+            else
+                call chain_plain_joints(tight(:, k), q(:, k), v(:, k))
+                call chain_plain_joints(loose(:, k), qc(:, k), vc(:, k))
+            end if
             de = max(de, abs(chain_energy_of(p, q(:, k), v(:, k)) - e0))
             viol = max(viol, chain_violation(p, q(:, k)))
         end do
