@@ -149,6 +149,9 @@ transform (`index3`) it lies on the eliminated formulation's steps-against-digit
 digits; against this machine's runs of the same method with RADAU5's conventions they are about
 1.0-1.1x (6.0 digits: 425 steps there, 438 on the eliminated formulation). RADAU5 itself is not on this machine (no Debian package), so its digits are not
 re-measured here.
+TXT
+    fi
+    cat <<'TXT'
 
 Where the time goes (`valgrind --tool=callgrind build/bin/car_axis config=radau tol_from=6
 tol_to=6 check=no reps=1 min_time=0`, instructions, on 2026-12-02): at fabb634 106M in Radau's
