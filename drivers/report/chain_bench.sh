@@ -455,8 +455,8 @@ the saddle-point matrix and three to eight solves; by hand on 2026-11-29, rtol 1
 nout=1000 instead of 100 adds 2.8 ms to regdae's time and 0.3 ms to the peer's, about 5 ms before the
 estimate started from the last output's vector and stopped when it settled).
 
-Measured by hand on 2026-12-06 (not regenerated; the tables above are from the last full run,
-before these changes): where M is diagonal the monitor now keeps its last sigma_min(GB) estimate
+Measured by hand on 2026-12-06 (the tables above are from a later full run, after these changes
+and those below): where M is diagonal the monitor now keeps its last sigma_min(GB) estimate
 while Weyl's bound on G M^-1/2 holds it within 1e-3 (2 estimates per run instead of 117-185), and
 a mass matrix declared constant (`mechanical_structure%mass_constant`, which the chain sets)
 spares the work-energy balance its difference quotient of M (doc/methods.md). The solve's
