@@ -131,6 +131,33 @@ contains
         end if
     end function reduced_limit
 
+    ! The reference method of a chain cell at R: the peer (plain IDA, not regdae) on the same
+    ! constraints (the sliders' too for N > 2), or for the slider crank (slider, N = 2)
+    ! Dormand-Prince on its reduced ODE; q and v at the outputs (column 1: t = 0), GOOD the outputs
+    ! it reached, TEXT its status for the row, METHOD its name for a note.
+    subroutine reference_method_joints(setup, links, slider, rtol, times, q, v, stat, message, text, method, good)
+        type(trust_setup), intent(in) :: setup   !! the run's settings
+        integer, intent(in) :: links
+        logical, intent(in) :: slider
+        real(wp), intent(in) :: rtol, times(:)
+        real(wp), intent(out) :: q(:, :), v(:, :)
+        integer, intent(out) :: stat, good
+        character(len=:), allocatable, intent(out) :: message, text, method
+        integer :: steps
+        real(wp) :: seconds
+        if (.not. slider .or. links > 2) then
+            call peer_run(setup%child_tag(), links, slider, rtol, times, q, stat, steps, seconds, message, &
+                          peer_method_timeout, v)
+            good = peer_good(q(:, 2:))
+            text = itext(stat)
+            method = 'peer'
+        else
+            call crank_method_joints(setup, rtol, times, q(:, 2:), v(:, 2:), stat, message, text)
+            good = finite_outputs(q(:, 2:))
+            method = 'Dormand-Prince'
+        end if
+    end subroutine reference_method_joints
+
     ! A cell of the family chain: positions against the reference at the outputs.
     subroutine chain_cell(setup, cached, counts, cell, slider, links, rtol, times)
         type(trust_setup), intent(in) :: setup   !! the run's settings
@@ -142,28 +169,17 @@ contains
         type(run_record) :: rec, rerun
         type(chain) :: p
         real(wp) :: q0(2*links), v0(2*links), qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1)
-        real(wp) :: err, err_ref, bound, ref_chk, seconds
-        integer :: peer_stat, steps, good
+        real(wp) :: err, err_ref, bound, ref_chk
+        integer :: peer_stat, good
         character(len=:), allocatable :: label, peer_text, peer_message, method
         label = trim(merge('slider', 'plain ', slider))
         if (cached%source == 'none') then
             call unjudged_chain_run(setup, counts, 'chain', cell, label, slider, links, rtol, times)
             return
         end if
-        ! the reference method, as on chain_long: the peer at R (plain, and with the sliders for
-        ! N > 2), N = 2 with the slider Dormand-Prince on the slider crank's reduced ODE; its
-        ! err_ref over the outputs it reached
-        if (.not. slider .or. links > 2) then
-            call peer_run(setup%child_tag(), links, slider, rtol, times, qpeer, peer_stat, steps, seconds, peer_message, &
-                          peer_method_timeout)
-            good = peer_good(qpeer(:, 2:))
-            peer_text = itext(peer_stat)
-            method = 'peer'
-        else
-            call crank_method_joints(setup, rtol, times, qpeer(:, 2:), vpeer(:, 2:), peer_stat, peer_message, peer_text)
-            good = finite_outputs(qpeer(:, 2:))
-            method = 'Dormand-Prince'
-        end if
+        ! the reference method (reference_method_joints); its err_ref over the outputs it reached
+        call reference_method_joints(setup, links, slider, rtol, times, qpeer, vpeer, peer_stat, peer_message, &
+                                     peer_text, method, good)
         err_ref = weighted_error(qpeer(:, 2:), cached%x, rtol, good)
         bound = 10.0_wp*max(1.0_wp, err_ref)
         ref_chk = weighted_error(cached%check, cached%x, rtol, size(times))
@@ -190,11 +206,11 @@ contains
         real(wp), intent(in) :: rtol, times(:)
         type(run_record) :: rec, rerun
         type(chain) :: p
-        real(wp) :: q0(2*links), v0(2*links), de, viol, de_unit, viol_unit, err, err_ref, bound, rerun_err, seconds
+        real(wp) :: q0(2*links), v0(2*links), de, viol, de_unit, viol_unit, err, err_ref, bound, rerun_err
         real(wp) :: qpeer(2*links, size(times) + 1), vpeer(2*links, size(times) + 1)
         real(wp) :: de_ref, viol_ref
-        integer :: code, rerun_stat, peer_stat, steps
-        character(len=:), allocatable :: label, peer_text, peer_message
+        integer :: code, rerun_stat, peer_stat, good
+        character(len=:), allocatable :: label, peer_text, peer_message, method
         label = trim(merge('slider', 'plain ', slider))
         if (cached%source == 'none') then
             call unjudged_chain_run(setup, counts, 'chain_long', cell, label, slider, links, rtol, times)
@@ -205,16 +221,10 @@ contains
         viol_unit = cached%violation + rtol*(1.0_wp + cached%q_scale)
         p = new_chain(links, slider, chain_gravity)
         call chain_start(p, q0, v0)
-        ! the reference method: the peer at R (plain, and with the sliders for N > 2: plain IDA on
-        ! the same constraints, the sliders' too), its energy change and violation in the same
-        ! units over the outputs it reached; N = 2 with the slider Dormand-Prince on the reduced ODE
-        if (.not. slider .or. links > 2) then
-            call peer_run(setup%child_tag(), links, slider, rtol, times, qpeer, peer_stat, steps, seconds, peer_message, &
-                          peer_method_timeout, vpeer)
-            peer_text = itext(peer_stat)
-        else
-            call crank_method_joints(setup, rtol, times, qpeer(:, 2:), vpeer(:, 2:), peer_stat, peer_message, peer_text)
-        end if
+        ! the reference method (reference_method_joints): its energy change and violation in the
+        ! same units over the outputs it reached
+        call reference_method_joints(setup, links, slider, rtol, times, qpeer, vpeer, peer_stat, peer_message, &
+                                     peer_text, method, good)
         call method_energy_and_violation(p, times, qpeer(:, 2:), vpeer(:, 2:), de_ref, viol_ref)
         err_ref = max(de_ref/de_unit, viol_ref/viol_unit)
         bound = 10.0_wp*max(1.0_wp, err_ref)
