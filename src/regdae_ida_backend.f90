@@ -18,6 +18,10 @@
 !! that the error follows rtol (doc/methods.md, "Integrators"). The algebraic
 !! unknowns left out of the error test stay in Newton's convergence test with a
 !! relative tolerance of at least sqrt(u) (`algebraic_rtol`).
+!! IDA's weighted norms divide by all its unknowns, those left out of the error
+!! test included: the weights of the unknowns in the test are multiplied by
+!! sqrt(neq / unknowns in the test), so that the error test is the RMS over them
+!! whatever the formulation adds (doc/methods.md, "The error test's norm").
 !!
 !! The backend object must not move while IDA exists (its address is IDA's
 !! user_data): the solver front keeps it inside its heap-allocated core.
@@ -96,6 +100,9 @@ module regdae_ida_backend
         real(wp) :: rtol_ida = 0.0_wp
         real(wp), allocatable :: atol_ida(:)
         real(wp) :: algebraic_factor = 1.0_wp
+        ! sqrt(neq / unknowns in the error test): IDA's weighted norms divide by neq, the
+        ! unknowns left out included; the weights of those in the test carry this factor
+        real(wp) :: test_scale = 1.0_wp
         integer(c_long) :: jac_res_evals = 0
         type(solver_stats) :: carried                   !! IDA's counters before the last FIDAReInit (which zeroes them)
         integer :: pending_stat = regdae_success        !! last failure seen in a callback
@@ -210,6 +217,7 @@ contains
         self%linear_solver = linear_solver
         if (self%system%structured) call prepare_groups(self)
         self%excluded = excluded
+        self%test_scale = sqrt(real(self%neq, wp)/real(max(1, count(.not. excluded)), wp))
         if (present(atol_u)) then
             self%atol_u = atol_u
         else
@@ -735,9 +743,9 @@ contains
         tau = max(rtol*(rtol/proportional_from)**(1.0_wp/bdf_order), smallest_ida_rtol)
     end function ida_relative_tolerance
 
-    ! Error weights 1/(rtol_ida |u_i| + atol_ida_i); for the unknowns left out of the
-    ! error test (y, and v if asked) 0 (exclusion=weights), or (suppress: Newton's test
-    ! only) with the algebraic ones' tolerances loosened to a relative algebraic_rtol.
+    ! Error weights 1/(rtol_ida |u_i| + atol_ida_i), times test_scale for the unknowns in the
+    ! error test; for those left out (y, and v if asked) 0 (exclusion=weights), or (suppress:
+    ! Newton's test only) with the algebraic ones' tolerances loosened to a relative algebraic_rtol.
     integer(c_int) function ida_error_weights(nv_u, nv_ewt, user_data) result(ierr) bind(C)
         type(N_Vector) :: nv_u, nv_ewt
         type(c_ptr), value :: user_data
@@ -756,6 +764,8 @@ contains
                 else
                     ewt(i) = ewt(i)/self%algebraic_factor
                 end if
+            else
+                ewt(i) = ewt(i)*self%test_scale
             end if
         end do
         ierr = 0
