@@ -141,9 +141,6 @@ module regdae_solver_front
         procedure :: regularized => engine_regularized
         !> The steps allowed per call of `advance` from now on (a companion's budget).
         procedure :: limit_steps => engine_limit_steps
-        !> Make a step end at every output time from now on (a companion whose state at a pass
-        !! end the solution goes on from).
-        procedure :: land_on_outputs => engine_land_on_outputs
         !> max_i |za_i - zb_i| / (rtol |zb_i| + atol_i) over x, the positions of the state z.
         procedure :: state_distance => engine_state_distance
         !> Append a line to the events log.
@@ -366,10 +363,6 @@ module regdae_solver_front
             class(solver_engine), intent(inout) :: self
             integer, intent(in) :: steps   !! >= 1
         end subroutine engine_limit_steps
-
-        module subroutine engine_land_on_outputs(self)
-            class(solver_engine), intent(inout) :: self
-        end subroutine engine_land_on_outputs
 
         module logical function engine_regularized(self) result(yes)
             class(solver_engine), intent(in) :: self

@@ -245,10 +245,6 @@ contains
         if (associated(self%core)) self%core%opts%max_steps = max(1, steps)
     end procedure engine_limit_steps
 
-    module procedure engine_land_on_outputs
-        if (associated(self%core)) self%core%opts%stop_at_output = .true.
-    end procedure engine_land_on_outputs
-
     module procedure engine_regularized
         yes = .false.
         if (associated(self%core)) yes = self%core%opts%method /= method_baumgarte .and. self%core%monitor%regularized()

@@ -66,7 +66,7 @@ contains
                     end if
                 end if
                 call lad%level(k)%engine%limit_steps(step_budget(self, lad%level(k)%engine, k, t))
-                call bring_to(lad%level(k)%engine, t, lad%z(:, k), lstat, ended)
+                call bring_to(lad%level(k)%engine, t, lad%z(:, k), lstat)
                 if (lstat < 0) then   ! this level cannot go on: the pass is not verified beyond k-1
                     if (lstat == regdae_err_integration) lad%over_budget = k
                     lad%dead_level = k
@@ -96,13 +96,13 @@ contains
                 ! error is 10 times smaller), which give the verdict for the rest of the pass
                 if (self%main%eps_floored(kappa**answer, kappa**(answer + 1))) then
                     if (.not. lad%fine_probes) then
-                        call probe_regularization(self, t, ended, answer, lstat)
+                        call probe_regularization(self, t, answer, lstat)
                         if (lstat == regdae_success .and. lad%d_probe > self%pass_tol) then
                             lad%fine_probes = .true.
                             call retire_probe(self)
                         end if
                     end if
-                    if (lad%fine_probes) call probe_regularization(self, t, ended, answer + 1, lstat)
+                    if (lad%fine_probes) call probe_regularization(self, t, answer + 1, lstat)
                     if (lstat == regdae_success .and. lad%d_probe > self%pass_tol) agreed = .false.
                 end if
             end if
@@ -240,10 +240,9 @@ contains
     ! 4 d1 is within pass_tol, the 100 eps probe cannot change the verdict and is not run
     ! (d_probe = 4 d1; d_probes(2) = -1). ex52 (paper case, 1000 outputs): the same outputs, the
     ! solve 40.6M -> 32.6M instructions at rtol 1e-8, 22.9M -> 20.5M at 1e-7 (callgrind).
-    subroutine probe_regularization(self, t, ended, level, stat)
+    subroutine probe_regularization(self, t, level, stat)
         type(regdae_solver), intent(inout) :: self
         real(wp), intent(in) :: t
-        logical, intent(in) :: ended   !! the pass ends at t (the probes land there, as the levels)
         integer, intent(in) :: level
         integer, intent(out) :: stat
         real(wp), allocatable :: zp(:, :)
@@ -268,7 +267,7 @@ contains
                     end if
                 end if
                 call lad%probe(j)%engine%limit_steps(step_budget(self, lad%probe(j)%engine, level, t))
-                call bring_to(lad%probe(j)%engine, t, zp(:, j), stat, ended)
+                call bring_to(lad%probe(j)%engine, t, zp(:, j), stat)
                 if (stat < 0) then
                     lad%probes_failed = .true.
                     call retire_probe(self)
@@ -308,20 +307,14 @@ contains
         end do
     end subroutine retire_probe
 
-    ! Bring a companion to time t (if it is behind) and read its state. At the pass's end
-    ! (`land`) its step ends at t: the solution goes on from the state read there, and the
-    ! continuous extension's error (4th order; Dormand-Prince's at rtol/10 through the layer's
-    ! exit is up to 10 times the solution's tolerance, more than the solution's own step end)
-    ! would be carried on (doc/methods.md, "The answer").
-    subroutine bring_to(engine, t, z, stat, land)
+    ! Bring a companion to time t (if it is behind) and read its state.
+    subroutine bring_to(engine, t, z, stat)
         type(solver_engine), intent(inout) :: engine
         real(wp), intent(in) :: t
         real(wp), intent(out) :: z(:)
         integer, intent(out) :: stat
-        logical, intent(in) :: land
         real(wp), allocatable :: xk(:)
         stat = regdae_success
-        if (land) call engine%land_on_outputs()   ! (the companions are retired at the pass's end)
         if (engine%time() < t) then
             allocate (xk(engine%x_size()))
             do while (engine%time() < t)   ! a companion stops at its own pass ends only if asked: once
