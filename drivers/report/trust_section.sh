@@ -272,7 +272,7 @@ four-coordinate regularized system against Dormand-Prince on the one-coordinate 
 atol=1e-8 nout=100 error_estimate=yes\`). At the neighbouring R the same starts are 0.3-1.3x the
 reference method's error: the reference's phase error changes sign near R = 1e-8, so its error
 there is 10-40x below its level on either side (the stop-25 diagnosis; the judge is the issue's
-and is not changed). Measured step by step on these four cells (doc/methods.md, \"The answer\"):
+and is not changed). Measured step by step on these four cells (doc/methods.md, "The answer"):
 Dormand-Prince on the reduced ODE with its pass regions integrated exactly has 69.3 / 52.4 / 48.8 /
 49.4 weights (regdae 71.6 / 84.2 / 46.7 / 64.2): the method's own error on the regular part of each
 half turn, which the reference method cancels to 2% by its 20% longer steps just after each pass;
