@@ -32,7 +32,11 @@ module regdae_switching_policy
     !! formulation where it is stiff (above it: IDA on the augmented formulation with
     !! KLU). Measured on the stiff chain (mass 1e-2, stiffness 1e4, damping 10, tf 1,
     !! 100 outputs; callgrind's instructions of init and advances at matched accuracy
-    !! 1e-7 ... 1e-12, doc/methods.md, "Which implicit integrator"): MEASURED.
+    !! 1e-7 ... 1e-12, doc/methods.md, "Which implicit integrator"): Radau 1.3-3.6x
+    !! cheaper than IDA with KLU up to 4 links (16 states; but 1.05x at 4 links and
+    !! 1e-12), even at 5 (20 states: 0.79-1.08x), dearer from 6 (24 states:
+    !! 0.95-1.36x; 8 links 1.4-2.0x). Radau on the augmented formulation (dense LU)
+    !! was dearer than on the eliminated one at every size.
     integer, parameter, public :: radau_structured_max_n = 20
 
     !> integrator=auto, a mechanical problem that declares its structure: it starts on
