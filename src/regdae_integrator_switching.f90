@@ -22,7 +22,7 @@ module regdae_integrator_switching
     use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
     use regdae_ida_integrator, only: ida_integrator, ida_in_slot
     use regdae_radau_integrator, only: radau_adapter, radau_in_slot
-    use regdae_switching_policy, only: radau_preferred, stiff_at_start, stiff_start_factor
+    use regdae_switching_policy, only: radau_preferred, stiff_at_start, stiff_start_factor, stiff_start_factor_radau
     implicit none
     private
 
@@ -50,9 +50,9 @@ contains
 
     !> integrator=auto: the explicit method found the system stiff at rk%t: the
     !! implicit integrator takes over there (created at the first switch, restarted
-    !! at the others): IDA on the augmented formulation for a mechanical problem that
-    !! declares its structure, else Radau IIA for a small system and IDA for a large
-    !! one (the policy's radau_preferred).
+    !! at the others): Radau IIA on the eliminated formulation for a small system
+    !! and IDA for a large one (the policy's radau_preferred), IDA on the augmented
+    !! formulation with KLU for a large mechanical problem that declares its structure.
     subroutine switch_to_implicit(core, stat, msg)
         type(solver_core), pointer, intent(in) :: core
         integer, intent(out) :: stat
@@ -61,7 +61,7 @@ contains
         real(wp), pointer :: u(:)
         type(ida_integrator), pointer :: ida
         type(radau_adapter), pointer :: radau
-        logical :: recoverable, from_start, restart
+        logical :: recoverable, from_start, restart, structured
         t = core%nonstiff%time()
         u => core%nonstiff%state()
         z = u
@@ -77,7 +77,8 @@ contains
             if (core%model%order == 1) core%model%w = [core%opts%gamma]
             if (core%model%order == 2) core%model%w = [core%opts%gamma0, core%opts%gamma1]
         end if
-        if (augmented_fits(core)) then
+        structured = augmented_fits(core)
+        if (structured .and. .not. radau_preferred(core, structured)) then
             call switch_to_augmented(core, t, z, from_start, stat, msg)
             if (stat == regdae_success) call now_stiff(core, integrator_ida, ', augmented formulation with KLU', from_start)
             return
@@ -87,7 +88,7 @@ contains
             msg = 'switching to IDA at t = '//format_real(t)//': '//core%model%message
             return
         end if
-        if (radau_preferred(core)) then
+        if (radau_preferred(core, structured)) then
             radau => radau_in_slot(core)
             call radau%start(t, z, stat, msg, h0=merge(0.0_wp, core%nonstiff%last_step(), from_start), zp=zp, y=y)
             if (stat /= regdae_success) msg = 'switching to Radau at t = '//format_real(t)//': '//msg
@@ -106,24 +107,42 @@ contains
     end subroutine switch_to_implicit
 
     !> integrator=auto, dopri5 started at t0 on a mechanical problem that declares its
-    !! structure (the one that switches to IDA on the augmented formulation): already
-    !! stiff there (the policy's stiff_at_start), IDA takes over from t0 before the
-    !! first explicit step, rather than after 15 explicit steps at the stability limit.
+    !! structure: already stiff there (the policy's stiff_at_start), the implicit
+    !! integrator takes over from t0 before the first explicit step, rather than after
+    !! 15 explicit steps at the stability limit: Radau IIA on the eliminated
+    !! formulation for a small system (radau_preferred), else IDA on the augmented
+    !! formulation with KLU.
     subroutine start_implicit_if_stiff(core, stat, msg)
         type(solver_core), pointer, intent(in) :: core
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
-        real(wp) :: h_accurate, rho
+        type(radau_adapter), pointer :: radau
+        character(len=:), allocatable :: which
+        real(wp) :: h_accurate, rho, factor
+        logical :: on_radau
         stat = regdae_success
         msg = ''
         if (.not. (core%switching .and. augmented_fits(core))) return
-        if (.not. stiff_at_start(core, core%t0, core%z0, h_accurate, rho)) return
-        call switch_to_augmented(core, core%t0, core%z0, .true., stat, msg)
+        on_radau = radau_preferred(core, .true.)
+        factor = merge(stiff_start_factor_radau, stiff_start_factor, on_radau)
+        if (.not. stiff_at_start(core, core%t0, core%z0, factor, h_accurate, rho)) return
+        if (on_radau) then
+            ! as integrator=radau starts (regdae_solver_init); the monitor started at t0 there
+            radau => radau_in_slot(core)
+            call radau%start(core%t0, core%z0, stat, msg, h0=core%opts%h_init)
+            if (stat /= regdae_success) msg = 'starting Radau at t0: '//msg
+            core%active = integrator_radau
+            which = 'radau from the start '
+        else
+            call switch_to_augmented(core, core%t0, core%z0, .true., stat, msg)
+            which = 'ida from the start, augmented formulation with KLU '
+        end if
         if (stat /= regdae_success) return
         core%switches = core%switches + 1
-        call log_event(core, 't = '//format_real(core%t0)//': ida from the start, augmented formulation with KLU '// &
+        core%explicit_votes = 0
+        call log_event(core, 't = '//format_real(core%t0)//': '//which// &
                        '(stiff at t0: the accurate first step '//format_real(h_accurate)//' exceeds '// &
-                       format_real(stiff_start_factor)//' times the explicit method''s stable step 3.3/rho = '// &
+                       format_real(factor)//' times the explicit method''s stable step 3.3/rho = '// &
                        format_real(3.3_wp/rho)//'; no lightly damped mode it would not resolve)')
     end subroutine start_implicit_if_stiff
 
@@ -145,10 +164,11 @@ contains
                        ' (the stiffness test fired: h |lambda| at the explicit method''s stability limit for 15 steps)'//tail)
     end subroutine now_stiff
 
-    ! integrator=auto, formulation=auto: IDA takes the augmented formulation for a
-    ! mechanical problem at index 3 that declares its structure (M positive definite:
-    ! no mass_damping), whatever its size (the stiff 4-link chain: 1.2-2.5x faster per
-    ! run than the eliminated formulation on IDA, doc/performance.md).
+    ! integrator=auto, formulation=auto: a mechanical problem at index 3 that declares
+    ! its structure (M positive definite: no mass_damping): IDA takes the augmented
+    ! formulation for it where Radau IIA does not take the eliminated one
+    ! (radau_preferred; the stiff 4-link chain on IDA: augmented 1.2-2.5x faster per
+    ! run than eliminated, doc/performance.md).
     logical function augmented_fits(core) result(fits)
         type(solver_core), intent(in) :: core
         type(mechanical_structure) :: st

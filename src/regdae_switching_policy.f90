@@ -1,5 +1,6 @@
 !> The switching policy of integrator=auto, the decisions only: which implicit
-!! integrator takes a stiff system (radau_preferred), and when the implicit
+!! integrator takes a stiff system (radau_preferred), whether a structured one is
+!! stiff already at t0 (stiff_at_start), and when the implicit
 !! integrator hands back to the explicit one (explicit_would_do). (The explicit method's own
 !! stiffness test, Hairer's, decides the hand-over to the implicit one inside
 !! `regdae_explicit_rk`; the switches themselves, which create and start the
@@ -26,10 +27,28 @@ module regdae_switching_policy
     !! Radau's n x n dense LU and n-column Jacobian where it was measured.
     integer, parameter, public :: radau_max_n = 128
 
+    !> The largest state (size of z = (q, v)) of a mechanical problem that declares
+    !! its structure that integrator=auto gives to Radau IIA on the eliminated
+    !! formulation where it is stiff (above it: IDA on the augmented formulation with
+    !! KLU). Measured on the stiff chain (mass 1e-2, stiffness 1e4, damping 10, tf 1,
+    !! 100 outputs; callgrind's instructions of init and advances at matched accuracy
+    !! 1e-7 ... 1e-12, doc/methods.md, "Which implicit integrator"): Radau 1.3-3.6x
+    !! cheaper than IDA with KLU up to 4 links (16 states; but 1.05x at 4 links and
+    !! 1e-12), even at 5 (20 states: 0.79-1.08x), dearer from 6 (24 states:
+    !! 0.95-1.36x; 8 links 1.4-2.0x). Radau on the augmented formulation (dense LU)
+    !! was dearer than on the eliminated one at every size.
+    integer, parameter, public :: radau_structured_max_n = 20
+
     !> integrator=auto, a mechanical problem that declares its structure: it starts on
     !! the implicit integrator where the step that accuracy allows at t0 exceeds this
     !! factor times the explicit method's stable step (stiff_at_start).
     real(wp), parameter, public :: stiff_start_factor = 7.0_wp
+
+    !> stiff_start_factor where the implicit integrator would be Radau IIA (radau_preferred):
+    !! Radau from t0 was cheaper at matched accuracy than the explicit start and the switch
+    !! at every rtol down to 1e-9 on the stiff 4-link chain (doc/methods.md, "Which implicit
+    !! integrator"), where h_accurate is 20 ... 1.3 times the stable step.
+    real(wp), parameter, public :: stiff_start_factor_radau = 1.0_wp
 
     !> stiff_at_start: a mode lighter than this damping ratio (-Re lambda/|lambda|) that
     !! the accurate step does not resolve keeps the explicit start.
@@ -79,18 +98,20 @@ contains
         call core%model%evaluate(t, z, stat, recoverable)   ! the model back at the state
     end function spectral_radius
 
-    !> integrator=auto, the system found stiff on the eliminated formulation (the
-    !! augmented one, for a mechanical problem that declares its structure, goes to
-    !! IDA with KLU: cheaper per run than Radau on the eliminated formulation from 2
-    !! links of the stiff chain on): Radau IIA for a problem of order 2 (stiff
-    !! springs, large weights) with a state of at most radau_max_n components, IDA
-    !! otherwise. First-order problems stay with IDA: on a stiff forcing that moves
-    !! in time (test_defaults' stiff_middle, x1' = -1e5 (x1 - sin 50t) + ...) Radau's
-    !! error estimate, filtered by (gamma/h - J)^-1, lets steps grow past the
-    !! accuracy (measured at rtol 1e-6: error 9.2e-4 against IDA's 6.4e-6).
-    logical function radau_preferred(core) result(yes)
+    !> integrator=auto, the system found stiff (or stiff at t0): Radau IIA on the
+    !! eliminated formulation for a problem of order 2 (stiff springs, large weights)
+    !! with a state of at most radau_max_n components, or of at most
+    !! radau_structured_max_n where it declares its structure (structured: it would
+    !! otherwise take IDA on the augmented formulation with KLU); IDA otherwise.
+    !! First-order problems stay with IDA: on a stiff forcing that moves in time
+    !! (test_defaults' stiff_middle, x1' = -1e5 (x1 - sin 50t) + ...) Radau's error
+    !! estimate, filtered by (gamma/h - J)^-1, lets steps grow past the accuracy
+    !! (measured at rtol 1e-6: error 9.2e-4 against IDA's 6.4e-6).
+    logical function radau_preferred(core, structured) result(yes)
         type(solver_core), intent(in) :: core
-        yes = core%second_order .and. core%model%order == 2 .and. core%n <= radau_max_n
+        logical, intent(in) :: structured
+        yes = core%second_order .and. core%model%order == 2 .and. &
+              core%n <= merge(radau_structured_max_n, radau_max_n, structured)
     end function radau_preferred
 
     !> integrator=auto, before the first explicit step: is the system already stiff at
@@ -99,16 +120,17 @@ contains
     !! |F(z0 + h0 F(z0)) - F(z0)|_w/h0, h0 = 0.01 |z0|_w/d1, the error weights
     !! w = 1/(rtol |z0| + atol); at most 100 h0), against the explicit method's stable
     !! step 3.3/rho (rho: spectral_radius): stiff where h_accurate exceeds
-    !! stiff_start_factor times the stable step, unless a mode that the accurate step
+    !! factor times the stable step, unless a mode that the accurate step
     !! does not resolve (|lambda| h_accurate > 1) is lightly damped (-Re lambda <
     !! stiff_start_damping |lambda|, or growing): every method must then follow it with
     !! steps below its period, and the explicit one does that at less cost. The
     !! eigenvalues of dF/dz (n difference quotients of F, dgeev) only where the first
     !! test says stiff, for states of at most stiff_start_max_n components. h_accurate
     !! and rho are returned for the event (0: not computed).
-    logical function stiff_at_start(core, t0, z0, h_accurate, rho) result(yes)
+    logical function stiff_at_start(core, t0, z0, factor, h_accurate, rho) result(yes)
         type(solver_core), intent(inout) :: core
         real(wp), intent(in) :: t0, z0(:)
+        real(wp), intent(in) :: factor   !! stiff_start_factor or stiff_start_factor_radau
         real(wp), intent(out) :: h_accurate, rho
         real(wp) :: f0(core%n), f1(core%n), y(core%m), w(core%n), d0, d1, d2, h0
         integer :: stat
@@ -137,7 +159,7 @@ contains
         end if
         h_accurate = min(100.0_wp*h0, h_accurate)
         rho = spectral_radius(core, t0, z0)
-        yes = rho > 0.0_wp .and. h_accurate > stiff_start_factor*3.3_wp/rho
+        yes = rho > 0.0_wp .and. h_accurate > factor*3.3_wp/rho
         if (yes) yes = .not. lightly_damped_mode(core, t0, z0, f0, h_accurate)
     end function stiff_at_start
 

@@ -58,6 +58,7 @@ contains
                  new_test('stiff_chain_switches_to_augmented', stiff_chain_switches_to_augmented), &
                  new_test('stiff_chain_starts_augmented', stiff_chain_starts_augmented), &
                  new_test('light_chain_keeps_explicit_start', light_chain_keeps_explicit_start), &
+                 new_test('small_stiff_chain_starts_radau', small_stiff_chain_starts_radau), &
                  new_test('rate_continuous_at_rest', rate_continuous_at_rest), &
                  new_test('eps_at_singular_start', eps_at_singular_start), &
                  new_test('eps_is_translation_free', eps_is_translation_free), &
@@ -436,28 +437,28 @@ contains
         call solver%destroy()
     end subroutine switches_halfway_and_back
 
-    ! The stiff chain of 4 links (joints of mass 1e-2 on vertical springs 1e4 and
-    ! dashpots 10: eigenvalues near -500 +- 866i) on [0, 0.2], all defaults but rtol =
-    ! atol = 1e-7: the explicit method starts, its stiffness test fires, and IDA takes
-    ! over on the augmented formulation (the chain declares its structure); against the
-    ! same chain by IDA on the augmented formulation from t0 at rtol = atol = 1e-11
-    ! (eps 1e-14): the positions at t = 0.01, ..., 0.2 (the transient: after it the
-    ! chain rests on its springs) within 100 rtol (both runs solve the regularized
-    ! problem, whose regularization error is below the tolerance here: sigma_min(GB) =
-    ! 12, far from any singular configuration). The first outputs come before the
-    ! switch (near t = 0.085): it happens in the middle of the run.
+    ! The stiff chain of 6 links (joints of mass 1e-2 on vertical springs 1e4 and
+    ! dashpots 10: eigenvalues near -500 +- 866i; 24 states, above radau_structured_max_n)
+    ! on [0, 0.2], all defaults but rtol = atol = 1e-7: the explicit method starts, its
+    ! stiffness test fires, and IDA takes over on the augmented formulation (the chain
+    ! declares its structure); against the same chain by IDA on the augmented formulation
+    ! from t0 at rtol = atol = 1e-11 (eps 1e-14): the positions at t = 0.01, ..., 0.2 (the
+    ! transient: after it the chain rests on its springs) within 100 rtol (both runs solve
+    ! the regularized problem, whose regularization error is below the tolerance here:
+    ! sigma_min(GB) = 5.8, far from any singular configuration). The first outputs come
+    ! before the switch (near t = 0.03): it happens in the middle of the run.
     subroutine stiff_chain_switches_to_augmented(chk)
         type(checker), intent(inout) :: chk
-        call stiff_chain_against_reference(chk, 1.0e-7_wp, 1.0e-2_wp, 1.0e4_wp, 10.0_wp, &
+        call stiff_chain_against_reference(chk, 6, 1.0e-7_wp, 1.0e-2_wp, 1.0e4_wp, 10.0_wp, &
                                            'dopri5 -> ida, augmented formulation')
     end subroutine stiff_chain_switches_to_augmented
 
-    ! The same chain at rtol 1e-4: the step that accuracy allows at t0 (1.2e-2) is 12.6 times
-    ! the explicit method's stable step (9.1e-4), beyond stiff_start_factor = 7: IDA on the
-    ! augmented formulation from t0, no explicit step.
+    ! The same chain at rtol 1e-4: the step that accuracy allows at t0 (7.3e-3) exceeds
+    ! stiff_start_factor = 7 times the explicit method's stable step: IDA on the augmented
+    ! formulation from t0, no explicit step.
     subroutine stiff_chain_starts_augmented(chk)
         type(checker), intent(inout) :: chk
-        call stiff_chain_against_reference(chk, 1.0e-4_wp, 1.0e-2_wp, 1.0e4_wp, 10.0_wp, &
+        call stiff_chain_against_reference(chk, 6, 1.0e-4_wp, 1.0e-2_wp, 1.0e4_wp, 10.0_wp, &
                                            'ida from the start, augmented formulation')
     end subroutine stiff_chain_starts_augmented
 
@@ -465,18 +466,30 @@ contains
     ! damping ratio 0.008 at 840 rad/s): the first test says stiff at t0 (the accurate step 25
     ! times the stable one), but the spring mode is lightly damped and not resolved by the
     ! accurate step: the explicit start stays (from t0 on IDA it cost 2.9x the instructions),
-    ! and the stiffness test switches later.
+    ! and the stiffness test switches later: 6 links to IDA on the augmented formulation, 4
+    ! links (16 states, at most radau_structured_max_n) to Radau on the eliminated one.
     subroutine light_chain_keeps_explicit_start(chk)
         type(checker), intent(inout) :: chk
-        call stiff_chain_against_reference(chk, 1.0e-4_wp, 1.2e-2_wp, 8.5e3_wp, 0.16_wp, &
+        call stiff_chain_against_reference(chk, 6, 1.0e-4_wp, 1.2e-2_wp, 8.5e3_wp, 0.16_wp, &
                                            'dopri5 -> ida, augmented formulation')
+        call stiff_chain_against_reference(chk, 4, 1.0e-4_wp, 1.2e-2_wp, 8.5e3_wp, 0.16_wp, 'dopri5 -> radau')
     end subroutine light_chain_keeps_explicit_start
 
-    ! The 4-link chain (joint mass, spring stiffness, damping) with the defaults at rtol = atol =
-    ! tol against formulation=augmented at 1e-11 (eps 1e-14) on [0, 0.2]: one switch, the event
-    ! `what`, positions within 100 tol.
-    subroutine stiff_chain_against_reference(chk, tol, joint_mass, stiffness, damping, what)
+    ! The stiff chain of 4 links (16 states, at most radau_structured_max_n) at rtol 1e-7: the
+    ! accurate step at t0 (2.9e-3) is 3.2 times the explicit method's stable step, beyond
+    ! stiff_start_factor_radau = 1 (not beyond the 7 for IDA): Radau IIA on the eliminated
+    ! formulation from t0, no explicit step.
+    subroutine small_stiff_chain_starts_radau(chk)
         type(checker), intent(inout) :: chk
+        call stiff_chain_against_reference(chk, 4, 1.0e-7_wp, 1.0e-2_wp, 1.0e4_wp, 10.0_wp, 'radau from the start')
+    end subroutine small_stiff_chain_starts_radau
+
+    ! The chain of `links` links (joint mass, spring stiffness, damping) with the defaults at
+    ! rtol = atol = tol against formulation=augmented at 1e-11 (eps 1e-14) on [0, 0.2]: one
+    ! switch, the event `what`, positions within 100 tol.
+    subroutine stiff_chain_against_reference(chk, links, tol, joint_mass, stiffness, damping, what)
+        type(checker), intent(inout) :: chk
+        integer, intent(in) :: links
         real(wp), intent(in) :: tol, joint_mass, stiffness, damping
         character(len=*), intent(in) :: what
         integer, parameter :: nout = 20
@@ -485,9 +498,9 @@ contains
         type(regdae_solver) :: solver
         type(solver_stats) :: st
         character(len=:), allocatable :: events
-        real(wp) :: q0(8), v0(8), q(8, nout, 2), y(4), err
+        real(wp) :: q0(2*links), v0(2*links), q(2*links, nout, 2), y(links), err
         integer :: stat(2), run, k
-        p = new_chain(4, .false., 9.81_wp)
+        p = new_chain(links, .false., 9.81_wp)
         p%joint_mass = joint_mass
         p%stiffness = stiffness
         p%damping = damping
@@ -520,7 +533,7 @@ contains
         call chk%true(st%switches == 1 .and. index(events, what) > 0, 'one switch: '//what)
         err = maxval(abs(q(:, :, 1) - q(:, :, 2)))
         call chk%true(err <= 100.0_wp*tol, 'positions within 100 rtol of the reference')
-        write (*, '(a,es10.2)') '    max |q - q_ref| at the outputs: ', err
+        write (*, '(a,i0,a,es10.2)') '    ', links, ' links, max |q - q_ref| at the outputs: ', err
     end subroutine stiff_chain_against_reference
 
     ! The slider crank from th1 = 1e-2 (near the singular configuration 0, pi) at

@@ -14,6 +14,7 @@ module test_radau_solver
     use car_axis_index3_problem, only: car_axis_index3, car_axis_index3_setup
     use regdae_radau_iia, only: radau_integrator
     use regdae_radau_system, only: radau_options, radau_stats
+    use regdae_format, only: format_int
     use reference_ode, only: integrate_reference
     use regdae_testing, only: checker, test_case, new_test
     implicit none
@@ -362,11 +363,14 @@ contains
         end do
     end subroutine run_outputs
 
-    ! integrator=auto on the stiff chain (mass 1e-2, stiffness 1e4, damping 10) on the
-    ! eliminated formulation: the stiffness test fires near t = 0.027; 4 links (16
-    ! states) go to Radau, 33 links (132 states > radau_max_n) to IDA. Radau's run
-    ! agrees with integrator=ida's at t = 0.05 (rtol 1e-8; measured 6e-15: the dashpots have settled the
-    ! chain on its springs by then; bound 1e-6).
+    ! integrator=auto on the stiff chain (mass 1e-2, stiffness 1e4, damping 10), rtol 1e-8.
+    ! On the eliminated formulation (formulation=eliminated) the stiffness test fires near
+    ! t = 0.027: 4 links (16 states) go to Radau, 33 links (132 states > radau_max_n) to IDA.
+    ! With formulation=auto the chain declares its structure: 4 links (16 states <=
+    ! radau_structured_max_n = 20) go to Radau on the eliminated formulation (the switch
+    ! near t = 0.043), 6 links (24 states) to IDA on the augmented formulation with KLU.
+    ! Radau's runs agree with integrator=ida's at t = 0.05 (measured 6e-15: the dashpots
+    ! have settled the chain on its springs by then; bound 1e-6).
     subroutine auto_picks_radau_when_small(chk)
         type(checker), intent(inout) :: chk
         type(regdae_solver) :: solver
@@ -374,33 +378,40 @@ contains
         type(chain) :: p
         real(wp), allocatable :: q0(:), v0(:), q(:, :)
         character(len=:), allocatable :: events
-        integer :: stat, run, links
-        do run = 1, 3
-            links = merge(33, 4, run == 3)
-            p = new_chain(links, .false., 9.81_wp)
+        character(len=*), parameter :: wants(5) = [character(len=40) :: 'dopri5 -> radau', '', 'dopri5 -> ida', &
+                                                   'radau', 'ida, augmented formulation with KLU']
+        integer, parameter :: links(5) = [4, 4, 33, 4, 6]
+        integer :: stat, run
+        allocate (q(8, 3))
+        do run = 1, 5
+            p = new_chain(links(run), .false., 9.81_wp)
             p%joint_mass = 1.0e-2_wp
             p%stiffness = 1.0e4_wp
             p%damping = 10.0_wp
             if (allocated(q0)) deallocate (q0, v0)
-            allocate (q0(2*links), v0(2*links))
-            if (run == 1) allocate (q(2*links, 2))
+            allocate (q0(2*links(run)), v0(2*links(run)))
             call chain_start(p, q0, v0)
             opts = solver_options()
             opts%rtol = 1.0e-8_wp
             opts%atol = 1.0e-8_wp
-            opts%formulation = formulation_eliminated
+            if (run <= 3) opts%formulation = formulation_eliminated
             if (run == 2) opts%integrator = integrator_ida
             call solver%init(p, 0.0_wp, q0, v0, opts, stat)
-            if (run <= 2 .and. stat >= 0) call solver%advance(0.05_wp, q(:, run), stat=stat)
-            if (run == 3 .and. stat >= 0) call solver%advance(0.04_wp, q0, stat=stat)
-            call chk%equal(stat, regdae_success, 'stiff chain of '//integrator_name(opts%integrator))
+            if (links(run) == 4 .and. stat >= 0) call solver%advance(0.05_wp, q(:, min(run, 3)), stat=stat)
+            if (links(run) /= 4 .and. stat >= 0) call solver%advance(0.05_wp, q0, stat=stat)
+            call chk%equal(stat, regdae_success, 'stiff chain of '//format_int(links(run))//', run '// &
+                           format_int(run))
             events = solver%events()
-            if (run == 1) call chk%true(index(events, 'dopri5 -> radau') > 0, '4 links: auto hands over to Radau')
-            if (run == 3) call chk%true(index(events, 'dopri5 -> ida') > 0, '33 links: auto hands over to IDA')
+            if (run /= 2) call chk%true(index(events, trim(wants(run))) > 0, format_int(links(run))// &
+                                        ' links, run '//format_int(run)//': auto takes '//trim(wants(run)))
+            if (run == 4) call chk%true(index(events, 'augmented') == 0, '4 links, structured: Radau on the '// &
+                                        'eliminated formulation')
             call solver%destroy()
         end do
         call chk%true(maxval(abs(q(:, 1) - q(:, 2))) <= 1.0e-6_wp, 'auto (Radau) = ida within 1e-6')
-        write (*, '(a,es10.2)') '    stiff chain of 4, auto (radau) against ida: ', maxval(abs(q(:, 1) - q(:, 2)))
+        call chk%true(maxval(abs(q(:, 3) - q(:, 2))) <= 1.0e-6_wp, 'auto (Radau, structured) = ida within 1e-6')
+        write (*, '(a,2es10.2)') '    stiff chain of 4, auto (radau; structured) against ida: ', &
+            maxval(abs(q(:, 1) - q(:, 2))), maxval(abs(q(:, 3) - q(:, 2)))
     end subroutine auto_picks_radau_when_small
 
     ! The car axis of the Test Set for IVP Solvers (drivers/problems/car_axis_problem.f90, stiff
