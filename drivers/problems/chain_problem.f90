@@ -24,7 +24,9 @@
 !!
 !! The slider chain's reduced ODE (`chain_slider_reduced`, unit links and masses, no springs):
 !! its exact reference for any even N, as the slider crank's is for N = 2; the plain chain's
-!! (`chain_plain_reduced`): the pendulum chain in its N joint angles.
+!! (`chain_plain_reduced`): the pendulum chain in its N joint angles. Their slopes are dense
+!! (O(N^3) per evaluation); `chain_slider_recursive` and `chain_plain_recursive` give the same
+!! slopes in O(N) by articulated-body recursions (drivers/trust's references of the long chains).
 module chain_problem
     use regdae, only: wp, mechanical_problem, mechanical_structure, sparsity_pattern, diagonal_pattern, &
                       empty_pattern, pattern_from_entries
@@ -90,6 +92,38 @@ module chain_problem
     contains
         procedure :: rhs => plain_reduced_rhs
     end type chain_plain_reduced
+
+    !> chain_slider_reduced's ODE with its slope in O(N) (the same equations, the same state): an
+    !! articulated-body recursion over the pairs. The pairs k..K, hung from joint 2k-2 (which
+    !! moves along the line with acceleration \(\ddot X_{k-1}\)), need the horizontal force
+    !! \(\alpha_k \ddot X_{k-1} + \beta_k\) there (the vertical one is the slider's or the pivot's).
+    !! With \(s, c = \sin\varphi_k, \cos\varphi_k\), \(\omega = \dot\varphi_k\), \(\alpha' , \beta'\) those of
+    !! the pairs beyond (0 after the last), \(\kappa = 3 + 2\alpha'\), \(D = 1 + 4c^2(1 + \alpha')\),
+    !! \(r = g s - 4 c s (1 + \alpha') \omega^2 + 2 c \beta'\), pair k's equation (virtual work along
+    !! \(\delta\varphi_k\), the elbow moving by \((c, s)\,\delta\varphi_k\), joint 2k by \(2c\,\delta\varphi_k\)) is
+    !! \(D \ddot\varphi_k = -(c \kappa \ddot X_{k-1} + r)\), and the horizontal momentum of the pairs k..K gives
+    !! \(\alpha_k = 2 + \alpha' - c^2\kappa^2/D\), \(\beta_k = \beta' - s\kappa\omega^2 - c\kappa r/D\). Inward
+    !! for \(\alpha, \beta\), outward from \(\ddot X_0 = 0\) with \(\ddot X_k = \ddot X_{k-1} + 2c\ddot\varphi_k -
+    !! 2s\omega^2\). D >= 1: regular through the folds.
+    type, extends(chain_slider_reduced), public :: chain_slider_recursive
+    contains
+        procedure :: rhs => slider_recursive_rhs
+    end type chain_slider_recursive
+
+    !> chain_plain_reduced's ODE with its slope in O(N) (the same equations, the same state): the
+    !! articulated-body recursion of a chain of point masses on massless pinned links. The links
+    !! i+1..N with their masses, seen at joint i, need the force \(A_i \ddot p_i + b_i\) there
+    !! (A_i 2 x 2 symmetric positive definite); link i carries only a force along
+    !! \(u_i = (\sin\theta_i, -\cos\theta_i)\), so with \(n_i = (\cos\theta_i, \sin\theta_i)\) and
+    !! \(\ddot p_i = \ddot p_{i-1} + \ddot\theta_i n_i - \dot\theta_i^2 u_i\),
+    !! \(n_i^T (A_i \ddot p_i + b_i) = 0\) gives \(\ddot\theta_i = -(n_i^T A_i (\ddot p_{i-1} - \dot\theta_i^2
+    !! u_i) + n_i^T b_i) / n_i^T A_i n_i\). Inward from \(A_N = I\), \(b_N = (0, g)\): with
+    !! \(w = b_i - \dot\theta_i^2 A_i u_i\), \(A_{i-1} = I + A_i - A_i n_i n_i^T A_i / n_i^T A_i n_i\),
+    !! \(b_{i-1} = (0, g) + w - A_i n_i\, n_i^T w / n_i^T A_i n_i\); outward from \(\ddot p_0 = 0\).
+    type, extends(chain_plain_reduced), public :: chain_plain_recursive
+    contains
+        procedure :: rhs => plain_recursive_rhs
+    end type chain_plain_recursive
 
     public :: new_chain, chain_start, chain_energy_of, chain_violation, chain_slider_joints, chain_plain_joints
 
@@ -424,6 +458,75 @@ contains
         ydot(:n) = y(n + 1:)
         ydot(n + 1:) = b
     end subroutine plain_reduced_rhs
+
+    ! chain_slider_recursive's slope: alpha, beta inward, the accelerations outward (O(K)).
+    subroutine slider_recursive_rhs(self, t, y, ydot)
+        class(chain_slider_recursive), intent(inout) :: self
+        real(wp), intent(in) :: t, y(:)
+        real(wp), intent(out) :: ydot(:)
+        real(wp) :: s(self%links/2), c(self%links/2), w2(self%links/2), ck(self%links/2), d(self%links/2), &
+                    r(self%links/2)
+        real(wp) :: alpha, beta, kappa, xdd
+        integer :: k, n_pairs
+        n_pairs = self%links/2
+        s = sin(y(:n_pairs))
+        c = cos(y(:n_pairs))
+        w2 = y(n_pairs + 1:)**2
+        alpha = 0.0_wp   ! the pairs beyond the last
+        beta = 0.0_wp
+        do k = n_pairs, 1, -1
+            kappa = 3.0_wp + 2.0_wp*alpha
+            d(k) = 1.0_wp + 4.0_wp*c(k)**2*(1.0_wp + alpha)
+            r(k) = self%gravity*s(k) - 4.0_wp*c(k)*s(k)*(1.0_wp + alpha)*w2(k) + 2.0_wp*c(k)*beta
+            ck(k) = c(k)*kappa
+            alpha = 2.0_wp + alpha - ck(k)**2/d(k)
+            beta = beta - s(k)*kappa*w2(k) - ck(k)*r(k)/d(k)
+        end do
+        xdd = 0.0_wp   ! the pivot
+        do k = 1, n_pairs
+            ydot(n_pairs + k) = -(ck(k)*xdd + r(k))/d(k)
+            xdd = xdd + 2.0_wp*(c(k)*ydot(n_pairs + k) - s(k)*w2(k))
+        end do
+        ydot(:n_pairs) = y(n_pairs + 1:)
+    end subroutine slider_recursive_rhs
+
+    ! chain_plain_recursive's slope: A_i, b_i inward, the accelerations outward (O(N)).
+    subroutine plain_recursive_rhs(self, t, y, ydot)
+        class(chain_plain_recursive), intent(inout) :: self
+        real(wp), intent(in) :: t, y(:)
+        real(wp), intent(out) :: ydot(:)
+        real(wp) :: an(2, self%links), z(self%links), d(self%links), u(2, self%links), nv(2, self%links)
+        real(wp) :: a11, a12, a22, b(2), w(2), au(2), pdd(2), w2
+        integer :: i, n
+        n = self%links
+        nv(1, :) = cos(y(:n))
+        nv(2, :) = sin(y(:n))
+        u(1, :) = nv(2, :)
+        u(2, :) = -nv(1, :)
+        a11 = 1.0_wp   ! joint N alone
+        a12 = 0.0_wp
+        a22 = 1.0_wp
+        b = [0.0_wp, self%gravity]
+        do i = n, 1, -1
+            w2 = y(n + i)**2
+            an(:, i) = [a11*nv(1, i) + a12*nv(2, i), a12*nv(1, i) + a22*nv(2, i)]
+            d(i) = nv(1, i)*an(1, i) + nv(2, i)*an(2, i)
+            au = [a11*u(1, i) + a12*u(2, i), a12*u(1, i) + a22*u(2, i)]
+            w = b - w2*au
+            z(i) = nv(1, i)*w(1) + nv(2, i)*w(2)
+            ! joint i-1 with what links i..N pass on to it
+            a11 = 1.0_wp + a11 - an(1, i)**2/d(i)
+            a12 = a12 - an(1, i)*an(2, i)/d(i)
+            a22 = 1.0_wp + a22 - an(2, i)**2/d(i)
+            b = [0.0_wp, self%gravity] + w - an(:, i)*(z(i)/d(i))
+        end do
+        pdd = 0.0_wp   ! the pivot
+        do i = 1, n
+            ydot(n + i) = -(an(1, i)*pdd(1) + an(2, i)*pdd(2) + z(i))/d(i)
+            pdd = pdd + ydot(n + i)*nv(:, i) - y(n + i)**2*u(:, i)
+        end do
+        ydot(:n) = y(n + 1:)
+    end subroutine plain_recursive_rhs
 
     ! b := A^-1 b for A symmetric positive definite, given in its upper triangle (overwritten by
     ! U, A = U^T U; columns contiguous).

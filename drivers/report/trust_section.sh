@@ -138,20 +138,14 @@ n_late=$(count_list "$fail_late")
 # folds passed at the tight runs' outputs, per N, and the slider sizes without a reference (why)
 long_folds=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /folds passed/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
         f = $NF; sub(/.*=/, "", f); printf "%sN = %s: %s", (k++ ? ", " : ""), n, f }' "$long" 2>/dev/null || true)
-# the slider chains of N >= 16 whose units come from regdae: the tight regdae run's energy change (in
-# the units) against the peer's at R = 1e-8: "smallest largest tight dE, smallest largest ratio"
-long_tight=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /tight run: dE=/ && /source=regdae/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
-        d = $0; sub(/.*tight run: dE=/, "", d); sub(/ .*/, "", d); if (n + 0 >= 16) tight[n + 0] = d + 0 }
-    $1 ~ /^[0-9]+$/ { cur = ($3 == "slider" && $6 == "1.0E-08" && $4 + 0 >= 16) ? $4 + 0 : 0; next }
-    cur && /^#   reference method: dE=/ { split($4, a, "="); if (a[2] + 0 > 0) peer[cur] = a[2] + 0; cur = 0 }
-    END { for (n in tight) { if (!k++ || tight[n] < tl) tl = tight[n]; if (tight[n] > th) th = tight[n]
-              if (n in peer) { r = tight[n] / peer[n]; if (!m++ || r < rl) rl = r; if (r > rh) rh = r } }
-          if (k && m) printf "%.2g ... %.2g, %.2g-%.2g", tl, th, rl, rh; else print "? ... ?, ?-?" }' "$long" 2>/dev/null ||
-    echo "? ... ?, ?-?")
+# CVODE's cpu on the reduced ODE of the plain chain of 256 links on [0, 10]
+long_cpu=$(awk '/^# \[part 1\] reference chain_long plain N=256:/ && /reduced ODE \(CVODE\)/ { c = $0; sub(/.*status=0 \(/, "", c)
+        sub(/ s cpu.*/, "", c); printf "%.2g", c }' "$long" 2>/dev/null || true)
+# the slider cells of N >= 128 above their bounds: "N = n at R = r (err e, bound b, class)"
+long_over=$(awk '$1 ~ /^[0-9]+$/ && $2 == "chain_long" && $3 == "slider" && $4 + 0 >= 128 && $9 + 0 > $11 + 0 {
+        printf "%sN = %d at R = %s (err %.2g, bound %.2g, %s)", (k++ ? ", " : ""), $4, $6, $9, $11, $8 }' "$long" 2>/dev/null || true)
 small_warned=$(awk '$1 ~ /^[0-9]+$/ && $3 == "slider" && $4 + 0 >= 16 && ($6 == "1.0E-07" || $6 == "1.0E-08") { n++; w += ($8 == "warned") }
     END { printf "%d of the %d", w, n }' "$long" 2>/dev/null || echo "? of the ?")
-tight_range=${long_tight%,*}
-tight_ratio=${long_tight#*, }
 # the slider chains whose units come from the reduced ODE: "N = n (dE d; regdae's tight run: status s, dE d)"
 long_reduced=$(awk '/^# \[part 1\] reference chain_long slider N=/ && /source=reduced/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
         d = $0; sub(/.*tight run: dE=/, "", d); sub(/ .*/, "", d)
@@ -181,6 +175,22 @@ short_fail=$(awk '$1 ~ /^[0-9]+$/ { cur = ""
             else t = "no result"
             printf "%s%s (%s)", (n++ ? ", " : ""), cur, t; cur = "" }' "$short" 2>/dev/null || true)
 n_short_fail=$(count_list "$short_fail")
+# the chains' references on [0, 1] ('# [part 1] reference chain ...' lines): CVODE's cpu on the
+# reduced ODE at N = 4096 ("plain a, slider b"), the sizes whose reference is regdae's tight run,
+# and regdae's tight run against the reduced ODE (norm at 1e-8) on the sizes it was the reference
+# of before the O(N) slopes (plain N >= 512, slider N >= 128): "plain a ... b, slider c ... d"
+short_refs=$(grep '^# \[part 1\] reference chain plain\|^# \[part 1\] reference chain slider' "$short" 2>/dev/null || true)
+short_cpu=$(echo "$short_refs" | awk '$7 == "N=4096:" && /reduced ODE \(CVODE\)/ { c = $0; sub(/.*status=0 \(/, "", c); sub(/ s cpu.*/, "", c)
+        printf "%s%s %.2g", (k++ ? ", " : ""), $6, c }' || true)
+short_regdae=$(echo "$short_refs" | awk '/source=regdae/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
+        printf "%s%s N = %s", (k++ ? ", " : ""), $6, n }' || true)
+short_cross=$(echo "$short_refs" | awk '/source=reduced/ && /outputs it reached: norm\(1e-8\)=/ { n = $7; sub(/N=/, "", n); sub(/:/, "", n)
+        if (n + 0 < ($6 == "plain" ? 512 : 128)) next
+        x = $0; sub(/.*outputs it reached: norm\(1e-8\)=/, "", x); sub(/ .*/, "", x); x += 0
+        if (!($6 in lo) || x < lo[$6]) lo[$6] = x; if (x > hi[$6]) hi[$6] = x }
+    END { split("plain slider", vs, " "); for (i = 1; i <= 2; i++) if (vs[i] in lo)
+              printf "%s%s %.2g ... %.2g", (k++ ? ", " : ""), vs[i], lo[vs[i]], hi[vs[i]]
+          if (!k) printf "?" }' || echo "?")
 
 cat <<TXT
 ## Trust grids: is a status ok right?
@@ -245,12 +255,19 @@ The linear index-2 DAEs with GB ~ t^2 (S1) and t^4 (S2) under the three methods,
 The chain of N = 2 ... 4096 unit links, plain and with sliders, on [0, 1] and [0, 10] (chaotic
 there: the long grid judges the checks, the energy change and the constraint violation, in units of
 the tight run's own plus R times the scales, err = max(dE/dE_unit, viol/viol_unit)). On [0, 1]
-the chains with sliders of 2 ... 64 links are compared with their reduced ODE (below; CVODE at
-1e-13, checked at 1e-12, regdae's tight run a cross-check on the reference line), those of 128 ...
-4096 links with regdae's own tight run (formulation=augmented, rtol = atol = 1e-11, eps = 1e-16,
-checked against 1e-10 with eps = 1e-14); the plain chains with the peer at 1e-11 (checked at
-1e-10) where both succeed (N = 2 ... 32), else with their reduced ODE in the N link angles
-(\`chain_plain_reduced\`, N = 64 ... 256), else with regdae's tight run (N = 512 ... 4096). The
+the chains with sliders of 2 ... 4096 links are compared with their reduced ODE in the N/2 crank
+angles (below; CVODE at 1e-13, checked at 1e-12, regdae's tight run a cross-check on the reference
+line); the plain chains with the peer at 1e-11 (checked at 1e-10) where both succeed (N = 2 ...
+32), else with their reduced ODE in the N link angles (N = 64 ... 4096). Both reduced ODEs are
+integrated with their O(N) slopes (\`chain_slider_recursive\`, \`chain_plain_recursive\` in
+\`drivers/problems/chain_problem.f90\`: articulated-body recursions, equal in the unit tests to
+the dense forms \`chain_slider_reduced\`, \`chain_plain_reduced\` within 1e-12 of the largest
+acceleration; CVODE at 1e-13 takes ${short_cpu} s cpu at N = 4096); regdae's own tight run
+(formulation=augmented, rtol = atol = 1e-11, eps = 1e-16, checked against 1e-10 with eps = 1e-14)
+would be the reference only where the reduced ODE failed: ${short_regdae:-nowhere on this run}.
+That tight run was the reference of the plain chains of 512 ... 4096 links and the slider chains
+of 128 ... 4096 links up to fe0352f (17 cells undecided there, its check too coarse); against the
+reduced ODE it is ${short_cross} error weights off at R = 1e-8 (the reference lines). The
 chains with sliders are judged against the long chains' reference methods at R: the peer on the same constraints for N = 4 ... 4096,
 Dormand-Prince on the slider crank's reduced ODE for N = 2, err_ref over the outputs the method
 reached. Their cells: ${short_classes}. Of the ${short_peer} cells of N > 2 the peer failed in
@@ -349,24 +366,26 @@ regdae's ${c1_err} and ${c49_err}): judged without them, against the units alone
 run of this grid), 22 cells were silent, 16 plain and 6 with sliders. The slider chain of 16 links
 at R = 1e-3, silent against the units alone, is ${c67_class} against the peer: its energy changes by
 ${c67_de} against a unit of ${c67_unit} (${c67_err} units), the peer's by ${c67_deref} (${c67_ref}
-units: the bound ${c67_bound}). The units of the slider chains of 2 ... 64 links come from their
-reduced ODE, not from regdae: the chain in its N/2 crank angles on the branch where each rod mirrors
-its crank (the start's), regular through the folds (\`chain_slider_reduced\` in
-\`drivers/problems/chain_problem.f90\`, tested against the full equations), by CVODE at 1e-13, its
-scales checked at 1e-12; regdae's tight run (1e-11, eps = 1e-16) is a cross-check there. So do
-those of the plain chains of 2 ... 128 links: the chain in its N link angles (Lagrange's equations,
-a dense N x N mass matrix by Cholesky, \`chain_plain_reduced\`, tested against the full equations;
-4.4 s of CVODE at N = 128, over 90 s at N = 256, so the plain chain of 256 links keeps regdae's
-tight run). The slider chains'
+units: the bound ${c67_bound}). The units of every chain come from its reduced ODE, not from
+regdae: the slider chain in its N/2 crank angles on the branch where each rod mirrors its crank (the
+start's), regular through the folds, the plain chain in its N link angles (Lagrange's equations);
+their dense forms (\`chain_slider_reduced\`, \`chain_plain_reduced\` in
+\`drivers/problems/chain_problem.f90\`) are tested against the full equations, the O(N) forms
+integrated (\`chain_slider_recursive\`, \`chain_plain_recursive\`) against the dense ones; by CVODE
+at 1e-13 (${long_cpu:-?} s cpu for the plain chain of 256 links, whose dense form took over 90 s), its
+scales checked at 1e-12; regdae's tight run (1e-11, eps = 1e-16) is a cross-check. The slider chains'
 energy change, and in brackets the tight regdae run's status, the time it reached and its energy
 change: ${long_reduced:-?}. Until the reduced ODE the slider chains of 4 and 8 links were not
 judged: their tight regdae run, then the source of the units, is stopped by its drift check (-113
 at t = 9.16 and 8.24), and the peer at 1e-11 is no substitute (it stops at a fold: N = 4 at t =
-3.66, N = 8 at t = 1.63, by hand). Not judged for want of a reference: ${long_noref:-none}. The
-units of the slider chains of 128 and 256 links still carry the tight regdae run's own energy
-change (${tight_range}), ${tight_ratio} times the peer's at R = 1e-8: at small R regdae's energy
-change there is about its tight run's, err about 1 and the bound 10, while plain IDA's is far
-smaller; ${small_warned} cells of N >= 16 at R = 1e-7, 1e-8 end with a warning. Against R E_scale alone (the energy part,
+3.66, N = 8 at t = 1.63, by hand). Not judged for want of a reference: ${long_noref:-none}. Up
+to fe0352f the units of the slider chains of 128 and 256 links and of the plain chain of 256 links
+came from regdae's tight run, whose own energy change (slider 2.1e-4 and 1.3e-3, plain 5.4e-6;
+the reduced ODE's 1.7e-10 ... 1.2e-8) was in the units: at small R regdae's energy change there
+was about its tight run's, err about 1 and the bound 10 (slider N = 128 at R = 1e-8 0.85, N = 256
+at R = 1e-7, 1e-8 3.3 and 11). With the reduced ODE's units no cell changed class (70 ok, 26
+warned, as with fe0352f's drivers), and the warned slider cells of 128 and 256 links above their
+bounds show how far regdae's energy drifts there: ${long_over:-none}. ${small_warned} cells of N >= 16 at R = 1e-7, 1e-8 end with a warning. Against R E_scale alone (the energy part,
 the tight term left out; at d355198, by hand) no slider cell with status ok is above its bound
 either: the cells above it (N = 16 ... 256 at R = 1e-5 ... 1e-8, up to 1.1e4 against 40) are all
 warned.

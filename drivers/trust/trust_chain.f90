@@ -1,13 +1,13 @@
 !> drivers/trust's families chain (t in [0, 1], N = 2 ... 4096) and chain_long (t in [0, 10],
 !! N = 2 ... 256): the chain of N links, plain and with sliders, against the plain IDA peer at
-!! 1e-11, the chain's reduced ODE (slider N <= 64, plain N <= 256 where the peer fails) or
-!! regdae's own tight run beyond (chain), or judged on the energy change and the violation in
-!! units of a tight run's (chain_long: the reduced ODE, slider N <= 64, plain N <= 128, else regdae);
+!! 1e-11, else the chain's reduced ODE at every N (its O(N) slopes; regdae's own tight run only
+!! where the reduced ODE fails) (chain), or judged on the energy change and the violation in
+!! units of a tight run's (chain_long: the reduced ODE at every N, regdae's where it fails);
 !! reference methods the peer at R and Dormand-Prince on the slider crank's reduced ODE.
 module trust_chain
     use regdae, only: wp, solver_options, formulation_augmented
-    use chain_problem, only: chain, new_chain, chain_start, chain_slider_reduced, chain_slider_joints, chain_energy_of, &
-                             chain_violation, chain_plain_reduced, chain_plain_joints
+    use chain_problem, only: chain, new_chain, chain_start, chain_slider_recursive, chain_slider_joints, chain_energy_of, &
+                             chain_violation, chain_plain_recursive, chain_plain_joints
     use slider_crank_problem, only: slider_crank_reduced
     use reference_ode, only: integrate_reference, ode_system
     use trust_support, only: tally, weighted_error, verdict, cell_class, stopped_by_check, checks_off, write_row, &
@@ -26,11 +26,6 @@ module trust_chain
     !> The regdae reference's tolerance and eps, and its check's.
     real(wp), parameter :: chain_ref_tol = 1.0e-11_wp, chain_ref_eps = 1.0e-16_wp
     real(wp), parameter :: chain_check_tol = 1.0e-10_wp, chain_check_eps = 1.0e-14_wp
-    !> The longest chains integrated by their reduced ODE: slider (a dense K x K solve per
-    !! evaluation, K = N/2) on both families; plain (a dense N x N solve) on [0, 10] (CVODE at
-    !! 1e-13: 4.4 s cpu at N = 128, over 90 s at N = 256) and on [0, 1] (1.7 s at N = 256).
-    integer, parameter :: reduced_max_links = 64, plain_max_links_long = 128, plain_max_links_short = 256
-
     !> A chain reference, kept for the cells of one (variant, N).
     type :: chain_reference
         logical :: slider = .false.
@@ -73,7 +68,7 @@ contains
                 'outputs: err = max(dE/dE_unit, viol/viol_unit), dE_unit = dE_tight + R E_scale, viol_unit = '// &
                 'viol_tight + R (1 + q_scale)'
             write (*, '(a)') '#   (dE_tight, viol_tight: the tight run''s; E_scale: the largest potential-energy drop of that '// &
-                'run; q_scale: its max |q|; the tight run: '//reduced_text(long)//', else regdae formulation=augmented '// &
+                'run; q_scale: its max |q|; the tight run: '//reduced_text()//', where it fails regdae formulation=augmented '// &
                 'rtol = atol = 1e-11 eps = 1e-16)'
             write (*, '(a)') '#   reference method: the peer at R (plain IDA, not regdae), plain and with the sliders '// &
                 '(N > 2: the peer on the same constraints, the sliders'' too); slider N = 2 (the slider crank) '// &
@@ -84,7 +79,7 @@ contains
         else
             write (*, '(a)') '#   reference: plain the peer (plain IDA, band, stabilized index 2, not regdae) at '// &
                 'rtol = atol = 1e-11 checked against 1e-10; where either fails, and for the sliders, the reduced ODE: '// &
-                reduced_text(long)//'; beyond, from regdae itself (formulation=augmented, rtol = atol = 1e-11, '// &
+                reduced_text()//'; where it fails, from regdae itself (formulation=augmented, rtol = atol = 1e-11, '// &
                 'eps = 1e-16; check: 1e-10 with eps = 1e-14); ref_src says which'
             write (*, '(a)') '#   reference method: plain the peer at R; slider N > 2 the peer at R on the same '// &
                 'constraints (the sliders'' too), N = 2 (the slider crank) Dormand-Prince on its reduced ODE at R'
@@ -112,24 +107,12 @@ contains
         write (*, '(a)') counts%summary(name)
     end subroutine chain_family
 
-    ! Where the reduced ODE is the reference, for the families' header lines.
-    function reduced_text(long) result(text)
-        logical, intent(in) :: long   !! chain_long
+    ! The reduced ODEs, for the families' header lines.
+    function reduced_text() result(text)
         character(len=:), allocatable :: text
-        text = 'slider N <= '//itext(reduced_max_links)//' the slider chain''s reduced ODE in its crank angles, plain N <= '// &
-               itext(reduced_limit(.false., long))//' the plain chain''s in its link angles (CVODE 1e-13, checked at 1e-12; '// &
-               'regdae''s tight run a cross-check)'
+        text = 'the slider chain''s reduced ODE in its crank angles, the plain chain''s in its link angles, at every N '// &
+               '(O(N) slopes by articulated-body recursions; CVODE 1e-13, checked at 1e-12; regdae''s tight run a cross-check)'
     end function reduced_text
-
-    ! The longest chain of the variant integrated by its reduced ODE on chain (t in [0, 1]) or chain_long.
-    pure integer function reduced_limit(slider, long) result(limit)
-        logical, intent(in) :: slider, long
-        if (slider) then
-            limit = reduced_max_links
-        else
-            limit = merge(plain_max_links_long, plain_max_links_short, long)
-        end if
-    end function reduced_limit
 
     ! The reference method of a chain cell at R: the peer (plain IDA, not regdae) on the same
     ! constraints (the sliders' too for N > 2), or for the slider crank (slider, N = 2)
@@ -377,10 +360,9 @@ contains
                 cached%check = q10(:, 2:)
             end if
         end if
-        ! where the peer is not the reference, the chain's reduced ODE up to its limit (slider
-        ! reduced_max_links, plain plain_max_links_long or _short), regdae's tight run a cross-check (over
-        ! the outputs it reached); the regdae reference where the ODE fails or beyond the limit
-        if (.not. peer_ok .and. links <= reduced_limit(slider, long)) then
+        ! where the peer is not the reference, the chain's reduced ODE, regdae's tight run a
+        ! cross-check (over the outputs it reached); the regdae reference where the ODE fails
+        if (.not. peer_ok) then
             call reduced_reference(cached, slider, links, times, rtext)
             text = text//rtext
         end if
@@ -480,7 +462,8 @@ contains
     end subroutine regdae_run
 
     ! The reference of the chain of `links` links from its reduced ODE (chain_problem's
-    ! chain_slider_reduced in the crank angles, or chain_plain_reduced in the link angles; CVODE
+    ! chain_slider_recursive in the crank angles, or chain_plain_recursive in the link angles,
+    ! their O(N) slopes equal to the dense chain_slider_reduced's and chain_plain_reduced's; CVODE
     ! at ref_tol) from chain_start (every angle pi/2, at rest), its check at ref_check_tol; the
     ! units as regdae_reference's from the joints at the outputs. Accepted (cached%source =
     ! 'reduced') when both runs succeed and agree on the units' scales (E_scale, q_scale) within
@@ -505,10 +488,10 @@ contains
         cached%source = 'none'
         if (slider) then
             angles = links/2
-            ode = chain_slider_reduced(links=links, gravity=chain_gravity)
+            ode = chain_slider_recursive(links=links, gravity=chain_gravity)
         else
             angles = links
-            ode = chain_plain_reduced(links=links, gravity=chain_gravity)
+            ode = chain_plain_recursive(links=links, gravity=chain_gravity)
         end if
         allocate (y0(2*angles), tight(2*angles, size(times)), loose(2*angles, size(times)))
         y0(:angles) = pi/2
