@@ -120,17 +120,21 @@ contains
         type(radau_adapter), pointer :: radau
         character(len=:), allocatable :: which
         real(wp) :: h_accurate, rho, factor
+        real(wp), allocatable :: jac(:, :)
         logical :: on_radau
         stat = regdae_success
         msg = ''
         if (.not. (core%switching .and. augmented_fits(core))) return
         on_radau = radau_preferred(core, .true.)
         factor = merge(stiff_start_factor_radau, stiff_start_factor, on_radau)
-        if (.not. stiff_at_start(core, core%t0, core%z0, factor, h_accurate, rho)) return
+        if (.not. stiff_at_start(core, core%t0, core%z0, factor, h_accurate, rho, jac)) return
         if (on_radau) then
-            ! as integrator=radau starts (regdae_solver_init); the monitor started at t0 there
+            ! as integrator=radau starts (regdae_solver_init; the monitor started at t0 there),
+            ! with the start test's Jacobian at (t0, z0) as its first (Radau's own difference
+            ! quotients of the same F: not computed again)
             radau => radau_in_slot(core)
             call radau%start(core%t0, core%z0, stat, msg, h0=core%opts%h_init)
+            if (stat == regdae_success) call radau%take_jacobian(jac)
             if (stat /= regdae_success) msg = 'starting Radau at t0: '//msg
             core%active = integrator_radau
             which = 'radau from the start '
