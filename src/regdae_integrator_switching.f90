@@ -21,6 +21,7 @@ module regdae_integrator_switching
     use regdae_solver_core, only: solver_core, log_event
     use regdae_solver_sampling, only: start_monitor, start_monitor_augmented
     use regdae_ida_integrator, only: ida_integrator, ida_in_slot
+    use regdae_dopri5_integrator, only: dopri5_integrator, dopri5_in_slot
     use regdae_radau_integrator, only: radau_adapter, radau_in_slot
     use regdae_switching_policy, only: radau_preferred, stiff_at_start, stiff_start_factor, stiff_start_factor_radau
     implicit none
@@ -106,12 +107,12 @@ contains
         call now_stiff(core, integrator_ida, '', from_start)
     end subroutine switch_to_implicit
 
-    !> integrator=auto, dopri5 started at t0 on a mechanical problem that declares its
-    !! structure: already stiff there (the policy's stiff_at_start), the implicit
-    !! integrator takes over from t0 before the first explicit step, rather than after
+    !> integrator=auto at t0, before dopri5 is started, on a mechanical problem that
+    !! declares its structure: already stiff there (the policy's stiff_at_start), the
+    !! implicit integrator starts from t0 (core%active set to it), rather than after
     !! 15 explicit steps at the stability limit: Radau IIA on the eliminated
     !! formulation for a small system (radau_preferred), else IDA on the augmented
-    !! formulation with KLU.
+    !! formulation with KLU. dopri5 is then created at a switch back (switch_to_dopri5).
     subroutine start_implicit_if_stiff(core, stat, msg)
         type(solver_core), pointer, intent(in) :: core
         integer, intent(out) :: stat
@@ -119,17 +120,21 @@ contains
         type(radau_adapter), pointer :: radau
         character(len=:), allocatable :: which
         real(wp) :: h_accurate, rho, factor
+        real(wp), allocatable :: jac(:, :)
         logical :: on_radau
         stat = regdae_success
         msg = ''
         if (.not. (core%switching .and. augmented_fits(core))) return
         on_radau = radau_preferred(core, .true.)
         factor = merge(stiff_start_factor_radau, stiff_start_factor, on_radau)
-        if (.not. stiff_at_start(core, core%t0, core%z0, factor, h_accurate, rho)) return
+        if (.not. stiff_at_start(core, core%t0, core%z0, factor, h_accurate, rho, jac)) return
         if (on_radau) then
-            ! as integrator=radau starts (regdae_solver_init); the monitor started at t0 there
+            ! as integrator=radau starts (regdae_solver_init; the monitor started at t0 there),
+            ! with the start test's Jacobian at (t0, z0) as its first (Radau's own difference
+            ! quotients of the same F: not computed again)
             radau => radau_in_slot(core)
             call radau%start(core%t0, core%z0, stat, msg, h0=core%opts%h_init)
+            if (stat == regdae_success) call radau%take_jacobian(jac)
             if (stat /= regdae_success) msg = 'starting Radau at t0: '//msg
             core%active = integrator_radau
             which = 'radau from the start '
@@ -237,10 +242,12 @@ contains
         real(wp), intent(in) :: t
         real(wp), pointer :: u(:)
         character(len=:), allocatable :: msg
+        type(dopri5_integrator), pointer :: dopri5
         integer :: stat
         logical :: from_radau
         u => core%stiff%state()
-        call core%nonstiff%start(t, u(1:core%n), stat, msg, h0=core%stiff%last_step())
+        dopri5 => dopri5_in_slot(core)   ! (created here after a start on the implicit integrator)
+        call dopri5%start(t, u(1:core%n), stat, msg, h0=core%stiff%last_step())
         from_radau = (core%active == integrator_radau)
         core%active = integrator_dopri5
         core%switches = core%switches + 1

@@ -32,7 +32,7 @@ module regdae_radau_iia
     use regdae_format, only: format_real, format_int
     use regdae_radau_tableau, only: radau_coefficients, radau_iia_coefficients
     use regdae_radau_linear, only: radau_newton_matrices
-    use regdae_radau_system, only: radau_system, radau_options, radau_stats, validate_options
+    use regdae_radau_system, only: radau_system, radau_options, radau_stats, validate_options, difference_jacobian
     implicit none
     private
 
@@ -114,7 +114,10 @@ module regdae_radau_iia
         procedure :: status => radau_status
         !> What went wrong ('' after success).
         procedure :: message => radau_message
-        procedure, private :: fail, eval, compute_jacobian, newton, error_estimate, weights, accept, step_fraction
+        !> Take a Jacobian at the current point made by difference_jacobian (see radau_take_jacobian).
+        procedure :: take_jacobian => radau_take_jacobian
+        procedure, private :: fail, eval, compute_jacobian, jacobian_taken, newton, error_estimate, weights, accept, &
+                              step_fraction
     end type radau_integrator
 
 contains
@@ -539,33 +542,42 @@ contains
         class(radau_system), intent(inout) :: sys
         integer, intent(out) :: stat
         logical :: recoverable
-        real(wp) :: uj, delta
-        integer :: j
+        integer :: evals
         self%counts%jacobians = self%counts%jacobians + 1
         if (sys%has_jacobian()) then
             call sys%jacobian(self%t, self%u, self%f0, self%jac, stat, recoverable)
         else
-            self%work(:) = self%u
-            do j = 1, self%n
-                uj = self%u(j)
-                delta = sqrt(epsilon(1.0_wp)*max(1.0e-5_wp, abs(uj)))
-                self%work(j) = uj + delta
-                delta = self%work(j) - uj
-                call self%eval(sys, self%t, self%work, self%jac(:, j), stat, recoverable)
-                if (stat /= regdae_success) exit
-                self%jac(:, j) = (self%jac(:, j) - self%f0)/delta
-                self%work(j) = uj
-            end do
+            call difference_jacobian(sys, self%t, self%u, self%f0, self%jac, stat, recoverable, evals)
+            self%counts%rhs_evals = self%counts%rhs_evals + evals
         end if
         if (stat == regdae_success .and. .not. all(ieee_is_finite(self%jac))) stat = regdae_err_nonfinite
         if (stat /= regdae_success) then
             call self%fail(stat, 'radau: the Jacobian failed')
             return
         end if
+        call self%jacobian_taken()
+    end subroutine compute_jacobian
+
+    !> Take jac as dF/du at the current point (t, u), made by difference_jacobian with
+    !! F(t, u) as this integrator evaluated it (at the start, or at the last accepted step's
+    !! end) for a system without `jacobian`: the next step factors it rather than computing
+    !! it again. Counted as a Jacobian and its n evaluations of F.
+    subroutine radau_take_jacobian(self, jac)
+        class(radau_integrator), intent(inout) :: self
+        real(wp), intent(in) :: jac(:, :)   !! n x n
+        self%counts%jacobians = self%counts%jacobians + 1
+        self%counts%rhs_evals = self%counts%rhs_evals + self%n
+        self%jac(:, :) = jac
+        call self%jacobian_taken()
+    end subroutine radau_take_jacobian
+
+    ! A Jacobian at the current point in jac: kept while Newton converges fast, factored anew.
+    subroutine jacobian_taken(self)
+        class(radau_integrator), intent(inout) :: self
         self%jac_current = .true.
         self%need_jac = .false.
         self%lu_valid = .false.
-    end subroutine compute_jacobian
+    end subroutine jacobian_taken
 
     !> F(t, u), counted; a NaN or Inf in it is a recoverable failure.
     subroutine eval(self, sys, t, u, f, stat, recoverable)

@@ -25,10 +25,10 @@ module regdae_radau_integrator
     use regdae_status
     use regdae_format, only: format_real
     use regdae_solver_stats, only: solver_stats
-    use regdae_regularization, only: regularized_dae
     use regdae_radau_system, only: radau_system, radau_options, radau_stats
     use regdae_radau_iia, only: radau_integrator
     use regdae_radau_augmented, only: augmented_dae
+    use regdae_eliminated_ode, only: eliminated_ode
     use regdae_augmented_system, only: augmented_system
     use regdae_solver_core, only: solver_core
     use regdae_switching_policy, only: spectral_radius
@@ -37,19 +37,6 @@ module regdae_radau_integrator
     private
 
     public :: radau_in_slot
-
-    !> The eliminated formulation z' = F(t, z) of a model, as a Radau IIA system.
-    type, extends(radau_system) :: eliminated_ode
-        type(regularized_dae), pointer :: model => null()
-        real(wp), allocatable :: y(:)   !! the multiplier of the last evaluation
-        character(len=:), allocatable :: failure   !! the model's message at F's last failure ('' none)
-        real(wp) :: seen_eps = 0.0_wp                !! the model's eps at the last `note_parameters`
-        real(wp), allocatable :: seen_w(:)           !! its weights w there
-    contains
-        procedure :: rhs => eliminated_rhs
-        !> Whether eps or the weights changed since the last call (which records them).
-        procedure :: note_parameters => eliminated_note_parameters
-    end type eliminated_ode
 
     !> Radau IIA on the core's model (see the module documentation).
     type, extends(implicit_stepper), public :: radau_adapter
@@ -78,6 +65,8 @@ module regdae_radau_integrator
         procedure :: augmented => radau_augmented
         !> Integrate the augmented system sys (set up, parameters resolved) from now on.
         procedure :: take_augmented => radau_take_augmented
+        !> Just started on the eliminated formulation: its first Jacobian given (radau_take_jacobian).
+        procedure :: take_jacobian => radau_take_jacobian
     end type radau_adapter
 
 contains
@@ -95,29 +84,6 @@ contains
             p%core => core
         end select
     end function radau_in_slot
-
-    subroutine eliminated_rhs(self, t, u, f, stat, recoverable)
-        class(eliminated_ode), intent(inout) :: self
-        real(wp), intent(in) :: t, u(:)
-        real(wp), intent(out) :: f(:)
-        integer, intent(out) :: stat
-        logical, intent(out) :: recoverable
-        call self%model%slope_eliminated(t, u, f, self%y, stat, recoverable)
-        if (stat /= regdae_success) self%failure = self%model%message
-    end subroutine eliminated_rhs
-
-    !> Whether the model's eps or weights w (which the monitor sets between steps)
-    !! differ from their values at the last call; records them.
-    subroutine eliminated_note_parameters(self, changed)
-        class(eliminated_ode), intent(inout) :: self
-        logical, intent(out) :: changed
-        changed = (self%model%eps /= self%seen_eps) .or. .not. allocated(self%seen_w)
-        if (.not. changed) changed = size(self%seen_w) /= size(self%model%w)
-        if (.not. changed) changed = any(self%model%w /= self%seen_w)
-        if (.not. changed) return
-        self%seen_eps = self%model%eps
-        self%seen_w = self%model%w
-    end subroutine eliminated_note_parameters
 
     !> Start (again) at (t, z): the core's tolerances (rtol, the state's atol), the
     !! error test without the excluded components, the first step h0 when given (> 0).
@@ -329,6 +295,16 @@ contains
         sys => null()
         if (self%on_augmented) sys => self%dae%sys
     end function radau_augmented
+
+    !> Just started on the eliminated formulation at (t, z): jac is dF/dz there as
+    !! Radau would compute it (`difference_jacobian` on the same eliminated_ode, F at the
+    !! same point and parameters), made by integrator=auto's start test; the first step
+    !! takes it instead of computing it again.
+    subroutine radau_take_jacobian(self, jac)
+        class(radau_adapter), intent(inout) :: self
+        real(wp), intent(in) :: jac(:, :)   !! n x n
+        if (.not. self%on_augmented) call self%radau%take_jacobian(jac)
+    end subroutine radau_take_jacobian
 
     subroutine radau_take_augmented(self, sys)
         class(radau_adapter), intent(inout), target :: self

@@ -5,12 +5,12 @@
 module regdae_radau_system
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
-    use regdae_status, only: regdae_err_bad_input
+    use regdae_status, only: regdae_success, regdae_err_bad_input
     use regdae_format, only: format_real, format_int
     implicit none
     private
 
-    public :: radau_system, radau_rhs, radau_options, radau_stats, validate_options
+    public :: radau_system, radau_rhs, radau_options, radau_stats, validate_options, difference_jacobian
 
     !> A problem \(M u' = F(t, u)\). Extend it with the problem's parameters and
     !! supply `rhs`; supply `jacobian` and let `has_jacobian` return .true. for an
@@ -146,6 +146,43 @@ contains
             vector_ok = vector_ok .and. all(v >= 0)
         end if
     end function vector_ok
+
+    !> dF/du at (t, u) by forward difference quotients, f = F(t, u) given: column j
+    !! from F(t, u + delta_j e_j), delta_j = sqrt(eps max(1e-5, |u_j|)) (RADAU5's
+    !! increment) rounded to what u_j + delta_j represents. The Radau integrator's
+    !! Jacobian where the system supplies none, and the one integrator=auto's start
+    !! test takes (regdae_switching_policy), which it then hands to Radau. stat:
+    !! regdae_success, or the status of the evaluation that failed (the loop stops
+    !! there); a NaN or Inf in F is left in dfdu for the caller to check. evals: the
+    !! evaluations of F made.
+    subroutine difference_jacobian(sys, t, u, f, dfdu, stat, recoverable, evals)
+        class(radau_system), intent(inout) :: sys
+        real(wp), intent(in) :: t          !! time
+        real(wp), intent(in) :: u(:)       !! state, size n
+        real(wp), intent(in) :: f(:)       !! F(t, u)
+        real(wp), intent(out) :: dfdu(:, :) !! dF/du, n x n
+        integer, intent(out) :: stat
+        logical, intent(out) :: recoverable
+        integer, intent(out) :: evals
+        real(wp) :: work(size(u)), uj, delta
+        integer :: j
+        stat = regdae_success
+        recoverable = .false.
+        evals = 0
+        work = u
+        do j = 1, size(u)
+            uj = u(j)
+            delta = sqrt(epsilon(1.0_wp)*max(1.0e-5_wp, abs(uj)))
+            work(j) = uj + delta
+            delta = work(j) - uj
+            evals = evals + 1
+            recoverable = .false.
+            call sys%rhs(t, work, dfdu(:, j), stat, recoverable)
+            if (stat /= regdae_success) exit
+            dfdu(:, j) = (dfdu(:, j) - f)/delta
+            work(j) = uj
+        end do
+    end subroutine difference_jacobian
 
     logical function system_has_no_jacobian(self)
         class(radau_system), intent(in) :: self

@@ -563,16 +563,21 @@ contains
             end if
         end if
         if (core%active == integrator_dopri5) then
-            dopri5 => dopri5_in_slot(core)
-            call dopri5%start(t0, z0, stat, msg, h0=opts%h_init)
-            if (stat /= regdae_success) then
-                stat = start_failed(self, stat, 'dopri5: the slope at the initial point failed: '//core%model%message)
-                return
-            end if
+            ! integrator=auto, stiff at t0: the implicit integrator from there (started by
+            ! start_implicit_if_stiff), dopri5 created only at a switch back
             call start_implicit_if_stiff(core, stat, msg)
             if (stat /= regdae_success) then
                 stat = start_failed(self, stat, msg)
                 return
+            end if
+            if (core%active == integrator_dopri5) then
+                dopri5 => dopri5_in_slot(core)
+                call dopri5%start(t0, z0, stat, msg, h0=opts%h_init)
+                if (stat /= regdae_success) then
+                    stat = start_failed(self, stat, 'dopri5: the slope at the initial point failed: '// &
+                                        core%model%message)
+                    return
+                end if
             end if
             call self%record(regdae_success, '', stat)
             return

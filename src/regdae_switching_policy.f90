@@ -8,10 +8,13 @@
 !! eliminated formulation's Jacobian by power iteration is the stiffness estimate
 !! of the implicit integrators (`regdae_ida_integrator`).
 module regdae_switching_policy
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success
     use regdae_solver_core, only: solver_core
     use regdae_lapack, only: dgeev
+    use regdae_radau_system, only: difference_jacobian
+    use regdae_eliminated_ode, only: eliminated_ode
     implicit none
     private
 
@@ -124,15 +127,18 @@ contains
     !! does not resolve (|lambda| h_accurate > 1) is lightly damped (-Re lambda <
     !! stiff_start_damping |lambda|, or growing): every method must then follow it with
     !! steps below its period, and the explicit one does that at less cost. The
-    !! eigenvalues of dF/dz (n difference quotients of F, dgeev) only where the first
-    !! test says stiff, for states of at most stiff_start_max_n components. h_accurate
-    !! and rho are returned for the event (0: not computed).
-    logical function stiff_at_start(core, t0, z0, factor, h_accurate, rho) result(yes)
+    !! eigenvalues of dF/dz (n difference quotients of F, Radau's: difference_jacobian;
+    !! dgeev) only where the first test says stiff, for states of at most
+    !! stiff_start_max_n components. h_accurate and rho are returned for the event (0:
+    !! not computed), and where the answer is yes, that Jacobian (jac), which Radau
+    !! starting at (t0, z0) takes as its first.
+    logical function stiff_at_start(core, t0, z0, factor, h_accurate, rho, jac) result(yes)
         type(solver_core), intent(inout) :: core
         real(wp), intent(in) :: t0, z0(:)
         real(wp), intent(in) :: factor   !! stiff_start_factor or stiff_start_factor_radau
         real(wp), intent(out) :: h_accurate, rho
-        real(wp) :: f0(core%n), f1(core%n), y(core%m), w(core%n), d0, d1, d2, h0
+        real(wp), allocatable, intent(out), optional :: jac(:, :)   !! dF/dz at (t0, z0), n x n (only where yes)
+        real(wp) :: f0(core%n), f1(core%n), y(core%m), w(core%n), d0, d1, d2, h0, dfdz(core%n, core%n)
         integer :: stat
         logical :: recoverable
         yes = .false.
@@ -160,31 +166,30 @@ contains
         h_accurate = min(100.0_wp*h0, h_accurate)
         rho = spectral_radius(core, t0, z0)
         yes = rho > 0.0_wp .and. h_accurate > factor*3.3_wp/rho
-        if (yes) yes = .not. lightly_damped_mode(core, t0, z0, f0, h_accurate)
+        if (yes) yes = .not. lightly_damped_mode(core, t0, z0, f0, h_accurate, dfdz)
+        if (yes .and. present(jac)) jac = dfdz
     end function stiff_at_start
 
-    ! stiff_at_start: has dF/dz at (t0, z0) (f0 = F there) an eigenvalue with |lambda| h > 1
-    ! and -Re lambda < stiff_start_damping |lambda|? (Also yes where the Jacobian or its
-    ! eigenvalues fail: the explicit start stays.) The model is left evaluated at (t0, z0).
-    logical function lightly_damped_mode(core, t0, z0, f0, h) result(light)
+    ! stiff_at_start: has dF/dz at (t0, z0) (f0 = F there; returned in jac) an eigenvalue
+    ! with |lambda| h > 1 and -Re lambda < stiff_start_damping |lambda|? (Also yes where the
+    ! Jacobian or its eigenvalues fail: the explicit start stays.) The model is left
+    ! evaluated at (t0, z0).
+    logical function lightly_damped_mode(core, t0, z0, f0, h, jac) result(light)
         type(solver_core), intent(inout) :: core
         real(wp), intent(in) :: t0, z0(:), f0(:), h
-        real(wp) :: f1(core%n), y(core%m), zd(core%n), jac(core%n, core%n), wr(core%n), wi(core%n), &
-                    vdum(1, 1), work(4*core%n), d
-        integer :: stat, j, info
+        real(wp), intent(out) :: jac(:, :)
+        type(eliminated_ode) :: ode
+        real(wp) :: a(core%n, core%n), wr(core%n), wi(core%n), vdum(1, 1), work(4*core%n)
+        integer :: stat, evals, info
         logical :: recoverable
         light = .true.
-        do j = 1, core%n
-            d = sqrt(epsilon(1.0_wp))*max(1.0_wp, abs(z0(j)))
-            zd = z0
-            zd(j) = z0(j) + d
-            call core%model%slope_eliminated(t0, zd, f1, y, stat, recoverable)
-            if (stat /= regdae_success) exit
-            jac(:, j) = (f1 - f0)/d
-        end do
+        ode%model => core%model
+        allocate (ode%y(core%m))
+        call difference_jacobian(ode, t0, z0, f0, jac, stat, recoverable, evals)
         call core%model%evaluate(t0, z0, info, recoverable)   ! the model back at the state
-        if (stat /= regdae_success) return
-        call dgeev('N', 'N', core%n, jac, core%n, wr, wi, vdum, 1, vdum, 1, work, size(work), info)
+        if (stat /= regdae_success .or. .not. all(ieee_is_finite(jac))) return
+        a = jac   ! (dgeev overwrites its matrix)
+        call dgeev('N', 'N', core%n, a, core%n, wr, wi, vdum, 1, vdum, 1, work, size(work), info)
         if (info /= 0) return
         light = any(hypot(wr, wi)*h > 1.0_wp .and. -wr < stiff_start_damping*hypot(wr, wi))
     end function lightly_damped_mode

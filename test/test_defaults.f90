@@ -59,6 +59,7 @@ contains
                  new_test('stiff_chain_starts_augmented', stiff_chain_starts_augmented), &
                  new_test('light_chain_keeps_explicit_start', light_chain_keeps_explicit_start), &
                  new_test('small_stiff_chain_starts_radau', small_stiff_chain_starts_radau), &
+                 new_test('radau_start_is_integrator_radau', radau_start_is_integrator_radau), &
                  new_test('rate_continuous_at_rest', rate_continuous_at_rest), &
                  new_test('eps_at_singular_start', eps_at_singular_start), &
                  new_test('eps_is_translation_free', eps_is_translation_free), &
@@ -483,6 +484,43 @@ contains
         type(checker), intent(inout) :: chk
         call stiff_chain_against_reference(chk, 4, 1.0e-7_wp, 1.0e-2_wp, 1.0e4_wp, 10.0_wp, 'radau from the start')
     end subroutine small_stiff_chain_starts_radau
+
+    ! The same chain and rtol on [0, 0.2]: the defaults (Radau from t0) give integrator=radau's
+    ! run bit for bit, with its statistics (the start test's Jacobian, which Radau takes as its
+    ! first, is the one it would compute; the explicit method is not set up).
+    subroutine radau_start_is_integrator_radau(chk)
+        type(checker), intent(inout) :: chk
+        integer, parameter :: links = 4, nout = 20
+        type(chain) :: p
+        type(solver_options) :: opts
+        type(regdae_solver) :: solver
+        type(solver_stats) :: st(2)
+        real(wp) :: q0(2*links), v0(2*links), q(2*links, nout, 2), y(links)
+        integer :: stat(2), run, k
+        p = new_chain(links, .false., 9.81_wp)
+        p%joint_mass = 1.0e-2_wp
+        p%stiffness = 1.0e4_wp
+        p%damping = 10.0_wp
+        call chain_start(p, q0, v0)
+        do run = 1, 2
+            opts = solver_options()
+            opts%rtol = 1.0e-7_wp
+            opts%atol = 1.0e-7_wp
+            if (run == 2) opts%integrator = integrator_radau
+            call solver%init(p, 0.0_wp, q0, v0, opts, stat(run))
+            do k = 1, nout
+                if (stat(run) /= regdae_success) exit
+                call solver%advance(0.01_wp*k, q(:, k, run), y, stat(run))
+            end do
+            st(run) = solver%statistics()
+            call solver%destroy()
+        end do
+        call chk%true(all(stat == regdae_success), 'both runs reach t = 0.2')
+        call chk%true(st(1)%switches == 1 .and. st(2)%switches == 0, 'auto: one switch, to Radau at t0')
+        call chk%true(all(q(:, :, 1) == q(:, :, 2)), 'the same positions, bit for bit')
+        call chk%true(st(1)%res_evals == st(2)%res_evals .and. st(1)%jac_evals == st(2)%jac_evals .and. &
+                      st(1)%steps == st(2)%steps, 'the same steps, evaluations of F and Jacobians')
+    end subroutine radau_start_is_integrator_radau
 
     ! The chain of `links` links (joint mass, spring stiffness, damping) with the defaults at
     ! rtol = atol = tol against formulation=augmented at 1e-11 (eps 1e-14) on [0, 0.2]: one
