@@ -276,6 +276,72 @@ module regdae_monitor
         module subroutine settle_alarm(self)
             type(solution_monitor), intent(inout) :: self
         end subroutine settle_alarm
+        ! the sampling of values (submodule regdae_monitor_sampling)
+        !> Sample the model's last evaluation, made at time t on the solution (`sample`).
+        module subroutine monitor_sample(self, t, model, z, dz, sigma_now)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t
+            type(regularized_dae), intent(inout), target :: model   !! a target: its mechanical problem is used by pointer
+            real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
+            real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
+            real(wp), intent(in), optional :: sigma_now   !! model%sigma_min_gb() just taken at this point by the
+                                                          !! caller, with no other call since (not taken again)
+        end subroutine monitor_sample
+        !> Sample given values at t (`sample_values`).
+        module subroutine monitor_sample_values(self, t, drift, sigma, invariant, invariant_stat, v, a, z)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t
+            real(wp), intent(in) :: drift           !! max |g(x, t)| (order >= 2)
+            real(wp), intent(in) :: sigma           !! sigma_min(GB)
+            real(wp), intent(in) :: invariant       !! I(x, v, t) (read when invariant_tol > 0)
+            integer, intent(in) :: invariant_stat   !! the invariant routine's stat
+            real(wp), intent(in) :: v(:), a(:)      !! the np velocities and their slopes
+            real(wp), intent(in), optional :: z(:)  !! the state (for the checkpoint before a singular pass)
+        end subroutine monitor_sample_values
+        !> Release the frozen checkpoint: (t, z) is the new one (`release_checkpoint`).
+        module subroutine monitor_release_checkpoint(self, t, z)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:)
+        end subroutine monitor_release_checkpoint
+        ! the Baumgarte weights following the motion (submodule regdae_monitor_weights)
+        !> Let the Baumgarte weights follow the motion (`follow_weights`).
+        module subroutine monitor_follow_weights(self, nx, order2, rate, ell, t0)
+            class(solution_monitor), intent(inout) :: self
+            integer, intent(in) :: nx        !! dense models: the size of x (0: the caller gathers the rate)
+            logical, intent(in) :: order2
+            real(wp), intent(in) :: rate, ell, t0   !! the rate and length at t0
+        end subroutine monitor_follow_weights
+        !> A new rate of the motion at t: true if the weights change (`new_rate`).
+        module logical function monitor_new_rate(self, t, rate) result(change)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t, rate
+        end function monitor_new_rate
+        !> Is a new look at the rate due at t (`weights_due`)?
+        module logical function monitor_weights_due(self, t) result(due)
+            class(solution_monitor), intent(in) :: self
+            real(wp), intent(in) :: t
+        end function monitor_weights_due
+        !> The weights follow the motion at a regular sample, half a time scale apart (`sample`): a new
+        !! look at the rate at (t, z), slope dz; the model's weights change with the rule's.
+        module subroutine weights_sample(self, t, model, z, dz)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t, z(:), dz(:)
+            type(regularized_dae), intent(inout), target :: model
+        end subroutine weights_sample
+        ! the resolution check (submodule regdae_monitor_resolution)
+        !> Turn the resolution check on (tol > 0) or off (`set_resolution`).
+        module subroutine monitor_set_resolution(self, tol)
+            class(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: tol    !! resolution_tol (<= 0: off)
+        end subroutine monitor_set_resolution
+        !> The resolution check at a sample (the model's last evaluation is at (t, z)):
+        !! the memory of sigma_G, and R on the approach to a layer (module doc).
+        module subroutine resolution_sample(self, t, model, row_norm_min)
+            type(solution_monitor), intent(inout) :: self
+            real(wp), intent(in) :: t
+            type(regularized_dae), intent(inout) :: model
+            real(wp), intent(in), optional :: row_norm_min   !! min_i |G(i, :)|, if the caller has it
+        end subroutine resolution_sample
     end interface
 
 contains
@@ -342,147 +408,6 @@ contains
         if (allocated(self%singular)) deallocate (self%singular)
     end subroutine monitor_reset
 
-    subroutine monitor_sample(self, t, model, z, dz, sigma_now)
-        class(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t
-        type(regularized_dae), intent(inout), target :: model   !! a target: its mechanical problem is used by pointer
-        real(wp), intent(in) :: z(:)    !! the state at t (the model's last evaluation point)
-        real(wp), intent(in) :: dz(:)   !! its slope F(z, t)
-        real(wp), intent(in), optional :: sigma_now   !! model%sigma_min_gb() just taken at this point by the
-                                                      !! caller, with no other call since (not taken again)
-        real(wp) :: drift, invariant, kinetic, power, gb, g, g_min, row, sigma, ell, rate, sigma_pred, sums(2), energy
-        integer :: stat, invariant_stat, i
-        logical :: have_g_min
-        class(mechanical_problem), pointer :: p
-        invariant = 0.0_wp
-        invariant_stat = 0
-        if (present(sigma_now)) then
-            sigma = sigma_now
-        else
-            sigma = model%sigma_min_gb()
-        end if
-        have_g_min = .false.
-        if (self%scales%eps_factor > 0.0_wp .or. self%drift_auto) then
-            gb = 0.0_wp
-            g = 0.0_wp
-            g_min = huge(1.0_wp)
-            do i = 1, model%m
-                gb = max(gb, abs(model%gb(i, i)))
-                row = norm2(model%gx(i, :))
-                g = max(g, row)
-                g_min = min(g_min, row)
-            end do
-            have_g_min = .true.
-            if (self%observe_scales(t, gb, g, maxval(abs(z(1:model%n))), sigma)) then
-                model%eps = self%scales%eps
-                self%model_changed = .true.
-            end if
-        end if
-        if (self%invariant_tol > 0.0_wp) invariant = model%invariant_value(t, z, invariant_stat)
-        drift = 0.0_wp
-        if (self%np > 0) drift = model%position_drift(t, z, stat)
-        if (self%np > 0) then
-            call self%sample_values(t, drift, sigma, invariant, invariant_stat, &
-                                    z(self%np + 1:2*self%np), dz(self%np + 1:2*self%np), z)
-        else
-            call self%sample_values(t, drift, sigma, invariant, invariant_stat, z(1:0), dz(1:0), z)
-        end if
-        ! the weights follow the motion at regular samples, half a time scale apart
-        if (self%weight_nx > 0 .and. self%weights_due(t)) then
-            call dense_motion_scales(model, t, z, dz, self%weight_nx, self%weight_order2, self%weights%ell, &
-                                     .false., ell, rate, sigma_pred, stat)
-            if (stat == 0) then
-                self%weights%ell = ell
-                if (self%new_rate(t, rate)) then
-                    if (model%order == 1) then
-                        model%w = [baumgarte_gamma(self%weights%rate)]
-                    else if (model%order == 2) then
-                        model%w = baumgarte_pair(self%weights%rate)
-                    end if
-                    self%model_changed = .true.
-                end if
-            end if
-        end if
-        if (self%work_tol > 0.0_wp) then   ! after sample_values: it knows whether t is in a layer
-            if (cached_sample(self, t, z, model)) then   ! step_energy's at this point
-                kinetic = self%cached_kinetic
-                power = self%cached_power
-                sums = self%cached_sums
-                stat = 0
-            else
-                call model%work_sample(t, z, kinetic, power, stat, sums)   ! and the energy the tolerance leaves open:
-            end if
-            self%have_cached = .false.
-            energy = self%energy_tolerance(sums, z(1:model%n), z(model%n + 1:min(size(z), 2*model%n)))
-            p => model%mechanical()   ! the problem, z = (q, v) and its slope for the refinement
-            if (associated(p)) call self%sample_work(t, kinetic, power, stat, energy, p, z(1:2*p%n), dz(1:2*p%n))
-        end if
-        if (self%resolution_tol > 0.0_wp) then   ! after sample_values too; G unchanged since the rows' norms
-            if (have_g_min) then
-                call resolution_sample(self, t, model, g_min)
-            else
-                call resolution_sample(self, t, model)
-            end if
-        end if
-    end subroutine monitor_sample
-
-    ! step_energy's sample of the work-energy balance is at (t, z) with the model's eps and weights
-    ! unchanged since (the same multiplier, T and P)
-    logical function cached_sample(self, t, z, model) result(same)
-        type(solution_monitor), intent(in) :: self
-        real(wp), intent(in) :: t, z(:)
-        type(regularized_dae), intent(in) :: model
-        same = .false.
-        if (.not. (self%have_cached .and. allocated(self%step_z) .and. allocated(self%cached_w))) return
-        if (t /= self%step_t .or. size(self%step_z) > size(z) .or. model%eps /= self%cached_eps) return
-        if (.not. allocated(model%w)) return
-        if (size(model%w) /= size(self%cached_w)) return
-        same = all(self%step_z == z(1:size(self%step_z))) .and. all(model%w == self%cached_w)
-    end function cached_sample
-
-    subroutine monitor_follow_weights(self, nx, order2, rate, ell, t0)
-        class(solution_monitor), intent(inout) :: self
-        integer, intent(in) :: nx        !! dense models: the size of x (0: the caller gathers the rate)
-        logical, intent(in) :: order2
-        real(wp), intent(in) :: rate, ell, t0   !! the rate and length at t0
-        self%weights%on = .true.
-        self%weights%rate = rate
-        self%weights%ell = ell
-        self%weights%t_next = t0
-        if (rate > 0.0_wp) self%weights%t_next = t0 + 0.5_wp/rate
-        self%weights%changes = 0
-        self%weight_nx = nx
-        self%weight_order2 = order2
-        self%weights_new = .false.
-    end subroutine monitor_follow_weights
-
-    subroutine monitor_release_checkpoint(self, t, z)
-        class(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        self%checkpoint_frozen = .false.
-        self%checkpoint_t = t
-        self%checkpoint_z = z
-        self%checkpoint_valid = .true.
-    end subroutine monitor_release_checkpoint
-
-    ! The checkpoint at a sample (t, z): frozen at the first sample of a pass (a
-    ! start inside one takes that sample), else moved to every sample on the
-    ! approach level.
-    subroutine checkpoint_sample(self, t, z)
-        type(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t, z(:)
-        if (self%checkpoint_frozen) return
-        if (self%in_singular) then
-            self%checkpoint_frozen = .true.
-            if (self%checkpoint_valid) return
-        else if (.not. (self%sigma_last >= checkpoint_factor*self%threshold) .and. self%checkpoint_valid) then
-            return
-        end if
-        self%checkpoint_t = t
-        self%checkpoint_z = z
-        self%checkpoint_valid = .true.
-    end subroutine checkpoint_sample
-
     pure real(wp) function monitor_motion_time(self) result(time)
         class(solution_monitor), intent(in) :: self
         real(wp) :: rate
@@ -490,12 +415,6 @@ contains
         time = huge(1.0_wp)
         if (rate > 0.0_wp .and. rate < huge(1.0_wp)) time = 1.0_wp/rate
     end function monitor_motion_time
-
-    logical function monitor_weights_due(self, t) result(due)
-        class(solution_monitor), intent(in) :: self
-        real(wp), intent(in) :: t
-        due = self%weights%on .and. t >= self%weights%t_next .and. .not. self%in_singular .and. .not. self%in_layer
-    end function monitor_weights_due
 
     ! The full sample is due (doc/methods.md, "The full sample where a singular interval may
     ! be near") unless the last two full samples lie above the near level, outside singular
@@ -529,229 +448,10 @@ contains
         if (self%sigma_before >= 0.0_wp) near = near_factor*max(self%threshold, self%layer_threshold)
     end function monitor_near_level
 
-    logical function monitor_new_rate(self, t, rate) result(change)
-        class(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t, rate
-        real(wp) :: before
-        before = self%weights%rate
-        change = self%weights%propose(t, rate)
-        if (.not. change) return
-        self%weights_new = .true.
-        self%weights_message = 't = '//format_real(t)//': Baumgarte weights follow the motion, rate '// &
-                               format_real(before)//' -> '//format_real(self%weights%rate)//' (gamma1 = '// &
-                               format_real(baumgarte_gamma(self%weights%rate))//')'
-    end function monitor_new_rate
-
-    ! gamma (index 2) and (gamma0, gamma1) (index 3) of the automatic rule for a rate.
-    pure real(wp) function baumgarte_gamma(rate) result(gamma)
-        real(wp), intent(in) :: rate
-        real(wp) :: g0, g1
-        call baumgarte_weights(rate, gamma, g0, g1)
-    end function baumgarte_gamma
-
-    pure function baumgarte_pair(rate) result(w)
-        real(wp), intent(in) :: rate
-        real(wp) :: w(2), gamma
-        call baumgarte_weights(rate, gamma, w(1), w(2))
-    end function baumgarte_pair
-
-    subroutine monitor_set_resolution(self, tol)
-        class(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: tol    !! resolution_tol (<= 0: off)
-        self%resolution_tol = max(0.0_wp, tol)
-    end subroutine monitor_set_resolution
-
-    ! The resolution check at a sample (the model's last evaluation is at (t, z)):
-    ! the memory of sigma_G, and R on the approach to a layer (module doc).
-    subroutine resolution_sample(self, t, model, row_norm_min)
-        type(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t
-        type(regularized_dae), intent(inout) :: model
-        real(wp), intent(in), optional :: row_norm_min   !! min_i |G(i, :)|, if the caller has it
-        real(wp) :: sigma, sigma_g, rate, ratio, disc
-        integer :: i
-        if (model%m == 0 .or. model%order > 2 .or. model%method == method_baumgarte) return
-        if (present(row_norm_min)) then
-            sigma_g = row_norm_min
-        else
-            sigma_g = huge(1.0_wp)
-            do i = 1, model%m
-                sigma_g = min(sigma_g, norm2(model%gx(i, :)))
-            end do
-        end if
-        if (.not. (sigma_g == sigma_g)) return
-        if (model%order == 1) then
-            rate = model%w(1)
-        else   ! the slower root of s^2 + gamma1 s + gamma0: its real part
-            disc = 0.25_wp*model%w(2)**2 - model%w(1)
-            rate = 0.5_wp*model%w(2) - sqrt(max(disc, 0.0_wp))
-        end if
-        if (self%memory < 0.0_wp .or. .not. (t > self%t_memory)) then
-            self%memory = max(self%memory, sigma_g)
-        else
-            self%memory = max(sigma_g, self%memory*exp(-max(rate, 0.0_wp)*(t - self%t_memory)))
-        end if
-        self%t_memory = t
-        if (.not. self%in_singular) then
-            self%layer_reached = .false.
-            self%pass_flagged = .false.
-            return
-        end if
-        sigma = self%sigma_last
-        if (model%method == method_direct) then
-            if (sigma < 100.0_wp*model%eps) self%layer_reached = .true.
-        else
-            if (sigma**2 < 100.0_wp*model%eps) self%layer_reached = .true.
-        end if
-        if (self%layer_reached .or. .not. (sigma_g > 0.0_wp)) return
-        ratio = self%memory/sigma_g
-        self%resolution_ratio = max(self%resolution_ratio, ratio)
-        if (ratio > self%resolution_tol .and. .not. self%pass_flagged) then
-            self%pass_flagged = .true.
-            self%unresolved = self%unresolved + 1
-            self%unresolved_new = .true.
-            self%unresolved_message = 'approaching the singular configuration at t = '//format_real(t)// &
-                ' (sigma_min(GB) = '//format_real(sigma)//'), the integration errors made on the approach are '// &
-                'amplified in x by about '//format_real(ratio)//' (the constraint''s conditioning fell by that '// &
-                'factor faster than the stabilization forgets; > resolution_tol = '// &
-                format_real(self%resolution_tol)//'): x near it is not converged in the tolerance; tighten rtol '// &
-                'and atol (or raise eps); resolution_tol=0 turns this warning off'
-        end if
-    end subroutine resolution_sample
-
-    subroutine monitor_sample_values(self, t, drift, sigma, invariant, invariant_stat, v, a, z)
-        class(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t
-        real(wp), intent(in) :: drift           !! max |g(x, t)| (order >= 2)
-        real(wp), intent(in) :: sigma           !! sigma_min(GB)
-        real(wp), intent(in) :: invariant       !! I(x, v, t) (read when invariant_tol > 0)
-        integer, intent(in) :: invariant_stat   !! the invariant routine's stat
-        real(wp), intent(in) :: v(:), a(:)      !! the np velocities and their slopes
-        real(wp), intent(in), optional :: z(:)  !! the state (for the checkpoint before a singular pass)
-        real(wp), allocatable :: grown(:, :)
-        real(wp) :: slope, reach
-        logical :: was_in_layer
-        if (self%invariant_tol > 0.0_wp) call invariant_sample(self, t, invariant, invariant_stat)
-        if (self%np > 0) then
-            self%drift_max = max(self%drift_max, drift)
-            if (self%drift_tol > 0.0_wp .and. drift > self%drift_tol .and. .not. self%alarm) then
-                self%alarm = .true.
-                self%alarm_kind = alarm_drift
-                self%alarm_message = 'the position constraint drifted to max |g| = '//format_real(drift)// &
-                                     ' > drift_tol = '//format_real(self%drift_tol)//' at t = '//format_real(t)
-            end if
-        end if
-        self%sigma_last = sigma
-        self%sigma_min = min(self%sigma_min, self%sigma_last)
-        if (self%relative .and. sigma == sigma) then
-            self%sigma_peak = max(self%sigma_peak, sigma)
-            ! a singular start's predicted peak holds until the scales release it
-            self%threshold = 0.05_wp*max(self%sigma_peak, self%scales%sigma_pred)
-            self%layer_threshold = max(self%threshold, 3*sqrt(self%layer_eps))
-        end if
-        if (self%sigma_last < self%threshold) then
-            if (.not. self%in_singular) then
-                if (.not. allocated(self%singular)) allocate (self%singular(2, 8))
-                if (self%n_singular == size(self%singular, 2)) then
-                    allocate (grown(2, 2*size(self%singular, 2)))
-                    grown(:, 1:self%n_singular) = self%singular
-                    call move_alloc(grown, self%singular)
-                end if
-                self%n_singular = self%n_singular + 1
-                self%singular(1, self%n_singular) = t
-            end if
-            self%singular(2, self%n_singular) = t
-            self%in_singular = .true.
-        else
-            if (self%in_singular) self%pass_ended = .true.
-            self%in_singular = .false.
-        end if
-        if (present(z)) call checkpoint_sample(self, t, z)
-        ! the secant of sigma over the last two samples: for a convex decrease (sigma_min
-        ! ~ distance^2 at a rank-one singular configuration) it reaches threshold/2 at
-        ! most halfway to the minimum, so the landing sample does not jump over it
-        self%land_by = huge(1.0_wp)
-        slope = 0.0_wp
-        if (self%sigma_before >= 0.0_wp .and. t > self%t_sigma_before .and. sigma == sigma) &
-            slope = (sigma - self%sigma_before)/(t - self%t_sigma_before)
-        if (.not. self%in_singular .and. slope < 0.0_wp) then
-            reach = (sigma - 0.5_wp*self%threshold)/(-slope)
-            ! a convex decrease (the secant slopes flatten: sigma ~ distance^2, the rank-one
-            ! singular configuration of a mechanism): the double root's Newton step, 2x the
-            ! secant's, still ends before the minimum
-            if (self%slope_before < slope .and. self%slope_before < 0.0_wp) reach = 2.0_wp*reach
-            self%land_by = t + reach
-        end if
-        self%slope_before = slope
-        if (sigma == sigma) then
-            self%sigma_before = sigma
-            self%t_sigma_before = t
-        end if
-        was_in_layer = self%in_layer
-        self%in_layer = (self%sigma_last < self%layer_threshold)
-        if (self%np > 0 .and. self%jump_tol > 0.0_wp .and. .not. self%in_layer) &
-            call regular_sample(self, t, v, a, was_in_layer)
-        call settle_alarm(self)
-    end subroutine monitor_sample_values
-
     pure logical function monitor_regularized(self) result(yes)
         class(solution_monitor), intent(in) :: self
         yes = (self%layer_eps > 0.0_wp)
     end function monitor_regularized
-
-    ! The invariant at t: the first sample sets I(t0).
-    subroutine invariant_sample(self, t, val, stat)
-        type(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t, val
-        integer, intent(in) :: stat
-        real(wp) :: change
-        if (.not. self%have_invariant) then
-            self%invariant0 = val
-            self%have_invariant = .true.
-            return
-        end if
-        change = abs(val - self%invariant0)
-        if (change == change) self%invariant_change = max(self%invariant_change, change)
-        if (stat == 0 .and. change <= self%invariant_tol) return
-        if (.not. self%alarm) then   ! too large, NaN, or the user routine failed
-            self%alarm = .true.
-            self%alarm_kind = alarm_invariant
-            if (stat /= 0) then
-                self%alarm_message = 'user routine invariant reported failure (stat = '//format_int(stat)// &
-                                     ') at t = '//format_real(t)
-            else
-                self%alarm_message = 'the invariant changed by '//format_real(change)//' > invariant_tol = '// &
-                                     format_real(self%invariant_tol)//' at t = '//format_real(t)
-            end if
-        end if
-    end subroutine invariant_sample
-
-    ! A regular sample (v, a) at t: J against the last regular sample if a
-    ! singular interval lies between them; then keep this one.
-    subroutine regular_sample(self, t, v, a, after_interval)
-        type(solution_monitor), intent(inout) :: self
-        real(wp), intent(in) :: t, v(:), a(:)
-        logical, intent(in) :: after_interval
-        real(wp) :: dt, jump, scale
-        if (after_interval .and. self%have_regular) then
-            dt = t - self%t_regular
-            scale = max(norm2(self%v_regular), norm2(v), dt*max(norm2(self%a_regular), norm2(a)))
-            jump = 0.0_wp
-            if (scale > 0.0_wp) jump = norm2(v - self%v_regular - 0.5_wp*dt*(self%a_regular + a))/scale
-            self%jump_max = max(self%jump_max, jump)
-            if (jump > self%jump_tol .and. .not. self%alarm) then
-                self%alarm = .true.
-                self%alarm_kind = alarm_jump
-                self%alarm_message = 'the velocity jumped across the singular configuration between t = '// &
-                                     format_real(self%t_regular)//' and '//format_real(t)//' (relative jump '// &
-                                     format_real(jump)//' > jump_tol = '//format_real(self%jump_tol)//')'
-            end if
-        end if
-        self%have_regular = .true.
-        self%t_regular = t
-        self%v_regular = v
-        self%a_regular = a
-    end subroutine regular_sample
 
     function monitor_intervals(self) result(intervals)
         class(solution_monitor), intent(in) :: self
