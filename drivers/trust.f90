@@ -53,7 +53,8 @@
 !! fixed grids.)
 !!
 !! Usage: trust [family=crank|chain|chain_long|fourbar|linear|all] [part=k/K] [rtol=R] [rtols=R1,R2,...]
-!!              [max_links=L] [tight_check=no] [cell=I] [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]
+!!              [max_links=L] [tight_check=no] [reference=reduced] [cell=I] [budget=S] [th1=A [w1=W]]
+!!              [seed=S] [option.KEY=VALUE ...]
 !! (option.KEY=VALUE: that solver option in every cell's run instead of its default, for diagnosing a
 !! cell; the header says which; the grids' figures are from the defaults)
 !! (th1=A, w1=W: the crank family at that start only, one cell per R, case th00; with rtol=R off
@@ -62,7 +63,9 @@
 !! (rtols=R1,R2,...: the crank, chain, chain_long and fourbar grids at these R instead of 1e-3 ...
 !! 1e-8, the cells numbered over them, e.g. `trust family=chain_long rtols=1e-9,1e-10`; max_links=L:
 !! the chain families' cells with N <= L only, their numbers unchanged; tight_check=no: a chain
-!! judged against its reduced ODE without regdae's tight run as a cross-check, for the ctest cells)
+!! judged against its reduced ODE without regdae's tight run as a cross-check, for the ctest cells;
+!! reference=reduced: the plain chain of family chain against its reduced ODE even where the peer
+!! succeeds, for measuring errors below the peer's own at 1e-11)
 !! (part=k/K: only the cells whose number I has mod(I, K) = k - 1; rtol=R: only the cells of that
 !! R; cell=I: only cell I of the family, for reproducing one; budget: the wall budget in seconds
 !! per regdae run, default 30, chains 120.)
@@ -95,7 +98,8 @@ program trust_driver
     character(len=*), parameter :: prog = 'trust'
     character(len=*), parameter :: usage = 'usage: trust [family=crank|chain|chain_long|fourbar|linear|all] '// &
                                            '[part=k/K] [rtol=R] [rtols=R1,R2,...] [max_links=L] [tight_check=no] '// &
-                                           '[cell=I] [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]'
+                                           '[reference=reduced] [cell=I] [budget=S] [th1=A [w1=W]] [seed=S] '// &
+                                           '[option.KEY=VALUE ...]'
 
     call main()
 
@@ -138,6 +142,9 @@ contains
             case ('tight_check')
                 if (value /= 'yes' .and. value /= 'no') call die_usage(prog, 'tight_check must be yes or no')
                 setup%tight_check = (value == 'yes')
+            case ('reference')
+                if (value /= 'auto' .and. value /= 'reduced') call die_usage(prog, 'reference must be auto or reduced')
+                setup%reduced_only = (value == 'reduced')
             case ('th1'); call read_number(prog, key, value, setup%start_th1)
                 if (.not. (abs(setup%start_th1) < huge(1.0_wp))) call die_usage(prog, 'th1 must be finite')
             case ('w1'); call read_number(prog, key, value, setup%start_w1)

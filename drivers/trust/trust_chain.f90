@@ -350,7 +350,7 @@ contains
         check_text = ''
         text = '# reference '//trim(merge('chain_long', 'chain     ', long))//' '// &
                trim(merge('slider', 'plain ', slider))//' N='//itext(links)//': '
-        if (.not. slider .and. .not. long) then
+        if (.not. slider .and. .not. long .and. .not. setup%reduced_only) then
             call peer_run(setup%child_tag(), links, .false., chain_ref_tol, times, q11, s11, steps, t11, m11, peer_ref_timeout)
             call peer_run(setup%child_tag(), links, .false., chain_check_tol, times, q10, s10, steps, t10, m10, peer_ref_timeout)
             text = text//'peer 1e-11 status='//itext(s11)//' ('//num(t11)//' s), 1e-10 status='//itext(s10)// &

@@ -35,6 +35,7 @@ module trust_grid
         real(wp), allocatable :: rtols(:)     !! rtols=R1,R2,...: the mechanical grids' R instead of mech_rtols
         integer :: max_links = huge(1)        !! max_links=L: the chain families' cells with N <= L only
         logical :: tight_check = .true.       !! tight_check=no: no regdae cross-check of a chain's reduced-ODE reference
+        logical :: reduced_only = .false.     !! reference=reduced: the plain chain against its reduced ODE, not the peer
     contains
         !> The tolerances R of the mechanical families' grids: rtols=..., else mech_rtols.
         procedure :: grid_rtols => setup_grid_rtols
