@@ -1568,10 +1568,10 @@ C     0.9 ... 2.7 weights; at T = 0 after it up to 8E4 (direct, 1E-8).
 C
 C     One DREGDAE call on S1, RTOL = ATOL = TOL, to TOUT.
       SUBROUTINE S1RUN(T, X, Y, TOUT, INFO, TOL, IDID, RWORK, IWORK)
-      EXTERNAL S1F, S1B, S1G, S1GX, S1GT
+      EXTERNAL S1F, S1G, S1GX, S1GT
       INTEGER INFO(20), IDID, IWORK(22), IPAR(1)
       DOUBLE PRECISION T, X(2), Y(1), TOUT, TOL, RWORK(20), RPAR(1)
-      CALL DREGDAE(S1F, S1B, S1G, S1GX, S1GT, 2, 1, T, X, Y, TOUT,
+      CALL DREGDAE(S1F, S1GX, S1G, S1GX, S1GT, 2, 1, T, X, Y, TOUT,
      *     INFO, TOL, TOL, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
       END
 C
@@ -1601,14 +1601,6 @@ C     f = A x + q, q = x*' - A x* - (1 + SIN T) E
      *     - S * SIN(T)
       END
 C
-C     B = C^T = T E
-      SUBROUTINE S1B(T, X, BX, IRES, RPAR, IPAR)
-      INTEGER IRES, IPAR(*)
-      DOUBLE PRECISION T, X(2), BX(2, 1), RPAR(*)
-      BX(1, 1) = T * COS(T)
-      BX(2, 1) = T * SIN(T)
-      END
-C
 C     g = T E . (x - x*)
       SUBROUTINE S1G(T, X, GV, IRES, RPAR, IPAR)
       INTEGER IRES, IPAR(*)
@@ -1617,6 +1609,8 @@ C     g = T E . (x - x*)
       GV(1) = T * (COS(T) * (X(1) - XS(1)) + SIN(T) * (X(2) - XS(2)))
       END
 C
+C     G_X = T E^T, and B = C^T = T E (S1RUN passes this routine as B:
+C     GM(1, 2) and BX(2, 1) have the same storage)
       SUBROUTINE S1GX(T, X, GM, IRES, RPAR, IPAR)
       INTEGER IRES, IPAR(*)
       DOUBLE PRECISION T, X(2), GM(1, 2), RPAR(*)
