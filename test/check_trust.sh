@@ -165,6 +165,17 @@ for sc in "70 16" "82 64"; do
     check "chain with sliders N = $2, rtol 1e-6, t in [0, 10]: $c" \
         "$(case $c in ok|warned|failed) echo 0 ;; *) echo 1 ;; esac)"
 done
+# issue 19 item 4, "at rtol 1e-10 the automatic drift limit stops correct runs": `chain n_links=4
+# slider=yes tf=10 rtol=1e-10` is stopped by drift_tol at t = 9.17 (max |g| 7.7e-8 against 7.07e-8);
+# with the checks off it ends with a warning and an energy change of 4.5e-4 against the reduced
+# ODE's 3.3e-10 (1.9e5 units against a bound of 1.1e3; the peer's at 1e-10 2.7e-7): not a false
+# alarm. The cell (chain_long slider N = 4 at R = 1e-10) must not be silent or a false alarm, and a
+# failure must name drift_tol
+run chain_long_drift family=chain_long rtols=1e-10 cell=10 tight_check=no
+c=$(class "$tmp/chain_long_drift.out")
+check "chain with sliders N = 4, rtol 1e-10, t in [0, 10]: $c" \
+    "$(case $c in ok|warned) echo 0 ;; failed) grep -q '^#   message: .*drift_tol' "$tmp/chain_long_drift.out"; echo $? ;;
+       *) echo 1 ;; esac)"
 # eps and the regular modes of a large chain (issue 19, item 3): `chain n_links=1024 tf=1 nout=10
 # rtol=1e-6` resolved eps = 4e-12 against sigma_min(GB)^2 = 5.5e-12 and changed the energy (which
 # the exact motion conserves: no reference needed) by 0.33; the integration's own energy error at
