@@ -52,13 +52,20 @@
 !! rules on starts they were not chosen on, e.g. `trust family=fourbar seed=2026`; no seed: the
 !! fixed grids.)
 !!
-!! Usage: trust [family=crank|chain|chain_long|fourbar|linear|all] [part=k/K] [rtol=R] [cell=I]
-!!              [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]
+!! Usage: trust [family=crank|chain|chain_long|fourbar|linear|all] [part=k/K] [rtol=R] [rtols=R1,R2,...]
+!!              [max_links=L] [tight_check=no] [reference=reduced] [cell=I] [budget=S] [th1=A [w1=W]]
+!!              [seed=S] [option.KEY=VALUE ...]
 !! (option.KEY=VALUE: that solver option in every cell's run instead of its default, for diagnosing a
 !! cell; the header says which; the grids' figures are from the defaults)
 !! (th1=A, w1=W: the crank family at that start only, one cell per R, case th00; with rtol=R off
 !! the grid's R, e.g. 1e-10, the one cell at that R; A outside [0, pi], e.g. A + 2 pi k, runs
 !! another representative of the same physical start)
+!! (rtols=R1,R2,...: the crank, chain, chain_long and fourbar grids at these R instead of 1e-3 ...
+!! 1e-8, the cells numbered over them, e.g. `trust family=chain_long rtols=1e-9,1e-10`; max_links=L:
+!! the chain families' cells with N <= L only, their numbers unchanged; tight_check=no: a chain
+!! judged against its reduced ODE without regdae's tight run as a cross-check, for the ctest cells;
+!! reference=reduced: the plain chain of family chain against its reduced ODE even where the peer
+!! succeeds, for measuring errors below the peer's own at 1e-11)
 !! (part=k/K: only the cells whose number I has mod(I, K) = k - 1; rtol=R: only the cells of that
 !! R; cell=I: only cell I of the family, for reproducing one; budget: the wall budget in seconds
 !! per regdae run, default 30, chains 120.)
@@ -90,7 +97,9 @@ program trust_driver
 
     character(len=*), parameter :: prog = 'trust'
     character(len=*), parameter :: usage = 'usage: trust [family=crank|chain|chain_long|fourbar|linear|all] '// &
-                                           '[part=k/K] [rtol=R] [cell=I] [budget=S] [th1=A [w1=W]] [seed=S] [option.KEY=VALUE ...]'
+                                           '[part=k/K] [rtol=R] [rtols=R1,R2,...] [max_links=L] [tight_check=no] '// &
+                                           '[reference=reduced] [cell=I] [budget=S] [th1=A [w1=W]] [seed=S] '// &
+                                           '[option.KEY=VALUE ...]'
 
     call main()
 
@@ -128,6 +137,14 @@ contains
             case ('rtol'); call read_number(prog, key, value, setup%filter%rtol)
                 if (.not. (setup%filter%rtol > 0.0_wp)) call die_usage(prog, 'rtol must be > 0')
             case ('cell'); call read_count(prog, key, value, setup%filter%cell, 1, 1000000)
+            case ('rtols'); call read_rtols(value, setup%rtols)
+            case ('max_links'); call read_count(prog, key, value, setup%max_links, 2, 1000000)
+            case ('tight_check')
+                if (value /= 'yes' .and. value /= 'no') call die_usage(prog, 'tight_check must be yes or no')
+                setup%tight_check = (value == 'yes')
+            case ('reference')
+                if (value /= 'auto' .and. value /= 'reduced') call die_usage(prog, 'reference must be auto or reduced')
+                setup%reduced_only = (value == 'reduced')
             case ('th1'); call read_number(prog, key, value, setup%start_th1)
                 if (.not. (abs(setup%start_th1) < huge(1.0_wp))) call die_usage(prog, 'th1 must be finite')
             case ('w1'); call read_number(prog, key, value, setup%start_w1)
@@ -156,6 +173,28 @@ contains
         if (family == 'all' .or. family == 'fourbar') call fourbar_family(setup)
         if (family == 'all' .or. family == 'linear') call linear_family(setup)
     end subroutine main
+
+    ! rtols=R1,R2,...: the mechanical grids' tolerances, each in (0, 1).
+    subroutine read_rtols(value, rtols)
+        character(len=*), intent(in) :: value
+        real(wp), allocatable, intent(out) :: rtols(:)
+        integer :: start, comma
+        real(wp) :: r
+        allocate (rtols(0))
+        start = 1
+        do
+            comma = index(value(start:), ',')
+            if (comma == 0) then
+                call read_number(prog, 'rtols', value(start:), r)
+            else
+                call read_number(prog, 'rtols', value(start:start + comma - 2), r)
+            end if
+            if (.not. (r > 0.0_wp .and. r < 1.0_wp)) call die_usage(prog, 'each of rtols must be in (0, 1)')
+            rtols = [rtols, r]
+            if (comma == 0) exit
+            start = start + comma
+        end do
+    end subroutine read_rtols
 
     ! seed=S: a positive integer.
     subroutine read_seed(value, seed)

@@ -13,7 +13,7 @@ module trust_chain
     use trust_support, only: tally, weighted_error, verdict, cell_class, stopped_by_check, checks_off, write_row, &
                              write_note, class_no_reference
     use driver_support, only: num
-    use trust_grid, only: trust_setup, pi, mech_rtols, chain_gravity, ref_tol, ref_check_tol
+    use trust_grid, only: trust_setup, pi, chain_gravity, ref_tol, ref_check_tol
     use trust_text, only: itext, etext
     use trust_runs, only: run_record, run_mechanical
     use trust_judge, only: judge_and_print, notes
@@ -45,7 +45,7 @@ contains
         logical, intent(in) :: long
         type(tally) :: counts
         type(chain_reference) :: cached
-        real(wp), allocatable :: times(:)
+        real(wp), allocatable :: times(:), rtols(:)
         integer :: iv, in, ir, cell, nsizes, links
         logical :: slider
         character(len=:), allocatable :: name
@@ -87,19 +87,21 @@ contains
                 'peer_status (the reference method''s status: the peer''s 0 or IDA''s flag, Dormand-Prince''s '// &
                 'ok/diverged/timeout/failed; its err_ref over the outputs it reached)'
         end if
+        rtols = setup%grid_rtols()
         cell = 0
         do iv = 1, 2
             slider = (iv == 2)
             do in = 1, nsizes
                 links = 2**in
-                do ir = 1, size(mech_rtols)
+                if (links > setup%max_links) cycle
+                do ir = 1, size(rtols)
                     cell = cell + 1
-                    if (.not. setup%filter%selected(cell, mech_rtols(ir))) cycle
+                    if (.not. setup%filter%selected(cell, rtols(ir))) cycle
                     call ensure_reference(setup, cached, slider, links, times, long)
                     if (long) then
-                        call chain_long_cell(setup, cached, counts, cell, slider, links, mech_rtols(ir), times)
+                        call chain_long_cell(setup, cached, counts, cell, slider, links, rtols(ir), times)
                     else
-                        call chain_cell(setup, cached, counts, cell, slider, links, mech_rtols(ir), times)
+                        call chain_cell(setup, cached, counts, cell, slider, links, rtols(ir), times)
                     end if
                 end do
             end do
@@ -348,7 +350,7 @@ contains
         check_text = ''
         text = '# reference '//trim(merge('chain_long', 'chain     ', long))//' '// &
                trim(merge('slider', 'plain ', slider))//' N='//itext(links)//': '
-        if (.not. slider .and. .not. long) then
+        if (.not. slider .and. .not. long .and. .not. setup%reduced_only) then
             call peer_run(setup%child_tag(), links, .false., chain_ref_tol, times, q11, s11, steps, t11, m11, peer_ref_timeout)
             call peer_run(setup%child_tag(), links, .false., chain_check_tol, times, q10, s10, steps, t10, m10, peer_ref_timeout)
             text = text//'peer 1e-11 status='//itext(s11)//' ('//num(t11)//' s), 1e-10 status='//itext(s10)// &
@@ -368,7 +370,7 @@ contains
         end if
         if (cached%source == 'none') then
             call regdae_reference(cached, slider, links, times, text, tight)
-        else if (cached%source == 'reduced') then
+        else if (cached%source == 'reduced' .and. setup%tight_check) then
             call regdae_run(slider, links, times, chain_ref_tol, chain_ref_eps, tight)
             check_text = ' vs regdae 1e-11 (status='//itext(tight%stat)//' at t = '//num(tight%st%t)//', '// &
                          itext(int(tight%st%steps))//' steps)'

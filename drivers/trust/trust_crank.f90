@@ -8,7 +8,7 @@ module trust_crank
     use xorshift_random, only: xorshift64, new_xorshift64
     use trust_support, only: tally, weighted_error, stopped_by_check, checks_off, write_note
     use driver_support, only: num, sort_ascending
-    use trust_grid, only: trust_setup, pi, mech_rtols, crank_gravity, ref_tol, ref_check_tol
+    use trust_grid, only: trust_setup, pi, crank_gravity, ref_tol, ref_check_tol
     use trust_text, only: itext, etext, list_text
     use trust_runs, only: run_record, run_mechanical
     use trust_judge, only: judge_and_print, split_at_last_warning, fold_crossings, no_reference
@@ -27,8 +27,10 @@ contains
                                              0.5_wp, 1.0_wp, 2.0_wp, 5.0_wp, 10.0_wp, 20.0_wp]
         type(tally) :: counts
         real(wp) :: angles(25), times(200)
+        real(wp), allocatable :: rtols(:)
         integer :: i, ir, j, cell
         angles = crank_angles(setup)
+        rtols = setup%grid_rtols()
         times = output_times(10.0_wp, 200)
         write (*, '(a)') '# family=crank: the slider crank (Example 5.2, g = 9.8, index 3), p1 = th1, p2 = w1, '// &
             'th2 = pi - th1, w2 = -w1; tf = 10, 200 outputs; case thNN = the index of th1 (ascending)'
@@ -40,27 +42,27 @@ contains
             'refm = the reference method: ok, diverged (err_ref over the outputs before a NaN/Inf), timeout '// &
             '(no result in '//itext(oracle_timeout)//' s: err_ref = 0), failed'
         cell = 0
-        if (setup%start_th1 >= 0.0_wp .and. setup%filter%rtol > 0.0_wp .and. all(mech_rtols /= setup%filter%rtol)) then
+        if (setup%start_th1 >= 0.0_wp .and. setup%filter%rtol > 0.0_wp .and. all(rtols /= setup%filter%rtol)) then
             ! one start at an R off the grid's (e.g. 1e-10): one cell
             call crank_cell(setup, counts, 1, 0, setup%start_th1, setup%start_w1, setup%filter%rtol, times)
             write (*, '(a)') counts%summary('crank')
             return
         end if
         if (setup%start_th1 >= 0.0_wp) then   ! one start of the caller's (the reproducers of issue 19)
-            do ir = 1, size(mech_rtols)
+            do ir = 1, size(rtols)
                 cell = cell + 1
-                if (.not. setup%filter%selected(cell, mech_rtols(ir))) cycle
-                call crank_cell(setup, counts, cell, 0, setup%start_th1, setup%start_w1, mech_rtols(ir), times)
+                if (.not. setup%filter%selected(cell, rtols(ir))) cycle
+                call crank_cell(setup, counts, cell, 0, setup%start_th1, setup%start_w1, rtols(ir), times)
             end do
             write (*, '(a)') counts%summary('crank')
             return
         end if
         do i = 1, size(angles)
-            do ir = 1, size(mech_rtols)
+            do ir = 1, size(rtols)
                 do j = 1, size(speeds)
                     cell = cell + 1
-                    if (.not. setup%filter%selected(cell, mech_rtols(ir))) cycle
-                    call crank_cell(setup, counts, cell, i, angles(i), speeds(j), mech_rtols(ir), times)
+                    if (.not. setup%filter%selected(cell, rtols(ir))) cycle
+                    call crank_cell(setup, counts, cell, i, angles(i), speeds(j), rtols(ir), times)
                 end do
             end do
         end do

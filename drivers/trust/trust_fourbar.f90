@@ -8,7 +8,7 @@ module trust_fourbar
     use xorshift_random, only: xorshift64, new_xorshift64
     use trust_support, only: tally, weighted_error, stopped_by_check, checks_off, write_note
     use driver_support, only: num
-    use trust_grid, only: trust_setup, pi, mech_rtols, fourbar_r, fourbar_l, fourbar_g, ref_tol, ref_check_tol, &
+    use trust_grid, only: trust_setup, pi, fourbar_r, fourbar_l, fourbar_g, ref_tol, ref_check_tol, &
                           signed_log_uniform
     use trust_text, only: itext, etext, list_text
     use trust_runs, only: run_record, run_mechanical
@@ -26,6 +26,7 @@ contains
         type(trust_setup), intent(in) :: setup   !! the run's settings
         type(tally) :: counts
         real(wp) :: th(9), w(9), times(200)
+        real(wp), allocatable :: rtols(:)
         character(len=10) :: labels(9)
         integer :: i, ir, ix, cell
         integer, parameter :: indices(2) = [3, 2]
@@ -48,14 +49,15 @@ contains
             write (*, '(a)') '#   th1 values: '//list_text(th, exact=.true.)
             write (*, '(a)') '#   w1 values: '//list_text(w, exact=.true.)
         end if
+        rtols = setup%grid_rtols()
         cell = 0
         do ix = 1, size(indices)
-            do ir = 1, size(mech_rtols)
+            do ir = 1, size(rtols)
                 do i = 1, size(th)
                     cell = cell + 1
-                    if (.not. setup%filter%selected(cell, mech_rtols(ir))) cycle
+                    if (.not. setup%filter%selected(cell, rtols(ir))) cycle
                     call fourbar_cell(setup, counts, cell, trim(labels(i))//'/i'//itext(indices(ix)), th(i), w(i), &
-                                      indices(ix), mech_rtols(ir), times)
+                                      indices(ix), rtols(ir), times)
                 end do
             end do
         end do

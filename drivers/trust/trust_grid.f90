@@ -32,7 +32,13 @@ module trust_grid
         real(wp) :: start_w1 = 0.0_wp         !! w1=W: with th1=A
         integer(int64) :: grid_seed = 0_int64 !! seed=S: the crank, fourbar, linear grids from seed S (0: the fixed grids)
         type(solver_options) :: overrides     !! the defaults with the option.KEY=VALUE arguments applied
+        real(wp), allocatable :: rtols(:)     !! rtols=R1,R2,...: the mechanical grids' R instead of mech_rtols
+        integer :: max_links = huge(1)        !! max_links=L: the chain families' cells with N <= L only
+        logical :: tight_check = .true.       !! tight_check=no: no regdae cross-check of a chain's reduced-ODE reference
+        logical :: reduced_only = .false.     !! reference=reduced: the plain chain against its reduced ODE, not the peer
     contains
+        !> The tolerances R of the mechanical families' grids: rtols=..., else mech_rtols.
+        procedure :: grid_rtols => setup_grid_rtols
         !> The wall budget (s) of one regdae run: budget=S, else the family's default.
         procedure :: run_budget => setup_run_budget
         !> The options of a cell at rtol = atol = R.
@@ -51,6 +57,17 @@ contains
         real(wp), intent(in) :: default
         seconds = merge(setup%budget, default, setup%budget > 0.0_wp)
     end function setup_run_budget
+
+    !> The mechanical grids' tolerances: rtols=R1,R2,... (cells numbered over these), else mech_rtols.
+    function setup_grid_rtols(setup) result(rtols)
+        class(trust_setup), intent(in) :: setup
+        real(wp), allocatable :: rtols(:)
+        if (allocated(setup%rtols)) then
+            rtols = setup%rtols
+        else
+            rtols = mech_rtols
+        end if
+    end function setup_grid_rtols
 
     !> The options of a cell: the defaults (with the option.KEY=VALUE arguments) but rtol = atol = R.
     function setup_cell_options(setup, rtol) result(opts)

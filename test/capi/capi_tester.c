@@ -22,6 +22,9 @@
  *              user_data passed through, bad input
  *   threads    two handles in two POSIX threads at once, each on the same problems,
  *              give what one handle gives run serially, bit for bit
+ *   estimate   the error estimate (option error_estimate, regdae_error_estimate and the
+ *              error_estimate statistic) on the circle x = (cos t, sin t) against the true
+ *              error: within a factor 10 of it at the outputs (issue 19)
  */
 #include <math.h>
 #include <pthread.h>
@@ -765,6 +768,57 @@ static void warnings(void)
     regdae_destroy(&s);
 }
 
+/* ---- estimate ------------------------------------------------------------------------ */
+
+/* The circle of `problems` (first order) at rtol = atol = 1e-6 with error_estimate=yes, 10
+   outputs in [0, 5]: e = regdae_error_estimate's x_companion - x, est its norm in error
+   weights max_i |e_i| / (rtol |x_i| + atol), true the same norm of x - (cos t, sin t). At each
+   output est is within a factor 10 of true, and the statistic error_estimate is est; without
+   the option there is no estimate (REGDAE_ERR_BAD_INPUT, e NaN, the statistic -1). */
+static void estimate(void)
+{
+    const double x0[2] = {1.0, 0.0}, tol = 1e-6;
+    double x[2], y[1], e[2], t, w, est, truth, ratio_min = INFINITY, ratio_max = 0.0;
+    regdae_stats st;
+    int k, i, status, stat_ok = 1, outputs = 0;
+    regdae_solver *s = circle_solver(NULL);
+    regdae_set_rtol(s, tol);
+    regdae_set_atol(s, tol);
+    CHECK(regdae_set_option(s, "error_estimate", "yes") == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
+    for (k = 1; k <= 10; k++) {
+        t = 0.5 * k;
+        status = regdae_advance(s, t, x, 2, y, 1, NULL, 0);
+        if (status != REGDAE_SUCCESS || regdae_error_estimate(s, e, 2) != REGDAE_SUCCESS) {
+            printf("  t = %g: status %d: %s\n", t, status, regdae_message(s));
+            break;
+        }
+        est = 0.0;
+        truth = 0.0;
+        for (i = 0; i < 2; i++) {
+            w = tol * fabs(x[i]) + tol;
+            est = fmax(est, fabs(e[i]) / w);
+            truth = fmax(truth, fabs(x[i] - (i == 0 ? cos(t) : sin(t))) / w);
+        }
+        regdae_get_statistics(s, &st);
+        stat_ok = stat_ok && fabs(st.error_estimate - est) <= 1e-6 * est;
+        ratio_min = fmin(ratio_min, est / truth);
+        ratio_max = fmax(ratio_max, est / truth);
+        outputs++;
+    }
+    printf("  estimate/true error over %d outputs: %.3g ... %.3g\n", outputs, ratio_min, ratio_max);
+    CHECK(outputs == 10);
+    CHECK(stat_ok);
+    CHECK(ratio_min >= 0.1 && ratio_max <= 10.0);
+    /* off: no estimate */
+    CHECK(regdae_set_option(s, "error_estimate", "no") == REGDAE_SUCCESS);
+    CHECK(regdae_init(s, 0.0, x0, 2, NULL, 0) == REGDAE_SUCCESS);
+    CHECK(regdae_advance(s, 1.0, x, 2, y, 1, NULL, 0) == REGDAE_SUCCESS);
+    CHECK(regdae_error_estimate(s, e, 2) == REGDAE_ERR_BAD_INPUT && isnan(e[0]) && isnan(e[1]));
+    CHECK(regdae_get_statistics(s, &st) == REGDAE_SUCCESS && st.error_estimate == -1.0);
+    regdae_destroy(&s);
+}
+
 /* ---- version and status texts -------------------------------------------------------- */
 
 static void version(void)
@@ -961,7 +1015,8 @@ int main(int argc, char **argv)
         void (*run)(void);
     } suites[] = {{"bad_input", bad_input}, {"problems", problems}, {"handles", handles},
                   {"callbacks", callbacks}, {"options", options}, {"atol_vector", atol_vector},
-                  {"warnings", warnings}, {"version", version}, {"events", events}, {"threads", threads}};
+                  {"warnings", warnings}, {"version", version}, {"events", events}, {"threads", threads},
+                  {"estimate", estimate}};
     const int n_suites = (int)(sizeof suites / sizeof suites[0]);
     int i, ran = 0;
     for (i = 0; i < n_suites; i++) {
@@ -972,7 +1027,7 @@ int main(int argc, char **argv)
     }
     if (ran == 0) {
         printf("capi_tester: unknown suite \"%s\" (bad_input, problems, handles, callbacks, options, atol_vector, "
-               "warnings, version, events, threads)\n",
+               "warnings, version, events, threads, estimate)\n",
                argv[1]);
         return 2;
     }

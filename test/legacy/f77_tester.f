@@ -51,6 +51,14 @@ C               components go negative and the run blows up; with it
 C               every step end (INFO(3) = 1) is >= 0 and the end state
 C               is the reference's to 10 ATOL; INFO(19) = 2 and a
 C               negative X at the start are refused with IDID = -33
+C     LINEAR    theory_problems' S1 (GB = T**2, singular at T = 0)
+C               with its exact solution, trust_region and direct at
+C               RTOL 1E-4, 1E-6, 1E-8: every output through T = 0
+C               within 10 error weights, or IDID 4 or 6 (a warning)
+C               with DREGDAEMSG's reason before it (issue 19)
+C     ESTIMATE  RWORK(16) = 1: RWORK(17), the error estimate, within
+C               a factor 10 of the true error on the circle at every
+C               output; -1 without the option
 C     RESTART   INFO(1) = 0 again on the same IWORK without DREGDAEFREE
 C               (after a success, a refused start, an inconsistent x0)
 C               gives a fresh run, bit for bit, and frees the old solver
@@ -77,11 +85,13 @@ C               corrupted for a call and restored
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'STEPS') CALL STEPS(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'JAC') CALL JACSUI(NCHK)
       IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'NONNEG') CALL NONNEG(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'LINEAR') CALL LINEAR(NCHK)
+      IF (SUITE .EQ. ' ' .OR. SUITE .EQ. 'ESTIMATE') CALL ESTIM(NCHK)
       IF (NCHK(1) + NCHK(2) .EQ. 0) THEN
          WRITE (*, '(3A)') 'F77_TESTER: UNKNOWN SUITE "',
      *        SUITE(1:LEN_TRIM(SUITE)),
      *        '" (BADINPUT, TWO, MECH, IRES, VECTOR, WARN, RESTART, ',
-     *        'MAXORD, ROOTS, STEPS, JAC, NONNEG)'
+     *        'MAXORD, ROOTS, STEPS, JAC, NONNEG, LINEAR, ESTIMATE)'
          STOP 2
       END IF
       WRITE (*, '(I0, A, I0, A)') NCHK(1), ' PASSED, ', NCHK(2),
@@ -1480,4 +1490,196 @@ C     RT of JROOTS: X1
       INTEGER N, NRT, IPAR(*)
       DOUBLE PRECISION T, X(N), V(N), RVAL(NRT), RPAR(*)
       RVAL(1) = X(1)
+      END
+C
+C     ---- LINEAR ------------------------------------------------------
+C     DREGDAE on theory_problems' S1 (drivers/problems): x' = A x + q
+C     + B y, 0 = C x + r, C = T E^T with E = (COS T, SIN T), B = C^T
+C     (GB = T**2: singular at T = 0), A = [-1/2, 1; -1, -1/2],
+C     x* = (1 + SIN(T)/2, COS 2T), q and r from x* (q = x*' - A x* -
+C     S E, S = 1 + SIN T; r = -C x*), from T = -1 through T = 0 in
+C     steps of 0.01 to T = 0.2 (T = 0 an output), methods
+C     trust_region (INFO(16) = 2) and direct (3), RTOL = ATOL = 1E-4,
+C     1E-6, 1E-8. Issue 19: the direct method at 1E-8 returned X far
+C     off at T = 0 with IDID = 3. Each output within the bound
+C     (|X_I - X*_I| / (RTOL |X*_I| + ATOL) <= 10, the trust driver's
+C     for this family) or a warning (IDID 4 or 6) with DREGDAEMSG
+C     saying why (a singular pass not resolved), at this output or
+C     before it. Measured: the largest error before the first warning
+C     0.9 ... 2.7 weights; at T = 0 after it up to 8E4 (direct, 1E-8).
+      SUBROUTINE LINEAR(NCHK)
+      INTEGER NCHK(2), INFO(20), IWORK(22), IDID, K, IM, IR, NWARN,
+     *     NBAD, METH(2)
+      DOUBLE PRECISION RWORK(20), T, X(2), Y(1), TOUT, RT(3), ERR,
+     *     WORST, XS(2), WBEF, TWARN
+      CHARACTER*300 MSG
+      CHARACTER*60 WHAT
+      DATA METH /2, 3/
+      DATA RT /1.0D-4, 1.0D-6, 1.0D-8/
+      DO 30 IM = 1, 2
+         DO 20 IR = 1, 3
+            CALL CLEAR(INFO, RWORK, IWORK)
+            INFO(16) = METH(IM)
+            INFO(17) = 1
+            T = -1.0D0
+            CALL S1X(T, X)
+            NWARN = 0
+            NBAD = 0
+            WORST = 0.0D0
+            WBEF = 0.0D0
+            TWARN = 9.0D0
+            DO 10 K = 1, 120
+               TOUT = -1.0D0 + 0.01D0 * K
+               IF (K .EQ. 100) TOUT = 0.0D0
+               CALL S1RUN(T, X, Y, TOUT, INFO, RT(IR), IDID, RWORK,
+     *              IWORK)
+               IF (IDID .LT. 0) GO TO 15
+               IF (IDID .EQ. 4 .OR. IDID .EQ. 6) THEN
+                  CALL DREGDAEMSG(IWORK, 22, MSG)
+                  IF (INDEX(MSG, 'singular') .GT. 0) THEN
+                     NWARN = NWARN + 1
+                     IF (NWARN .EQ. 1) TWARN = T
+                  END IF
+               END IF
+               CALL S1X(T, XS)
+               ERR = MAX(ABS(X(1) - XS(1)) / (RT(IR) * ABS(XS(1))
+     *              + RT(IR)), ABS(X(2) - XS(2)) / (RT(IR)
+     *              * ABS(XS(2)) + RT(IR)))
+               WORST = MAX(WORST, ERR)
+               IF (NWARN .EQ. 0) WBEF = MAX(WBEF, ERR)
+               IF (ERR .GT. 10.0D0 .AND. NWARN .EQ. 0) NBAD = NBAD + 1
+   10       CONTINUE
+   15       WRITE (*, '(A, I2, A, 1P, E8.1, A, I4, A, E9.2, A, I3, A,
+     *           E9.2, A, E9.2)') '    S1 INFO(16) =', METH(IM),
+     *           ' RTOL', RT(IR), ' IDID', IDID, ' max err', WORST,
+     *           ' warnings', NWARN, ' the first at T =', TWARN,
+     *           ', max err before it', WBEF
+            WRITE (WHAT, '(A, I1, A, 1P, E8.1)') 'S1 INFO(16) = ',
+     *           METH(IM), ', RTOL ', RT(IR)
+            CALL CHECK(IDID .GT. 0 .AND. ABS(T - 0.2D0) .LT. 1.0D-12,
+     *           WHAT(1:33)//
+     *           ': on to T = 0.2', NCHK)
+            CALL CHECK(NBAD .EQ. 0, WHAT(1:33)//': within 10 or '//
+     *           'a warning before', NCHK)
+            CALL DREGDAEFREE(IWORK, 22)
+   20    CONTINUE
+   30 CONTINUE
+      END
+C
+C     One DREGDAE call on S1, RTOL = ATOL = TOL, to TOUT.
+      SUBROUTINE S1RUN(T, X, Y, TOUT, INFO, TOL, IDID, RWORK, IWORK)
+      EXTERNAL S1F, S1G, S1GX, S1GT
+      INTEGER INFO(20), IDID, IWORK(22), IPAR(1)
+      DOUBLE PRECISION T, X(2), Y(1), TOUT, TOL, RWORK(20), RPAR(1)
+      CALL DREGDAE(S1F, S1GX, S1G, S1GX, S1GT, 2, 1, T, X, Y, TOUT,
+     *     INFO, TOL, TOL, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
+      END
+C
+C     x*(T) and x*'(T) of S1.
+      SUBROUTINE S1X(T, XS)
+      DOUBLE PRECISION T, XS(2)
+      XS(1) = 1.0D0 + 0.5D0 * SIN(T)
+      XS(2) = COS(2.0D0 * T)
+      END
+C
+      SUBROUTINE S1XD(T, XD)
+      DOUBLE PRECISION T, XD(2)
+      XD(1) = 0.5D0 * COS(T)
+      XD(2) = -2.0D0 * SIN(2.0D0 * T)
+      END
+C
+C     f = A x + q, q = x*' - A x* - (1 + SIN T) E
+      SUBROUTINE S1F(T, X, FX, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(2), FX(2), RPAR(*), XS(2), XD(2), S
+      CALL S1X(T, XS)
+      CALL S1XD(T, XD)
+      S = 1.0D0 + SIN(T)
+      FX(1) = -0.5D0 * (X(1) - XS(1)) + (X(2) - XS(2)) + XD(1)
+     *     - S * COS(T)
+      FX(2) = -(X(1) - XS(1)) - 0.5D0 * (X(2) - XS(2)) + XD(2)
+     *     - S * SIN(T)
+      END
+C
+C     g = T E . (x - x*)
+      SUBROUTINE S1G(T, X, GV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(2), GV(1), RPAR(*), XS(2)
+      CALL S1X(T, XS)
+      GV(1) = T * (COS(T) * (X(1) - XS(1)) + SIN(T) * (X(2) - XS(2)))
+      END
+C
+C     G_X = T E^T, and B = C^T = T E (S1RUN passes this routine as B:
+C     GM(1, 2) and BX(2, 1) have the same storage)
+      SUBROUTINE S1GX(T, X, GM, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(2), GM(1, 2), RPAR(*)
+      GM(1, 1) = T * COS(T)
+      GM(1, 2) = T * SIN(T)
+      END
+C
+C     g_t = (E + T E') . (x - x*) - T E . x*'
+      SUBROUTINE S1GT(T, X, GTV, IRES, RPAR, IPAR)
+      INTEGER IRES, IPAR(*)
+      DOUBLE PRECISION T, X(2), GTV(1), RPAR(*), XS(2), XD(2)
+      CALL S1X(T, XS)
+      CALL S1XD(T, XD)
+      GTV(1) = (COS(T) - T * SIN(T)) * (X(1) - XS(1))
+     *     + (SIN(T) + T * COS(T)) * (X(2) - XS(2))
+     *     - T * (COS(T) * XD(1) + SIN(T) * XD(2))
+      END
+C
+C     ---- ESTIMATE ----------------------------------------------------
+C     RWORK(16) = 1 (error_estimate=yes) on the circle (DREGDAE, CF,
+C     CB, CG, CGX: x = (COS T, SIN T)), RTOL = ATOL = 1E-6, to T = 0.5,
+C     1, ..., 5: RWORK(17), the estimated error of X in error weights,
+C     within a factor 10 of the true one, max_I |X_I - x*_I| / (RTOL
+C     |X_I| + ATOL), at every output; without RWORK(16) = 1, -1.
+      SUBROUTINE ESTIM(NCHK)
+      INTEGER NCHK(2), INFO(20), IWORK(22), IDID, K, IPAR(2), NOK
+      DOUBLE PRECISION RWORK(20), T, X(2), Y(1), TOUT, TOL, TRUE,
+     *     RATIO, RMIN, RMAX, RPAR(2)
+      TOL = 1.0D-6
+      CALL CLEAR(INFO, RWORK, IWORK)
+      RWORK(16) = 1.0D0
+      CALL CIRCLE0(T, X, IPAR)
+      NOK = 0
+      RMIN = 1.0D30
+      RMAX = 0.0D0
+      DO 10 K = 1, 10
+         TOUT = 0.5D0 * K
+         CALL ECALL(T, X, Y, TOUT, INFO, TOL, IDID, RWORK, IWORK,
+     *        RPAR, IPAR)
+         IF (IDID .LT. 0) GO TO 20
+         TRUE = MAX(ABS(X(1) - COS(T)) / (TOL * ABS(X(1)) + TOL),
+     *        ABS(X(2) - SIN(T)) / (TOL * ABS(X(2)) + TOL))
+         RATIO = RWORK(17) / TRUE
+         RMIN = MIN(RMIN, RATIO)
+         RMAX = MAX(RMAX, RATIO)
+         IF (IDID .EQ. 3 .AND. RATIO .GE. 0.1D0 .AND. RATIO .LE. 10.0D0)
+     *        NOK = NOK + 1
+   10 CONTINUE
+   20 WRITE (*, '(A, I3, A, 1P, E10.3, A, E10.3)') '    outputs', NOK,
+     *     ' of 10 within 10x; RWORK(17)/true error', RMIN, ' ...', RMAX
+      CALL CHECK(NOK .EQ. 10, 'RWORK(17) within 10x of the true '//
+     *     'error at every output', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+C     off: RWORK(17) = -1
+      CALL CLEAR(INFO, RWORK, IWORK)
+      CALL CIRCLE0(T, X, IPAR)
+      CALL ECALL(T, X, Y, 1.0D0, INFO, TOL, IDID, RWORK, IWORK,
+     *     RPAR, IPAR)
+      CALL CHECK(IDID .EQ. 3 .AND. RWORK(17) .EQ. -1.0D0,
+     *     'RWORK(16) = 0: RWORK(17) = -1', NCHK)
+      CALL DREGDAEFREE(IWORK, 22)
+      END
+C
+C     One DREGDAE call on the circle, RTOL = ATOL = TOL, to TOUT.
+      SUBROUTINE ECALL(T, X, Y, TOUT, INFO, TOL, IDID, RWORK, IWORK,
+     *     RPAR, IPAR)
+      EXTERNAL CF, CB, CG, CGX
+      INTEGER INFO(20), IDID, IWORK(22), IPAR(2)
+      DOUBLE PRECISION T, X(2), Y(1), TOUT, TOL, RWORK(20), RPAR(2)
+      CALL DREGDAE(CF, CB, CG, CGX, CGX, 2, 1, T, X, Y, TOUT, INFO,
+     *     TOL, TOL, IDID, RWORK, 20, IWORK, 22, RPAR, IPAR)
       END
