@@ -185,5 +185,23 @@ set xtics ($xtics) rotate by 60 right
 set ylabel '-log10(R)'
 plot '$out/$fam.dat' using 1:2:3 with image notitle
 EOF
-    echo "wrote $out/${fam}_class.png"
+    # FAMILY_err.dat: the same cells' log10(err/bound) in [-3, 6] (NaN, no colour, where a cell has no
+    # error or no bound: refused, no reference)
+    awk '$1 ~ /^[0-9]+$/ { key = $3 " " $4; if (!(key in col)) col[key] = ++n
+            if ($9 < 0 || $11 <= 0) e = "NaN"
+            else { e = ($9 > 0) ? log($9 / $11) / log(10) : -3; if (e < -3) e = -3; if (e > 6) e = 6 }
+            printf "%d %d %s\n", col[key], -log($6) / log(10) + 0.5, e }' "$out/$fam.txt" |
+        sort -n -k1,1 -k2,2 > "$out/${fam}_err.dat"
+    gnuplot <<EOF
+set terminal pngcairo size 1400,600 font ',9'
+set output '$out/${fam}_err.png'
+set palette defined (-3 '#1a9850', 0 '#ffffbf', 0.001 '#fdae61', 3 '#d73027', 6 '#67001f')
+set cbrange [-3:6]; set cblabel 'log10(err/bound)'
+set title '$fam: log10(err / bound) per cell (> 0: beyond the bound)'
+set xrange [0.5:$((ncols)).5]; set yrange [2.5:$ymax.5]
+set xtics ($xtics) rotate by 60 right
+set ylabel '-log10(R)'
+plot '$out/${fam}_err.dat' using 1:2:3 with image notitle
+EOF
+    echo "wrote $out/${fam}_class.png $out/${fam}_err.png"
 done

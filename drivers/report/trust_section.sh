@@ -14,7 +14,8 @@ figs=${2:?usage: trust_section.sh RAW FIGS}
 here=$(dirname "$0")
 grids=$raw/trust
 mkdir -p "$figs"
-for f in crank_err crank_class chain_class chain_long_class fourbar_class linear_class; do
+for f in crank_err crank_class chain_err chain_class chain_long_err chain_long_class fourbar_err fourbar_class \
+    linear_err linear_class; do
     [ -f "$grids/$f.png" ] && cp "$grids/$f.png" "$figs/trust_$f.png"
 done
 verdict() { if [ "$1" = 1 ]; then echo met; else echo '**not met**'; fi; }
@@ -238,17 +239,25 @@ between, the fold pi/2 among them) times 13 speeds w1 in {0, 1e-6 ... 1e-2, 0.1,
 10, 20} times R = 1e-3 ... 1e-8, t in [0, 10], 200 outputs; reference the reduced ODE by CVODE at
 1e-13.
 
+![four-bar: error over the bound](figures/trust_fourbar_err.png)
+
 ![four-bar: classes](figures/trust_fourbar_class.png)
 
 The parallelogram four-bar (G loses rank at every fold) at index 3 and 2: slow swings from 0.02 rad
 of a fold, a turn 6e-5 rad before one, the unstable top, random starts; reference its
 one-coordinate ODE.
 
+![linear DAEs: error over the bound](figures/trust_linear_err.png)
+
 ![linear DAEs: classes](figures/trust_linear_class.png)
 
 The linear index-2 DAEs with GB ~ t^2 (S1) and t^4 (S2) under the three methods, exact solutions.
 
+![chain on \[0, 1\]: error over the bound](figures/trust_chain_err.png)
+
 ![chain on \[0, 1\]: classes](figures/trust_chain_class.png)
+
+![chain on \[0, 10\]: error over the bound](figures/trust_chain_long_err.png)
 
 ![chain on \[0, 10\]: classes](figures/trust_chain_long_class.png)
 
