@@ -89,10 +89,61 @@ contains
     function pattern_transposed(self) result(t)
         class(sparsity_pattern), intent(in) :: self
         type(sparsity_pattern) :: t
-        integer, allocatable :: rows(:), cols(:)
-        call self%entries(rows, cols)
-        t = pattern_from_entries(self%ncols, self%nrows, cols, rows)
+        integer, allocatable :: rows(:), cols(:), fill(:)
+        integer :: i, j, k
+        logical :: ok
+        ! counting by columns: the rows come in increasing order, so each row of the
+        ! transpose is sorted and free of duplicates as it is filled (where self holds
+        ! the type's invariant; else by pattern_from_entries)
+        ok = rows_delimited(self)
+        if (ok) then
+            allocate (t%row_start(self%ncols + 1), source=0)
+            rows_of_self: do i = 1, self%nrows
+                do k = self%row_start(i), self%row_start(i + 1) - 1
+                    j = self%cols(k)
+                    ok = j >= 1 .and. j <= self%ncols
+                    if (ok .and. k > self%row_start(i)) ok = j > self%cols(k - 1)
+                    if (.not. ok) exit rows_of_self
+                    t%row_start(j + 1) = t%row_start(j + 1) + 1
+                end do
+            end do rows_of_self
+        end if
+        if (.not. ok) then
+            call self%entries(rows, cols)
+            t = pattern_from_entries(self%ncols, self%nrows, cols, rows)
+            return
+        end if
+        t%nrows = self%ncols
+        t%ncols = self%nrows
+        t%row_start(1) = 1
+        do j = 1, self%ncols
+            t%row_start(j + 1) = t%row_start(j + 1) + t%row_start(j)
+        end do
+        allocate (t%cols(self%nnz()), fill(self%ncols))
+        fill = t%row_start(1:self%ncols)
+        do i = 1, self%nrows
+            do k = self%row_start(i), self%row_start(i + 1) - 1
+                j = self%cols(k)
+                t%cols(fill(j)) = i
+                fill(j) = fill(j) + 1
+            end do
+        end do
     end function pattern_transposed
+
+    ! Are p's rows delimited as the type says: row_start of size nrows + 1, increasing
+    ! from 1, within cols? (The columns in each row are checked where they are read.)
+    pure logical function rows_delimited(p)
+        type(sparsity_pattern), intent(in) :: p
+        integer :: i
+        rows_delimited = .false.
+        if (.not. (allocated(p%row_start) .and. allocated(p%cols))) return
+        if (size(p%row_start) /= p%nrows + 1) return
+        if (p%row_start(1) /= 1) return
+        do i = 1, p%nrows
+            if (p%row_start(i + 1) < p%row_start(i)) return
+        end do
+        rows_delimited = p%row_start(p%nrows + 1) - 1 <= size(p%cols)
+    end function rows_delimited
 
     !> Every entry of an m x n matrix.
     function dense_pattern(m, n) result(p)
@@ -213,9 +264,54 @@ contains
         type(sparsity_pattern), intent(in) :: a, b
         type(sparsity_pattern) :: p
         integer, allocatable :: ra(:), ca(:), rb(:), cb(:)
-        call a%entries(ra, ca)
-        call b%entries(rb, cb)
-        p = pattern_from_entries(a%nrows, a%ncols, [ra, rb], [ca, cb])
+        integer :: i, ka, kb, w, c
+        logical :: ok
+        ! merge the sorted rows; a merged row that is not strictly increasing within
+        ! 1..ncols means an input without the type's invariant: then by pattern_from_entries
+        ok = rows_delimited(a) .and. rows_delimited(b) .and. a%nrows == b%nrows .and. a%ncols == b%ncols
+        if (ok) then
+            p%nrows = a%nrows
+            p%ncols = a%ncols
+            allocate (p%row_start(a%nrows + 1), p%cols(a%nnz() + b%nnz()))
+            w = 0
+            rows_of_a: do i = 1, a%nrows
+                p%row_start(i) = w + 1
+                ka = a%row_start(i)
+                kb = b%row_start(i)
+                do while (ka < a%row_start(i + 1) .or. kb < b%row_start(i + 1))
+                    if (kb >= b%row_start(i + 1)) then
+                        c = a%cols(ka)
+                        ka = ka + 1
+                    else if (ka >= a%row_start(i + 1)) then
+                        c = b%cols(kb)
+                        kb = kb + 1
+                    else if (a%cols(ka) < b%cols(kb)) then
+                        c = a%cols(ka)
+                        ka = ka + 1
+                    else if (b%cols(kb) < a%cols(ka)) then
+                        c = b%cols(kb)
+                        kb = kb + 1
+                    else
+                        c = a%cols(ka)
+                        ka = ka + 1
+                        kb = kb + 1
+                    end if
+                    ok = c >= 1 .and. c <= a%ncols
+                    if (ok .and. w >= p%row_start(i)) ok = c > p%cols(w)
+                    if (.not. ok) exit rows_of_a
+                    w = w + 1
+                    p%cols(w) = c
+                end do
+            end do rows_of_a
+        end if
+        if (.not. ok) then
+            call a%entries(ra, ca)
+            call b%entries(rb, cb)
+            p = pattern_from_entries(a%nrows, a%ncols, [ra, rb], [ca, cb])
+            return
+        end if
+        p%row_start(a%nrows + 1) = w + 1
+        p%cols = p%cols(1:w)
     end function pattern_union
 
     !> Groups of columns that share no row (Curtis, Powell and Reid): a greedy
@@ -284,7 +380,7 @@ contains
         type(sparsity_pattern) :: g
         integer, allocatable :: degree(:), order(:), level(:)
         logical, allocatable :: placed(:)
-        integer :: n, nplaced, start, i, k, head, tail, node, nb, best, far, sweep
+        integer :: n, nplaced, start, i, k, head, tail, node, nb, best, far, sweep, first, pos
         n = p%nrows
         g = pattern_union(p, p%transposed())
         allocate (degree(n), order(n), level(n), placed(n))
@@ -318,21 +414,21 @@ contains
             do while (head <= tail)
                 node = order(head)
                 head = head + 1
-                do
-                    best = 0
-                    do k = g%row_start(node), g%row_start(node + 1) - 1
-                        nb = g%cols(k)
-                        if (placed(nb)) cycle
-                        if (best == 0) then
-                            best = nb
-                        else if (degree(nb) < degree(best)) then
-                            best = nb
-                        end if
+                ! the unplaced neighbours, appended in increasing degree (ties in
+                ! column order: a stable insertion sort)
+                first = tail + 1
+                do k = g%row_start(node), g%row_start(node + 1) - 1
+                    nb = g%cols(k)
+                    if (placed(nb)) cycle
+                    placed(nb) = .true.
+                    pos = tail
+                    do while (pos >= first)
+                        if (degree(order(pos)) <= degree(nb)) exit
+                        order(pos + 1) = order(pos)
+                        pos = pos - 1
                     end do
-                    if (best == 0) exit
+                    order(pos + 1) = nb
                     tail = tail + 1
-                    order(tail) = best
-                    placed(best) = .true.
                 end do
             end do
             nplaced = tail

@@ -9,6 +9,7 @@ module test_structure
     use regdae_testing, only: checker, test_case, new_test
     use regdae_projection, only: project_second_order
     use regdae_sparse_projection, only: project_structured
+    use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
     public :: structure_tests
@@ -96,7 +97,8 @@ contains
                  new_test('structure_that_does_not_fit', structure_that_does_not_fit), &
                  new_test('dense_formulations_refuse_band', dense_formulations_refuse_band), &
                  new_test('sparse_projection_matches_dense', sparse_projection_matches_dense), &
-                 new_test('varying_mass_declared_constant_refused', varying_mass_declared_constant_refused)]
+                 new_test('varying_mass_declared_constant_refused', varying_mass_declared_constant_refused), &
+                 new_test('pattern_transpose_and_union_by_entries', pattern_transpose_and_union_by_entries)]
     end function structure_tests
 
     subroutine sprung_forces(self, t, q, qd, f, stat)
@@ -606,5 +608,76 @@ contains
         call chk%equal(stat, regdae_err_bad_input, 'band on the dense formulation refused')
         call chk%true(index(solver%message(), 'augmented') > 0, 'the message says what is needed')
     end subroutine dense_formulations_refuse_band
+
+    ! The transpose and the union (merged row by row where the patterns hold the type's
+    ! invariant) against pattern_from_entries of their entries, on pseudo-random patterns,
+    ! and on patterns without the invariant (an unsorted row, a repeated column, a column
+    ! outside the matrix), which take pattern_from_entries itself.
+    subroutine pattern_transpose_and_union_by_entries(chk)
+        type(checker), intent(inout) :: chk
+        type(sparsity_pattern) :: a, b, expected, got
+        integer, allocatable :: ra(:), ca(:), rb(:), cb(:)
+        integer :: trial, k, m, n
+        integer(int64) :: seed
+        character(len=24) :: what
+        seed = 12345
+        do trial = 1, 40
+            m = 1 + next(7)
+            n = 1 + next(9)
+            a = random_pattern(m, n)
+            b = random_pattern(m, n)
+            if (trial > 30 .and. mod(trial, 3) == 0) then   ! break a's invariant: a descent in the last row
+                a%cols = [a%cols, n, 1]
+                a%row_start(m + 1) = size(a%cols) + 1
+            else if (trial > 30 .and. mod(trial, 3) == 1) then   ! a repeated column in the last row
+                if (a%row_start(m + 1) > a%row_start(m)) then
+                    a%cols = [a%cols, a%cols(a%nnz())]
+                else
+                    a%cols = [a%cols, 1, 1]
+                end if
+                a%row_start(m + 1) = size(a%cols) + 1
+            else if (trial > 30) then   ! a column outside the matrix (0 or n + 1)
+                a%cols = [a%cols, 1, n, n + 1 - mod(trial, 2)*(n + 1)]
+                a%row_start(m + 1) = size(a%cols) + 1
+            end if
+            write (what, '(a,i0)') 'trial ', trial
+            call a%entries(ra, ca)
+            call b%entries(rb, cb)
+            expected = pattern_from_entries(n, m, ca, ra)
+            got = a%transposed()
+            call chk%true(same(got, expected), trim(what)//': transpose')
+            expected = pattern_from_entries(m, n, [ra, rb], [ca, cb])
+            got = pattern_union(a, b)
+            call chk%true(same(got, expected), trim(what)//': union')
+        end do
+    contains
+        integer function next(range)   ! 0 .. range - 1
+            integer, intent(in) :: range
+            seed = mod(1103515245_int64*seed + 12345_int64, 2147483648_int64)
+            next = int(mod(seed/65536_int64, int(range, int64)))
+        end function next
+
+        function random_pattern(rows, cols) result(p)
+            integer, intent(in) :: rows, cols
+            type(sparsity_pattern) :: p
+            integer :: nent
+            integer, allocatable :: r(:), c(:)
+            nent = next(rows*cols + 1)
+            allocate (r(nent), c(nent))
+            do k = 1, nent
+                r(k) = 1 + next(rows)
+                c(k) = 1 + next(cols)
+            end do
+            p = pattern_from_entries(rows, cols, r, c)
+        end function random_pattern
+
+        logical function same(x, y)
+            type(sparsity_pattern), intent(in) :: x, y
+            same = x%nrows == y%nrows .and. x%ncols == y%ncols .and. size(x%row_start) == size(y%row_start)
+            if (same) same = all(x%row_start == y%row_start)
+            if (same) same = x%nnz() == y%nnz()
+            if (same) same = all(x%cols(1:x%nnz()) == y%cols(1:y%nnz()))
+        end function same
+    end subroutine pattern_transpose_and_union_by_entries
 
 end module test_structure
