@@ -10,6 +10,7 @@ module test_structure
     use regdae_projection, only: project_second_order
     use regdae_sparse_projection, only: project_structured
     use, intrinsic :: iso_fortran_env, only: int64
+    use regdae_sparsity, only: column_groups, band_pattern
     implicit none
     private
     public :: structure_tests
@@ -98,7 +99,8 @@ contains
                  new_test('dense_formulations_refuse_band', dense_formulations_refuse_band), &
                  new_test('sparse_projection_matches_dense', sparse_projection_matches_dense), &
                  new_test('varying_mass_declared_constant_refused', varying_mass_declared_constant_refused), &
-                 new_test('pattern_transpose_and_union_by_entries', pattern_transpose_and_union_by_entries)]
+                 new_test('pattern_transpose_and_union_by_entries', pattern_transpose_and_union_by_entries), &
+                 new_test('column_groups_share_no_row', column_groups_share_no_row)]
     end function structure_tests
 
     subroutine sprung_forces(self, t, q, qd, f, stat)
@@ -679,5 +681,63 @@ contains
             if (same) same = all(x%cols(1:x%nnz()) == y%cols(1:y%nnz()))
         end function same
     end subroutine pattern_transpose_and_union_by_entries
+
+    ! column_groups (smallest-last greedy coloring): every column in exactly one group, no two
+    ! columns of a group in the same row, on pseudo-random patterns and on a tridiagonal one
+    ! (3 groups, its longest row); at least as many groups as the longest row has entries.
+    subroutine column_groups_share_no_row(chk)
+        type(checker), intent(inout) :: chk
+        type(sparsity_pattern) :: p
+        integer, allocatable :: r(:), c(:), group_start(:), group_cols(:), seen(:), owner(:)
+        integer :: trial, k, i, g, a, ngroups, m, n, nent
+        integer(int64) :: seed
+        logical :: valid
+        character(len=24) :: what
+        seed = 4711
+        do trial = 0, 30
+            if (trial == 0) then
+                p = band_pattern(12, 1, 1)
+            else
+                m = 1 + next(12)
+                n = 1 + next(12)
+                nent = next(m*n + 1)
+                allocate (r(nent), c(nent))
+                do k = 1, nent
+                    r(k) = 1 + next(m)
+                    c(k) = 1 + next(n)
+                end do
+                p = pattern_from_entries(m, n, r, c)
+                deallocate (r, c)
+            end if
+            write (what, '(a,i0)') 'trial ', trial
+            call column_groups(p, ngroups, group_start, group_cols)
+            allocate (seen(p%ncols), source=0)
+            allocate (owner(p%nrows))
+            valid = size(group_start) == ngroups + 1 .and. size(group_cols) == p%ncols
+            do g = 1, ngroups
+                if (.not. valid) exit
+                owner = 0
+                do a = group_start(g), group_start(g + 1) - 1
+                    seen(group_cols(a)) = seen(group_cols(a)) + 1
+                    do i = 1, p%nrows
+                        if (p%position(i, group_cols(a)) == 0) cycle
+                        if (owner(i) /= 0) valid = .false.
+                        owner(i) = group_cols(a)
+                    end do
+                end do
+            end do
+            call chk%true(valid .and. all(seen == 1), trim(what)//': each column once, no row shared')
+            if (p%nrows > 0) call chk%true(ngroups >= maxval(p%row_start(2:) - p%row_start(:p%nrows)), &
+                                           trim(what)//': at least the longest row')
+            if (trial == 0) call chk%equal(ngroups, 3, 'tridiagonal: 3 groups')
+            deallocate (seen, owner)
+        end do
+    contains
+        integer function next(range)   ! 0 .. range - 1
+            integer, intent(in) :: range
+            seed = mod(1103515245_int64*seed + 12345_int64, 2147483648_int64)
+            next = int(mod(seed/65536_int64, int(range, int64)))
+        end function next
+    end subroutine column_groups_share_no_row
 
 end module test_structure
