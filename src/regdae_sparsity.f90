@@ -321,31 +321,25 @@ contains
     !! needs fewer colors than the column order on banded and block patterns (the
     !! augmented chain's Newton matrix: 10 instead of 12, its longest row has 9).
     !! color(j) in 1..ncolors; one residual evaluation per color gives every column of
-    !! that color by difference quotients. O(sum over the rows of their length squared).
+    !! that color by difference quotients. Time O(sum over the rows of their length
+    !! squared), memory O(columns) besides the transpose.
     subroutine color_columns(p, color, ncolors)
         type(sparsity_pattern), intent(in) :: p
         integer, intent(out), allocatable :: color(:)
         integer, intent(out) :: ncolors
         type(sparsity_pattern) :: pt
-        integer, allocatable :: adj_start(:), adj(:), degree(:), stamp(:), order(:), forbidden(:)
-        integer, allocatable :: head(:), entry_col(:), entry_next(:)
-        logical, allocatable :: removed(:)
-        integer :: n, j, k, r, q, c, idx, low, nadj, bound, e, nentries
+        integer, allocatable :: degree(:), stamp(:), order(:), forbidden(:), head(:), next(:), prev(:)
+        integer :: n, j, k, r, q, c, idx, low
         n = p%ncols
         pt = p%transposed()   ! rows of pt: the columns of p, with the rows they touch
         allocate (color(n), source=0)
         ncolors = 0
         if (n == 0) return
-        ! the intersection graph: the distinct columns sharing a row with j, adj(adj_start(j):adj_start(j+1)-1)
-        bound = 0
-        do r = 1, p%nrows
-            bound = bound + (p%row_start(r + 1) - p%row_start(r))**2
-        end do
-        allocate (adj_start(n + 1), adj(bound), degree(n))
+        ! the degrees: the distinct columns sharing a row with j (the neighbours are found
+        ! again through the rows where needed: memory O(n), no adjacency lists)
+        allocate (degree(n), source=0)
         allocate (stamp(n), source=0)
-        nadj = 0
         do j = 1, n
-            adj_start(j) = nadj + 1
             stamp(j) = j
             do k = pt%row_start(j), pt%row_start(j + 1) - 1
                 r = pt%cols(k)
@@ -353,52 +347,63 @@ contains
                     c = p%cols(q)
                     if (stamp(c) /= j) then
                         stamp(c) = j
-                        nadj = nadj + 1
-                        adj(nadj) = c
+                        degree(j) = degree(j) + 1
                     end if
                 end do
             end do
-            degree(j) = nadj + 1 - adj_start(j)
         end do
-        adj_start(n + 1) = nadj + 1
-        ! smallest-last: buckets by the degree among the columns left, as stacks in which a
-        ! column whose degree fell is pushed again (its stale entries skipped when popped)
+        ! smallest-last: the columns left in buckets by degree (doubly linked; a removed column
+        ! gets stamp -1); removed from the least bucket, its neighbours move one bucket down
         allocate (head(0:maxval(degree)), source=0)
-        allocate (entry_col(n + nadj), entry_next(n + nadj), order(n))
-        allocate (removed(n), source=.false.)
-        nentries = 0
+        allocate (next(n), prev(n), order(n))
         do j = n, 1, -1
-            call push(j)
+            prev(j) = 0
+            next(j) = head(degree(j))
+            if (next(j) /= 0) prev(next(j)) = j
+            head(degree(j)) = j
         end do
         low = 0
-        idx = n
-        do while (idx >= 1)
-            e = head(low)
-            if (e == 0) then
+        do idx = n, 1, -1
+            do while (head(low) == 0)
                 low = low + 1
-                cycle
-            end if
-            head(low) = entry_next(e)
-            j = entry_col(e)
-            if (removed(j) .or. degree(j) /= low) cycle   ! a stale entry
-            removed(j) = .true.
+            end do
+            j = head(low)
+            head(low) = next(j)
+            if (next(j) /= 0) prev(next(j)) = 0
+            stamp(j) = -1
             order(idx) = j
-            idx = idx - 1
-            do k = adj_start(j), adj_start(j + 1) - 1
-                c = adj(k)
-                if (removed(c)) cycle
-                degree(c) = degree(c) - 1
-                call push(c)
+            do k = pt%row_start(j), pt%row_start(j + 1) - 1
+                r = pt%cols(k)
+                do q = p%row_start(r), p%row_start(r + 1) - 1
+                    c = p%cols(q)
+                    if (stamp(c) < 0 .or. stamp(c) == n + idx) cycle
+                    stamp(c) = n + idx
+                    ! c from bucket degree(c) to degree(c) - 1
+                    if (prev(c) /= 0) then
+                        next(prev(c)) = next(c)
+                    else
+                        head(degree(c)) = next(c)
+                    end if
+                    if (next(c) /= 0) prev(next(c)) = prev(c)
+                    degree(c) = degree(c) - 1
+                    prev(c) = 0
+                    next(c) = head(degree(c))
+                    if (next(c) /= 0) prev(next(c)) = c
+                    head(degree(c)) = c
+                end do
             end do
             low = max(0, low - 1)
         end do
-        ! greedy in that order: the least color no adjacent column has
+        ! greedy in that order: the least color no column sharing a row has
         allocate (forbidden(n + 1), source=0)
         do idx = 1, n
             j = order(idx)
-            do k = adj_start(j), adj_start(j + 1) - 1
-                c = color(adj(k))
-                if (c > 0) forbidden(c) = idx
+            do k = pt%row_start(j), pt%row_start(j + 1) - 1
+                r = pt%cols(k)
+                do q = p%row_start(r), p%row_start(r + 1) - 1
+                    c = color(p%cols(q))
+                    if (c > 0) forbidden(c) = idx
+                end do
             end do
             c = 1
             do while (forbidden(c) == idx)
@@ -407,14 +412,6 @@ contains
             color(j) = c
             ncolors = max(ncolors, c)
         end do
-    contains
-        subroutine push(v)   ! v onto the stack of its degree
-            integer, intent(in) :: v
-            nentries = nentries + 1
-            entry_col(nentries) = v
-            entry_next(nentries) = head(degree(v))
-            head(degree(v)) = nentries
-        end subroutine push
     end subroutine color_columns
 
     !> The groups of `color_columns` as lists: the columns of group c are

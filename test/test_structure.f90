@@ -655,8 +655,7 @@ contains
     contains
         integer function next(range)   ! 0 .. range - 1
             integer, intent(in) :: range
-            seed = mod(1103515245_int64*seed + 12345_int64, 2147483648_int64)
-            next = int(mod(seed/65536_int64, int(range, int64)))
+            next = lcg_next(seed, range)
         end function next
 
         function random_pattern(rows, cols) result(p)
@@ -735,9 +734,16 @@ contains
     contains
         integer function next(range)   ! 0 .. range - 1
             integer, intent(in) :: range
-            seed = mod(1103515245_int64*seed + 12345_int64, 2147483648_int64)
-            next = int(mod(seed/65536_int64, int(range, int64)))
+            next = lcg_next(seed, range)
         end function next
     end subroutine column_groups_share_no_row
+
+    ! The next of a linear congruential sequence (seed updated), as an integer in 0 .. range - 1.
+    integer function lcg_next(seed, range) result(k)
+        integer(int64), intent(inout) :: seed
+        integer, intent(in) :: range
+        seed = mod(1103515245_int64*seed + 12345_int64, 2147483648_int64)
+        k = int(mod(seed/65536_int64, int(range, int64)))
+    end function lcg_next
 
 end module test_structure
