@@ -323,15 +323,20 @@ contains
     !! color(j) in 1..ncolors; one residual evaluation per color gives every column of
     !! that color by difference quotients. Time O(sum over the rows of their length
     !! squared), memory O(columns) besides the transpose.
-    subroutine color_columns(p, color, ncolors)
+    subroutine color_columns(p, color, ncolors, columns)
         type(sparsity_pattern), intent(in) :: p
         integer, intent(out), allocatable :: color(:)
         integer, intent(out) :: ncolors
+        type(sparsity_pattern), intent(in), optional :: columns   !! p's transpose, if the caller has it
         type(sparsity_pattern) :: pt
         integer, allocatable :: degree(:), stamp(:), order(:), forbidden(:), head(:), next(:), prev(:)
         integer :: n, j, k, r, q, c, idx, low
         n = p%ncols
-        pt = p%transposed()   ! rows of pt: the columns of p, with the rows they touch
+        if (present(columns)) then
+            pt = columns
+        else
+            pt = p%transposed()   ! rows of pt: the columns of p, with the rows they touch
+        end if
         allocate (color(n), source=0)
         ncolors = 0
         if (n == 0) return
@@ -416,14 +421,15 @@ contains
 
     !> The groups of `color_columns` as lists: the columns of group c are
     !! group_cols(group_start(c):group_start(c+1)-1), in increasing order.
-    subroutine column_groups(p, ngroups, group_start, group_cols)
+    subroutine column_groups(p, ngroups, group_start, group_cols, columns)
         type(sparsity_pattern), intent(in) :: p
         integer, intent(out) :: ngroups
         integer, allocatable, intent(out) :: group_start(:)   !! ngroups + 1
         integer, allocatable, intent(out) :: group_cols(:)    !! ncols
+        type(sparsity_pattern), intent(in), optional :: columns   !! p's transpose, if the caller has it
         integer, allocatable :: color(:), fill(:)
         integer :: j, c
-        call color_columns(p, color, ngroups)
+        call color_columns(p, color, ngroups, columns)
         allocate (group_start(ngroups + 1), group_cols(p%ncols), fill(ngroups))
         group_start = 0
         do j = 1, p%ncols

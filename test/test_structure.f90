@@ -670,7 +670,33 @@ contains
                 c(k) = 1 + next(cols)
             end do
             p = pattern_from_entries(rows, cols, r, c)
+            call chk%true(same(p, brute_force(rows, cols, r, c)), 'pattern_from_entries against a dense table')
         end function random_pattern
+
+        ! The pattern of the entries (r, c) by a dense table, row by row.
+        function brute_force(rows, cols, r, c) result(p)
+            integer, intent(in) :: rows, cols, r(:), c(:)
+            type(sparsity_pattern) :: p
+            logical :: table(rows, cols)
+            integer :: i, j, k
+            table = .false.
+            do k = 1, size(r)
+                table(r(k), c(k)) = .true.
+            end do
+            p%nrows = rows
+            p%ncols = cols
+            allocate (p%row_start(rows + 1), p%cols(count(table)))
+            p%row_start(1) = 1
+            k = 0
+            do i = 1, rows
+                do j = 1, cols
+                    if (.not. table(i, j)) cycle
+                    k = k + 1
+                    p%cols(k) = j
+                end do
+                p%row_start(i + 1) = k + 1
+            end do
+        end function brute_force
 
         logical function same(x, y)
             type(sparsity_pattern), intent(in) :: x, y
