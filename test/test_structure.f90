@@ -619,13 +619,13 @@ contains
         type(checker), intent(inout) :: chk
         type(sparsity_pattern) :: a, b, expected, got
         integer, allocatable :: ra(:), ca(:), rb(:), cb(:)
-        integer :: trial, k, m, n
+        integer :: trial, m, n
         integer(int64) :: seed
         character(len=24) :: what
         seed = 12345
         do trial = 1, 40
-            m = 1 + next(7)
-            n = 1 + next(9)
+            m = 1 + lcg_next(seed, 7)
+            n = 1 + lcg_next(seed, 9)
             a = random_pattern(m, n)
             b = random_pattern(m, n)
             if (trial > 30 .and. mod(trial, 3) == 0) then   ! break a's invariant: a descent in the last row
@@ -653,22 +653,11 @@ contains
             call chk%true(same(got, expected), trim(what)//': union')
         end do
     contains
-        integer function next(range)   ! 0 .. range - 1
-            integer, intent(in) :: range
-            next = lcg_next(seed, range)
-        end function next
-
         function random_pattern(rows, cols) result(p)
             integer, intent(in) :: rows, cols
             type(sparsity_pattern) :: p
-            integer :: nent
             integer, allocatable :: r(:), c(:)
-            nent = next(rows*cols + 1)
-            allocate (r(nent), c(nent))
-            do k = 1, nent
-                r(k) = 1 + next(rows)
-                c(k) = 1 + next(cols)
-            end do
+            call random_entries(seed, rows, cols, r, c)
             p = pattern_from_entries(rows, cols, r, c)
             call chk%true(same(p, brute_force(rows, cols, r, c)), 'pattern_from_entries against a dense table')
         end function random_pattern
@@ -714,7 +703,7 @@ contains
         type(checker), intent(inout) :: chk
         type(sparsity_pattern) :: p
         integer, allocatable :: r(:), c(:), group_start(:), group_cols(:), seen(:), owner(:)
-        integer :: trial, k, i, g, a, ngroups, m, n, nent
+        integer :: trial, i, g, a, ngroups, m, n
         integer(int64) :: seed
         logical :: valid
         character(len=24) :: what
@@ -723,16 +712,10 @@ contains
             if (trial == 0) then
                 p = band_pattern(12, 1, 1)
             else
-                m = 1 + next(12)
-                n = 1 + next(12)
-                nent = next(m*n + 1)
-                allocate (r(nent), c(nent))
-                do k = 1, nent
-                    r(k) = 1 + next(m)
-                    c(k) = 1 + next(n)
-                end do
+                m = 1 + lcg_next(seed, 12)
+                n = 1 + lcg_next(seed, 12)
+                call random_entries(seed, m, n, r, c)
                 p = pattern_from_entries(m, n, r, c)
-                deallocate (r, c)
             end if
             write (what, '(a,i0)') 'trial ', trial
             call column_groups(p, ngroups, group_start, group_cols)
@@ -757,12 +740,21 @@ contains
             if (trial == 0) call chk%equal(ngroups, 3, 'tridiagonal: 3 groups')
             deallocate (seen, owner)
         end do
-    contains
-        integer function next(range)   ! 0 .. range - 1
-            integer, intent(in) :: range
-            next = lcg_next(seed, range)
-        end function next
     end subroutine column_groups_share_no_row
+
+    ! Random entries (r(k), c(k)) of an m x n matrix, as many as a random draw in 0 .. m n (seed updated).
+    subroutine random_entries(seed, m, n, r, c)
+        integer(int64), intent(inout) :: seed
+        integer, intent(in) :: m, n
+        integer, allocatable, intent(out) :: r(:), c(:)
+        integer :: nent, k
+        nent = lcg_next(seed, m*n + 1)
+        allocate (r(nent), c(nent))
+        do k = 1, nent
+            r(k) = 1 + lcg_next(seed, m)
+            c(k) = 1 + lcg_next(seed, n)
+        end do
+    end subroutine random_entries
 
     ! The next of a linear congruential sequence (seed updated), as an integer in 0 .. range - 1.
     integer function lcg_next(seed, range) result(k)
