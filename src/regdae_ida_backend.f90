@@ -336,7 +336,7 @@ contains
             columns = p%transposed()
             self%csc_start = columns%row_start
             self%csc_rows = columns%cols
-            call column_groups(p, self%ngroups, self%group_start, self%group_cols)
+            call column_groups(p, self%ngroups, self%group_start, self%group_cols, columns)
             call permuted_bandwidths(p, [(j, j=1, p%ncols)], self%band_lower, self%band_upper)
         end associate
         allocate (self%delta(self%neq))

@@ -9,7 +9,9 @@
 !! interpolant gives the state at tout. With integrator=auto the loop asks the
 !! switching policy every 20 steps whether the explicit method would do.
 module regdae_ida_integrator
-    use, intrinsic :: iso_c_binding, only: c_double, c_associated
+    use, intrinsic :: iso_c_binding, only: c_double, c_associated, c_long
+    use, intrinsic :: iso_fortran_env, only: int64
+    use fida_mod, only: FIDAGetNumSteps
     use regdae_kinds, only: wp
     use regdae_status
     use regdae_format, only: format_real, format_int
@@ -45,6 +47,7 @@ module regdae_ida_integrator
         procedure :: free => ida_free
         procedure :: augmented => ida_augmented
         procedure :: state_written => ida_state_written
+        procedure :: steps_taken => ida_steps_taken
     end type ida_integrator
 
 contains
@@ -191,6 +194,17 @@ contains
         st%conv_fails = st%conv_fails + own%conv_fails
         if (active) st%h_last = own%h_last
     end subroutine ida_statistics
+
+    !> IDA's steps over its restarts: ida_statistics' count from IDA's step counter alone
+    !! (asked at every output).
+    integer(int64) function ida_steps_taken(self) result(n)
+        class(ida_integrator), intent(in) :: self
+        integer(c_long) :: k(1)
+        n = 0
+        if (.not. c_associated(self%ida%ida_mem)) return   ! never created
+        if (FIDAGetNumSteps(self%ida%ida_mem, k) /= 0) k = 0
+        n = k(1) + self%ida%carried%steps
+    end function ida_steps_taken
 
     !> The spectral radius of the eliminated formulation's Jacobian at IDA's state.
     real(wp) function ida_stiffness(self, t) result(rho)

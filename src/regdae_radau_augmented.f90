@@ -114,8 +114,8 @@ contains
             end do
             p = pattern_from_entries(neq + n, neq + n, rows(1:nent), cols(1:nent))
         end associate
-        call column_groups(p, self%ngroups, self%group_start, self%group_cols)
         self%column_rows = p%transposed()
+        call column_groups(p, self%ngroups, self%group_start, self%group_cols, self%column_rows)
     contains
         ! the row of U's system that holds the residual's row r
         integer function row_of(r)

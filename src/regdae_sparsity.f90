@@ -89,10 +89,61 @@ contains
     function pattern_transposed(self) result(t)
         class(sparsity_pattern), intent(in) :: self
         type(sparsity_pattern) :: t
-        integer, allocatable :: rows(:), cols(:)
-        call self%entries(rows, cols)
-        t = pattern_from_entries(self%ncols, self%nrows, cols, rows)
+        integer, allocatable :: rows(:), cols(:), fill(:)
+        integer :: i, j, k
+        logical :: ok
+        ! counting by columns: the rows come in increasing order, so each row of the
+        ! transpose is sorted and free of duplicates as it is filled (where self holds
+        ! the type's invariant; else by pattern_from_entries)
+        ok = rows_delimited(self)
+        if (ok) then
+            allocate (t%row_start(self%ncols + 1), source=0)
+            rows_of_self: do i = 1, self%nrows
+                do k = self%row_start(i), self%row_start(i + 1) - 1
+                    j = self%cols(k)
+                    ok = j >= 1 .and. j <= self%ncols
+                    if (ok .and. k > self%row_start(i)) ok = j > self%cols(k - 1)
+                    if (.not. ok) exit rows_of_self
+                    t%row_start(j + 1) = t%row_start(j + 1) + 1
+                end do
+            end do rows_of_self
+        end if
+        if (.not. ok) then
+            call self%entries(rows, cols)
+            t = pattern_from_entries(self%ncols, self%nrows, cols, rows)
+            return
+        end if
+        t%nrows = self%ncols
+        t%ncols = self%nrows
+        t%row_start(1) = 1
+        do j = 1, self%ncols
+            t%row_start(j + 1) = t%row_start(j + 1) + t%row_start(j)
+        end do
+        allocate (t%cols(self%nnz()), fill(self%ncols))
+        fill = t%row_start(1:self%ncols)
+        do i = 1, self%nrows
+            do k = self%row_start(i), self%row_start(i + 1) - 1
+                j = self%cols(k)
+                t%cols(fill(j)) = i
+                fill(j) = fill(j) + 1
+            end do
+        end do
     end function pattern_transposed
+
+    ! Are p's rows delimited as the type says: row_start of size nrows + 1, increasing
+    ! from 1, within cols? (The columns in each row are checked where they are read.)
+    pure logical function rows_delimited(p)
+        type(sparsity_pattern), intent(in) :: p
+        integer :: i
+        rows_delimited = .false.
+        if (.not. (allocated(p%row_start) .and. allocated(p%cols))) return
+        if (size(p%row_start) /= p%nrows + 1) return
+        if (p%row_start(1) /= 1) return
+        do i = 1, p%nrows
+            if (p%row_start(i + 1) < p%row_start(i)) return
+        end do
+        rows_delimited = p%row_start(p%nrows + 1) - 1 <= size(p%cols)
+    end function rows_delimited
 
     !> Every entry of an m x n matrix.
     function dense_pattern(m, n) result(p)
@@ -213,35 +264,154 @@ contains
         type(sparsity_pattern), intent(in) :: a, b
         type(sparsity_pattern) :: p
         integer, allocatable :: ra(:), ca(:), rb(:), cb(:)
-        call a%entries(ra, ca)
-        call b%entries(rb, cb)
-        p = pattern_from_entries(a%nrows, a%ncols, [ra, rb], [ca, cb])
+        integer :: i, ka, kb, w, c
+        logical :: ok
+        ! merge the sorted rows; a merged row that is not strictly increasing within
+        ! 1..ncols means an input without the type's invariant: then by pattern_from_entries
+        ok = rows_delimited(a) .and. rows_delimited(b) .and. a%nrows == b%nrows .and. a%ncols == b%ncols
+        if (ok) then
+            p%nrows = a%nrows
+            p%ncols = a%ncols
+            allocate (p%row_start(a%nrows + 1), p%cols(a%nnz() + b%nnz()))
+            w = 0
+            rows_of_a: do i = 1, a%nrows
+                p%row_start(i) = w + 1
+                ka = a%row_start(i)
+                kb = b%row_start(i)
+                do while (ka < a%row_start(i + 1) .or. kb < b%row_start(i + 1))
+                    if (kb >= b%row_start(i + 1)) then
+                        c = a%cols(ka)
+                        ka = ka + 1
+                    else if (ka >= a%row_start(i + 1)) then
+                        c = b%cols(kb)
+                        kb = kb + 1
+                    else if (a%cols(ka) < b%cols(kb)) then
+                        c = a%cols(ka)
+                        ka = ka + 1
+                    else if (b%cols(kb) < a%cols(ka)) then
+                        c = b%cols(kb)
+                        kb = kb + 1
+                    else
+                        c = a%cols(ka)
+                        ka = ka + 1
+                        kb = kb + 1
+                    end if
+                    ok = c >= 1 .and. c <= a%ncols
+                    if (ok .and. w >= p%row_start(i)) ok = c > p%cols(w)
+                    if (.not. ok) exit rows_of_a
+                    w = w + 1
+                    p%cols(w) = c
+                end do
+            end do rows_of_a
+        end if
+        if (.not. ok) then
+            call a%entries(ra, ca)
+            call b%entries(rb, cb)
+            p = pattern_from_entries(a%nrows, a%ncols, [ra, rb], [ca, cb])
+            return
+        end if
+        p%row_start(a%nrows + 1) = w + 1
+        p%cols = p%cols(1:w)
     end function pattern_union
 
     !> Groups of columns that share no row (Curtis, Powell and Reid): a greedy
-    !! coloring in column order. color(j) in 1..ncolors; one residual evaluation
-    !! per color gives every column of that color by difference quotients.
-    subroutine color_columns(p, color, ncolors)
+    !! coloring of the columns' intersection graph (two columns adjacent when they
+    !! share a row) in smallest-last order (Matula and Beck; Coleman and More: the
+    !! column removed first, of least degree among those left, is colored last), which
+    !! needs fewer colors than the column order on banded and block patterns (the
+    !! augmented chain's Newton matrix: 10 instead of 12, its longest row has 9).
+    !! color(j) in 1..ncolors; one residual evaluation per color gives every column of
+    !! that color by difference quotients. Time O(sum over the rows of their length
+    !! squared), memory O(columns) besides the transpose.
+    subroutine color_columns(p, color, ncolors, columns)
         type(sparsity_pattern), intent(in) :: p
-        integer, allocatable, intent(out) :: color(:)
+        integer, intent(out), allocatable :: color(:)
         integer, intent(out) :: ncolors
+        type(sparsity_pattern), intent(in), optional :: columns   !! p's transpose, if the caller has it
         type(sparsity_pattern) :: pt
-        integer, allocatable :: forbidden(:)
-        integer :: j, k, r, q, c
-        pt = p%transposed()   ! rows of pt: the columns of p, with the rows they touch
-        allocate (color(p%ncols), source=0)
-        allocate (forbidden(p%ncols + 1), source=0)
+        integer, allocatable :: degree(:), stamp(:), order(:), forbidden(:), head(:), next(:), prev(:)
+        integer :: n, j, k, r, q, c, idx, low
+        n = p%ncols
+        if (present(columns)) then
+            pt = columns
+        else
+            pt = p%transposed()   ! rows of pt: the columns of p, with the rows they touch
+        end if
+        allocate (color(n), source=0)
         ncolors = 0
-        do j = 1, p%ncols
+        if (n == 0) return
+        ! the degrees: the distinct columns sharing a row with j (the neighbours are found
+        ! again through the rows where needed: memory O(n), no adjacency lists)
+        allocate (degree(n), source=0)
+        allocate (stamp(n), source=0)
+        do j = 1, n
+            stamp(j) = j
             do k = pt%row_start(j), pt%row_start(j + 1) - 1
-                r = pt%cols(k)   ! a row of column j
+                r = pt%cols(k)
+                do q = p%row_start(r), p%row_start(r + 1) - 1
+                    c = p%cols(q)
+                    if (stamp(c) /= j) then
+                        stamp(c) = j
+                        degree(j) = degree(j) + 1
+                    end if
+                end do
+            end do
+        end do
+        ! smallest-last: the columns left in buckets by degree (doubly linked; a removed column
+        ! gets stamp -1); removed from the least bucket, its neighbours move one bucket down
+        allocate (head(0:maxval(degree)), source=0)
+        allocate (next(n), prev(n), order(n))
+        do j = n, 1, -1
+            prev(j) = 0
+            next(j) = head(degree(j))
+            if (next(j) /= 0) prev(next(j)) = j
+            head(degree(j)) = j
+        end do
+        low = 0
+        do idx = n, 1, -1
+            do while (head(low) == 0)
+                low = low + 1
+            end do
+            j = head(low)
+            head(low) = next(j)
+            if (next(j) /= 0) prev(next(j)) = 0
+            stamp(j) = -1
+            order(idx) = j
+            do k = pt%row_start(j), pt%row_start(j + 1) - 1
+                r = pt%cols(k)
+                do q = p%row_start(r), p%row_start(r + 1) - 1
+                    c = p%cols(q)
+                    if (stamp(c) < 0 .or. stamp(c) == n + idx) cycle
+                    stamp(c) = n + idx
+                    ! c from bucket degree(c) to degree(c) - 1
+                    if (prev(c) /= 0) then
+                        next(prev(c)) = next(c)
+                    else
+                        head(degree(c)) = next(c)
+                    end if
+                    if (next(c) /= 0) prev(next(c)) = prev(c)
+                    degree(c) = degree(c) - 1
+                    prev(c) = 0
+                    next(c) = head(degree(c))
+                    if (next(c) /= 0) prev(next(c)) = c
+                    head(degree(c)) = c
+                end do
+            end do
+            low = max(0, low - 1)
+        end do
+        ! greedy in that order: the least color no column sharing a row has
+        allocate (forbidden(n + 1), source=0)
+        do idx = 1, n
+            j = order(idx)
+            do k = pt%row_start(j), pt%row_start(j + 1) - 1
+                r = pt%cols(k)
                 do q = p%row_start(r), p%row_start(r + 1) - 1
                     c = color(p%cols(q))
-                    if (c > 0) forbidden(c) = j
+                    if (c > 0) forbidden(c) = idx
                 end do
             end do
             c = 1
-            do while (forbidden(c) == j)
+            do while (forbidden(c) == idx)
                 c = c + 1
             end do
             color(j) = c
@@ -251,14 +421,15 @@ contains
 
     !> The groups of `color_columns` as lists: the columns of group c are
     !! group_cols(group_start(c):group_start(c+1)-1), in increasing order.
-    subroutine column_groups(p, ngroups, group_start, group_cols)
+    subroutine column_groups(p, ngroups, group_start, group_cols, columns)
         type(sparsity_pattern), intent(in) :: p
         integer, intent(out) :: ngroups
         integer, allocatable, intent(out) :: group_start(:)   !! ngroups + 1
         integer, allocatable, intent(out) :: group_cols(:)    !! ncols
+        type(sparsity_pattern), intent(in), optional :: columns   !! p's transpose, if the caller has it
         integer, allocatable :: color(:), fill(:)
         integer :: j, c
-        call color_columns(p, color, ngroups)
+        call color_columns(p, color, ngroups, columns)
         allocate (group_start(ngroups + 1), group_cols(p%ncols), fill(ngroups))
         group_start = 0
         do j = 1, p%ncols
@@ -284,7 +455,7 @@ contains
         type(sparsity_pattern) :: g
         integer, allocatable :: degree(:), order(:), level(:)
         logical, allocatable :: placed(:)
-        integer :: n, nplaced, start, i, k, head, tail, node, nb, best, far, sweep
+        integer :: n, nplaced, start, i, k, head, tail, node, nb, best, far, sweep, first, pos
         n = p%nrows
         g = pattern_union(p, p%transposed())
         allocate (degree(n), order(n), level(n), placed(n))
@@ -318,21 +489,21 @@ contains
             do while (head <= tail)
                 node = order(head)
                 head = head + 1
-                do
-                    best = 0
-                    do k = g%row_start(node), g%row_start(node + 1) - 1
-                        nb = g%cols(k)
-                        if (placed(nb)) cycle
-                        if (best == 0) then
-                            best = nb
-                        else if (degree(nb) < degree(best)) then
-                            best = nb
-                        end if
+                ! the unplaced neighbours, appended in increasing degree (ties in
+                ! column order: a stable insertion sort)
+                first = tail + 1
+                do k = g%row_start(node), g%row_start(node + 1) - 1
+                    nb = g%cols(k)
+                    if (placed(nb)) cycle
+                    placed(nb) = .true.
+                    pos = tail
+                    do while (pos >= first)
+                        if (degree(order(pos)) <= degree(nb)) exit
+                        order(pos + 1) = order(pos)
+                        pos = pos - 1
                     end do
-                    if (best == 0) exit
+                    order(pos + 1) = nb
                     tail = tail + 1
-                    order(tail) = best
-                    placed(best) = .true.
                 end do
             end do
             nplaced = tail

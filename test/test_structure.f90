@@ -9,6 +9,8 @@ module test_structure
     use regdae_testing, only: checker, test_case, new_test
     use regdae_projection, only: project_second_order
     use regdae_sparse_projection, only: project_structured
+    use, intrinsic :: iso_fortran_env, only: int64
+    use regdae_sparsity, only: column_groups, band_pattern
     implicit none
     private
     public :: structure_tests
@@ -96,7 +98,9 @@ contains
                  new_test('structure_that_does_not_fit', structure_that_does_not_fit), &
                  new_test('dense_formulations_refuse_band', dense_formulations_refuse_band), &
                  new_test('sparse_projection_matches_dense', sparse_projection_matches_dense), &
-                 new_test('varying_mass_declared_constant_refused', varying_mass_declared_constant_refused)]
+                 new_test('varying_mass_declared_constant_refused', varying_mass_declared_constant_refused), &
+                 new_test('pattern_transpose_and_union_by_entries', pattern_transpose_and_union_by_entries), &
+                 new_test('column_groups_share_no_row', column_groups_share_no_row)]
     end function structure_tests
 
     subroutine sprung_forces(self, t, q, qd, f, stat)
@@ -606,5 +610,158 @@ contains
         call chk%equal(stat, regdae_err_bad_input, 'band on the dense formulation refused')
         call chk%true(index(solver%message(), 'augmented') > 0, 'the message says what is needed')
     end subroutine dense_formulations_refuse_band
+
+    ! The transpose and the union (merged row by row where the patterns hold the type's
+    ! invariant) against pattern_from_entries of their entries, on pseudo-random patterns,
+    ! and on patterns without the invariant (an unsorted row, a repeated column, a column
+    ! outside the matrix), which take pattern_from_entries itself.
+    subroutine pattern_transpose_and_union_by_entries(chk)
+        type(checker), intent(inout) :: chk
+        type(sparsity_pattern) :: a, b, expected, got
+        integer, allocatable :: ra(:), ca(:), rb(:), cb(:)
+        integer :: trial, m, n
+        integer(int64) :: seed
+        character(len=24) :: what
+        seed = 12345
+        do trial = 1, 40
+            m = 1 + lcg_next(seed, 7)
+            n = 1 + lcg_next(seed, 9)
+            a = random_pattern(m, n)
+            b = random_pattern(m, n)
+            if (trial > 30 .and. mod(trial, 3) == 0) then   ! break a's invariant: a descent in the last row
+                a%cols = [a%cols, n, 1]
+                a%row_start(m + 1) = size(a%cols) + 1
+            else if (trial > 30 .and. mod(trial, 3) == 1) then   ! a repeated column in the last row
+                if (a%row_start(m + 1) > a%row_start(m)) then
+                    a%cols = [a%cols, a%cols(a%nnz())]
+                else
+                    a%cols = [a%cols, 1, 1]
+                end if
+                a%row_start(m + 1) = size(a%cols) + 1
+            else if (trial > 30) then   ! a column outside the matrix (0 or n + 1)
+                a%cols = [a%cols, 1, n, n + 1 - mod(trial, 2)*(n + 1)]
+                a%row_start(m + 1) = size(a%cols) + 1
+            end if
+            write (what, '(a,i0)') 'trial ', trial
+            call a%entries(ra, ca)
+            call b%entries(rb, cb)
+            expected = pattern_from_entries(n, m, ca, ra)
+            got = a%transposed()
+            call chk%true(same(got, expected), trim(what)//': transpose')
+            expected = pattern_from_entries(m, n, [ra, rb], [ca, cb])
+            got = pattern_union(a, b)
+            call chk%true(same(got, expected), trim(what)//': union')
+        end do
+    contains
+        function random_pattern(rows, cols) result(p)
+            integer, intent(in) :: rows, cols
+            type(sparsity_pattern) :: p
+            integer, allocatable :: r(:), c(:)
+            call random_entries(seed, rows, cols, r, c)
+            p = pattern_from_entries(rows, cols, r, c)
+            call chk%true(same(p, brute_force(rows, cols, r, c)), 'pattern_from_entries against a dense table')
+        end function random_pattern
+
+        ! The pattern of the entries (r, c) by a dense table, row by row.
+        function brute_force(rows, cols, r, c) result(p)
+            integer, intent(in) :: rows, cols, r(:), c(:)
+            type(sparsity_pattern) :: p
+            logical :: table(rows, cols)
+            integer :: i, j, k
+            table = .false.
+            do k = 1, size(r)
+                table(r(k), c(k)) = .true.
+            end do
+            p%nrows = rows
+            p%ncols = cols
+            allocate (p%row_start(rows + 1), p%cols(count(table)))
+            p%row_start(1) = 1
+            k = 0
+            do i = 1, rows
+                do j = 1, cols
+                    if (.not. table(i, j)) cycle
+                    k = k + 1
+                    p%cols(k) = j
+                end do
+                p%row_start(i + 1) = k + 1
+            end do
+        end function brute_force
+
+        logical function same(x, y)
+            type(sparsity_pattern), intent(in) :: x, y
+            same = x%nrows == y%nrows .and. x%ncols == y%ncols .and. size(x%row_start) == size(y%row_start)
+            if (same) same = all(x%row_start == y%row_start)
+            if (same) same = x%nnz() == y%nnz()
+            if (same) same = all(x%cols(1:x%nnz()) == y%cols(1:y%nnz()))
+        end function same
+    end subroutine pattern_transpose_and_union_by_entries
+
+    ! column_groups (smallest-last greedy coloring): every column in exactly one group, no two
+    ! columns of a group in the same row, on pseudo-random patterns and on a tridiagonal one
+    ! (3 groups, its longest row); at least as many groups as the longest row has entries.
+    subroutine column_groups_share_no_row(chk)
+        type(checker), intent(inout) :: chk
+        type(sparsity_pattern) :: p
+        integer, allocatable :: r(:), c(:), group_start(:), group_cols(:), seen(:), owner(:)
+        integer :: trial, i, g, a, ngroups, m, n
+        integer(int64) :: seed
+        logical :: valid
+        character(len=24) :: what
+        seed = 4711
+        do trial = 0, 30
+            if (trial == 0) then
+                p = band_pattern(12, 1, 1)
+            else
+                m = 1 + lcg_next(seed, 12)
+                n = 1 + lcg_next(seed, 12)
+                call random_entries(seed, m, n, r, c)
+                p = pattern_from_entries(m, n, r, c)
+            end if
+            write (what, '(a,i0)') 'trial ', trial
+            call column_groups(p, ngroups, group_start, group_cols)
+            allocate (seen(p%ncols), source=0)
+            allocate (owner(p%nrows))
+            valid = size(group_start) == ngroups + 1 .and. size(group_cols) == p%ncols
+            do g = 1, ngroups
+                if (.not. valid) exit
+                owner = 0
+                do a = group_start(g), group_start(g + 1) - 1
+                    seen(group_cols(a)) = seen(group_cols(a)) + 1
+                    do i = 1, p%nrows
+                        if (p%position(i, group_cols(a)) == 0) cycle
+                        if (owner(i) /= 0) valid = .false.
+                        owner(i) = group_cols(a)
+                    end do
+                end do
+            end do
+            call chk%true(valid .and. all(seen == 1), trim(what)//': each column once, no row shared')
+            if (p%nrows > 0) call chk%true(ngroups >= maxval(p%row_start(2:) - p%row_start(:p%nrows)), &
+                                           trim(what)//': at least the longest row')
+            if (trial == 0) call chk%equal(ngroups, 3, 'tridiagonal: 3 groups')
+            deallocate (seen, owner)
+        end do
+    end subroutine column_groups_share_no_row
+
+    ! Random entries (r(k), c(k)) of an m x n matrix, as many as a random draw in 0 .. m n (seed updated).
+    subroutine random_entries(seed, m, n, r, c)
+        integer(int64), intent(inout) :: seed
+        integer, intent(in) :: m, n
+        integer, allocatable, intent(out) :: r(:), c(:)
+        integer :: nent, k
+        nent = lcg_next(seed, m*n + 1)
+        allocate (r(nent), c(nent))
+        do k = 1, nent
+            r(k) = 1 + lcg_next(seed, m)
+            c(k) = 1 + lcg_next(seed, n)
+        end do
+    end subroutine random_entries
+
+    ! The next of a linear congruential sequence (seed updated), as an integer in 0 .. range - 1.
+    integer function lcg_next(seed, range) result(k)
+        integer(int64), intent(inout) :: seed
+        integer, intent(in) :: range
+        seed = mod(1103515245_int64*seed + 12345_int64, 2147483648_int64)
+        k = int(mod(seed/65536_int64, int(range, int64)))
+    end function lcg_next
 
 end module test_structure
