@@ -527,6 +527,46 @@ errors 5.5e-9 / 7.2e-8 / 2.6e-9 / 3.5e-10 / 1.8e-11 / 2.8e-12 / 2.0e-13; at matc
 0.93x the peer. Issue 21's 1x: missed by 3% at 1e-7 and 1% at 1e-8, where both curves' first
 crossings lie between rtol 1e-3 and 3.16e-4 (regdae 5.5e-9 and 1.6e-7, the peer 9.8e-9 and 1.8e-7).
 
+Measured by hand on 2026-12-06 (issue 21, the fixed costs at the loose end; the same callgrind runs
+and reference): `regdae_sparsity`'s transpose counts columns and its union merges sorted rows
+(`pattern_from_entries` only for patterns without the type's invariant), reverse Cuthill-McKee
+appends a node's neighbours by a stable sort on degree (the same order), the IDA integrator's
+`steps_taken` (asked by the trust layer at every output) reads IDA's step counter alone, and the
+difference-quotient Jacobian's column groups come from a greedy coloring in smallest-last order
+(doc/methods.md: 10 groups instead of 12, res_evals 223 -> 191 at rtol 1e-3). Outputs bitwise
+unchanged (`tools/check_unchanged.sh`: only res_evals differs, in the six runs on the structured
+engine); `sh drivers/report/stiff_chain_grid.sh BIN 6363` the same rows before and after (ok 89,
+failed 1: cell 5, 2 links on eliminated/dense, failed before too); `trust_grids.sh build chain
+fourbar` 144 and 108 ok. Instructions at rtol 1e-3 / 3.16e-4 / 1e-6 / 1e-9: 5.87 / 6.84 / 13.65 /
+34.74M -> 5.57 / 6.53 / 13.25 / 34.20M (the peer 5.85 / 6.56 / 12.65 / 27.92M); at matched accuracy
+1e-7 / 1e-8 / 1e-9 / 1e-10 / 1e-11 1.045 / 1.029 / 0.894 / 0.703 / 0.930x -> 0.997 / 0.978 / 0.866 /
+0.683 / 0.909x: issue 21's 1x **met by instructions**. CPU time of the solve (a scratch copy of the
+driver, not committed, reading CLOCK_THREAD_CPUTIME_ID in the start/stop pairs of `seconds`, the
+clock's own 0.2 us per pair subtracted; before, after and the peer interleaved, medians of 21 runs
+per rtol): 1.24 / 1.23 / 0.99 / 0.77 / 0.98x before, 1.26 / 1.24 / 1.00 / 0.77 / 0.98x after; the
+driver's `seconds` 1.21 / 1.19 / 0.95 / 0.75 / 0.97x and 1.21 / 1.19 / 0.96 / 0.75 / 0.96x: **missed
+by time at 1e-7 and 1e-8**, and not moved beyond the noise of the build's layout: the same sources
+with the coloring kept as adjacency lists (the same 10 groups, column for column; 6.0 instead of 9.8
+us per coloring, but a peak RSS of 146 instead of 128 MB for 16384 links, from glibc's mmap threshold
+raised by the freed lists, hence not kept) take 5-8% less CPU at rtol 1e-3, warm and cold (31
+interleaved runs), of which the coloring itself is 4 us; not the heap's layout (the same gap under
+other malloc settings, MALLOC_MMAP_THRESHOLD_ and MALLOC_TOP_PAD_, and with the lists' allocations
+added to the O(n) version), not undone by -falign-functions=64 -falign-loops=32; the code after
+`regdae_sparsity` sits 528 bytes lower in the binary: unexplained beyond the code's placement.
+Instruction counts are the measure that resolves changes of a few percent here.
+The gap between instructions and time is the cold start of a process's first solve, which callgrind
+does not count: after two warm-up solves in the same process (the scratch driver) regdae's solve at
+rtol 1e-3 takes 0.52 ms of CPU and the peer's 0.52 ms (cold 0.68 and 0.56 ms; at matched accuracy
+1e-7 / 1e-8 warm 1.05 / 1.02x, before 1.02 / 0.99x), at rtol 1e-9 1.25x warm and 1.30x cold (285
+steps against 193). regdae's first solve pays 0.16 ms over a warm one, the peer's 0.03 ms: minor
+page faults in the timed region 54 against 16 (`perf record -e page-faults`; a fresh heap page costs
+1 us here, code pages of KLU, COLAMD, BTF, LAPACK's band LU, BLAS, libm and regdae's own text more),
+142 lazy symbol bindings against 26 (`LD_BIND_NOW=1` takes 26 us off regdae's time and nothing off
+the peer's) and cold caches. Not in it: malloc (1172 calls in the solve at rtol 1e-3, 3% of the
+instructions), system calls (4 brk), output (none in the timed region). The peer's `seconds` leaves
+out its SUNDIALS context, its vectors and its consistent start from formulas; regdae's init includes
+its own.
+
 TXT
 # Issue 11: the small stiff chain, integrator=auto against hand-chosen configurations.
 awk -f "$(dirname "$0")/chain_errors.awk" "$raw/chain_switch.txt" >"$out/switch_rows.txt"
