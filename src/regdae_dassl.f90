@@ -524,7 +524,7 @@ contains
         n_tol = merge(n, 2*n, kind == kind_first_order)   ! the tolerance vectors' length (INFO(2) = 1)
         if (n < 1 .or. m < 0 .or. m > n) then
             msg = 'N = '//format_int(n)//', M = '//format_int(m)//': the sizes must satisfy 1 <= N and 0 <= M <= N'
-        else if (info(info_vector_tol) == 1 .and. any(rtol(1:n_tol) /= rtol(1))) then
+        else if (unequal_rtol()) then
             ! ATOL per component (DREGDAE: N entries; DREGDAEM: 2N, q then q'); regdae's rtol
             ! is one number
             msg = 'INFO(2) = 1 with unequal RTOL(1:'//format_int(n_tol)//'): regdae has one relative tolerance '// &
@@ -598,6 +598,13 @@ contains
             msg = 'RWORK(19) (check_jacobians) must be 0 or 1, got '//format_real(rwork(rwork_check_jacobians))
         end if
         if (stat /= regdae_success) msg = 'RTOL, ATOL or RWORK(11..19): '//msg
+    contains
+        ! INFO(2) = 1 with unequal RTOL(1:n_tol); RTOL beyond its first entry read only with
+        ! INFO(2) = 1 (a scalar RTOL has one: Fortran's .and. may evaluate both operands)
+        logical function unequal_rtol()
+            unequal_rtol = .false.
+            if (info(info_vector_tol) == 1) unequal_rtol = any(rtol(1:n_tol) /= rtol(1))
+        end function unequal_rtol
     end subroutine options_from
 
     ! ATOL for each of the k components of the state: ATOL(1:k) with INFO(2) = 1, else ATOL(1).
