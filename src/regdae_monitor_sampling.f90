@@ -154,7 +154,7 @@ contains
     end procedure monitor_sample_values
 
     ! A fold's residual ahead of the next fold: once sigma_min(GB) has risen fold_factor times
-    ! above the minimum of a dip below the singular threshold (a fold passed) and falls again
+    ! above the minimum of a dip to below threshold/fold_factor^2 (a fold passed) and falls again
     ! (towards another fold) while the stabilization has forgotten less than e^-fold_memory of
     ! what that fold's layer left in the constraints, project_due (the front projects the state).
     subroutine fold_sample(self, t, sigma)
@@ -180,7 +180,7 @@ contains
             self%fold_risen = .false.
             return
         end if
-        if (sigma > fold_factor*self%fold_low) self%fold_risen = .true.
+        if (sigma > fold_factor*self%fold_low .and. fold_factor**2*self%fold_low < self%threshold) self%fold_risen = .true.
     end subroutine fold_sample
 
     ! The invariant at t: the first sample sets I(t0).
