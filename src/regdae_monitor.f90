@@ -143,7 +143,8 @@ module regdae_monitor
         real(wp) :: fold_rate = 0.0_wp           !! the rate at which the stabilization forgets a constraint residual
         real(wp), private :: fold_low = huge(1.0_wp)   ! the smallest sigma_min(GB) of the last fold's dip
         real(wp), private :: t_fold = 0.0_wp             ! its time
-        logical, private :: fold_risen = .false.         ! sigma_min(GB) rose fold_factor times above fold_low since
+        real(wp), private :: fold_peak = 0.0_wp         ! the largest sigma_min(GB) since it rose fold_factor times above
+                                                         ! fold_low (0: not risen)
         ! The checkpoint before a singular pass (regdae_solver_trust re-integrates the pass
         ! from it): the last sample with sigma_min(GB) >= checkpoint_factor x the threshold
         ! before the pass, frozen from the pass's first sample until released.
@@ -415,7 +416,7 @@ contains
         self%project_due = .false.
         self%projections = 0
         self%fold_low = huge(1.0_wp)
-        self%fold_risen = .false.
+        self%fold_peak = 0.0_wp
         if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)
         allocate (self%v_regular(self%np), self%a_regular(self%np))
         self%sigma_last = huge(1.0_wp)

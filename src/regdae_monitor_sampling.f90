@@ -154,9 +154,10 @@ contains
     end procedure monitor_sample_values
 
     ! A fold's residual ahead of the next fold: once sigma_min(GB) has risen fold_factor times
-    ! above the minimum of a dip to below threshold/fold_factor^2 (a fold passed) and falls again
-    ! (towards another fold) while the stabilization has forgotten less than e^-fold_memory of
-    ! what that fold's layer left in the constraints, project_due (the front projects the state).
+    ! above the minimum of a dip to below threshold/fold_factor^2 (a fold passed) and fallen to
+    ! half its peak since (towards another fold) while the stabilization has forgotten less than
+    ! e^-fold_memory of what that fold's layer left in the constraints, project_due (the front
+    ! projects the state).
     subroutine fold_sample(self, t, sigma)
         type(solution_monitor), intent(inout) :: self
         real(wp), intent(in) :: t, sigma
@@ -164,23 +165,22 @@ contains
         if (sigma < self%threshold .and. sigma <= self%fold_low) then
             self%fold_low = sigma
             self%t_fold = t
+            self%fold_peak = 0.0_wp
         end if
         if (self%fold_low == huge(1.0_wp) .or. .not. (self%fold_rate > 0.0_wp)) return
         if ((t - self%t_fold)*self%fold_rate > fold_memory) then   ! forgotten
             self%fold_low = huge(1.0_wp)
-            self%fold_risen = .false.
             return
         end if
-        if (self%fold_risen .and. sigma < self%sigma_before) then
+        if (sigma > fold_factor*self%fold_low .and. fold_factor**2*self%fold_low < self%threshold) &
+            self%fold_peak = max(self%fold_peak, sigma)
+        if (sigma < 0.5_wp*self%fold_peak) then
             if (self%project_on) then
                 self%project_due = .true.
                 self%projections = self%projections + 1
             end if
             self%fold_low = huge(1.0_wp)
-            self%fold_risen = .false.
-            return
         end if
-        if (sigma > fold_factor*self%fold_low .and. fold_factor**2*self%fold_low < self%threshold) self%fold_risen = .true.
     end subroutine fold_sample
 
     ! The invariant at t: the first sample sets I(t0).
