@@ -291,6 +291,11 @@ contains
                         return
                     end if
                 end if
+                if (monitor%project_due .and. self%t < tout) then
+                    self%pass_stop = .true.
+                    zout = self%z
+                    return
+                end if
                 if (present(stop_at_pass_end)) then
                     if (stop_at_pass_end .and. monitor%pass_ended .and. self%t < tout) then
                         self%pass_stop = .true.

@@ -170,7 +170,8 @@ contains
         stop = .true.
         if (t_now <= tout) then
             if (sampled_alarm(core, t_now, t_stop, outcome)) return
-            if (core%stop_at_pass_end .and. core%monitor%pass_ended .and. t_now < tout) then
+            if ((core%monitor%project_due .or. (core%stop_at_pass_end .and. core%monitor%pass_ended)) .and. &
+                t_now < tout) then
                 t_stop = t_now   ! the integrator's state is the step's end
                 outcome = outcome_pass_end
                 return

@@ -70,6 +70,8 @@ module regdae_monitor
     implicit none
     private
 
+    public :: forgetting_rate
+
     integer, parameter, public :: alarm_none = 0, alarm_jump = 1, alarm_drift = 2, alarm_invariant = 3, alarm_work = 4
     !> The approach to a singular pass begins where sigma_min(GB) falls below this
     !! many times the singular threshold: the checkpoint a pass is re-integrated from.
@@ -88,6 +90,10 @@ module regdae_monitor
     !> A long explicit step whose energy defect plus the quadrature's estimate exceeds this many times
     !! the energy the tolerance leaves open at its end is unresolved (`step_energy`).
     real(wp), parameter, public :: step_energy_factor = 3.0_wp
+    !> sigma_min(GB) risen this many times above a fold's minimum: that fold is passed.
+    real(wp), parameter, public :: fold_factor = 10.0_wp
+    !> A fold's residual counts until the stabilization has forgotten all but e^-fold_memory of it.
+    real(wp), parameter, public :: fold_memory = 4.0_wp
 
     !> The sampled diagnostics of one solver.
     type, public :: solution_monitor
@@ -131,6 +137,14 @@ module regdae_monitor
         logical :: unresolved_new = .false.      !! a new unresolved interval since the flag was last cleared
         character(len=:), allocatable :: unresolved_message   !! where and how much (the last one)
         logical :: pass_ended = .false.          !! a singular interval ended at the last sample (cleared by the caller)
+        logical :: project_on = .false.          !! the front projects the solution where `project_due` (the integrators stop)
+        logical :: project_due = .false.         !! another fold lies ahead inside the singular interval: project the state
+        integer :: projections = 0               !! projections asked for so far
+        real(wp) :: fold_rate = 0.0_wp           !! the rate at which the stabilization forgets a constraint residual
+        real(wp), private :: fold_low = huge(1.0_wp)   ! the smallest sigma_min(GB) of the last fold's dip
+        real(wp), private :: t_fold = 0.0_wp             ! its time
+        real(wp), private :: fold_peak = 0.0_wp         ! the largest sigma_min(GB) since it rose fold_factor times above
+                                                         ! fold_low (0: not risen)
         ! The checkpoint before a singular pass (regdae_solver_trust re-integrates the pass
         ! from it): the last sample with sigma_min(GB) >= checkpoint_factor x the threshold
         ! before the pass, frozen from the pass's first sample until released.
@@ -399,6 +413,10 @@ contains
         self%sigma_before = -1.0_wp
         self%slope_before = 0.0_wp
         self%land_by = huge(1.0_wp)
+        self%project_due = .false.
+        self%projections = 0
+        self%fold_low = huge(1.0_wp)
+        self%fold_peak = 0.0_wp
         if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)
         allocate (self%v_regular(self%np), self%a_regular(self%np))
         self%sigma_last = huge(1.0_wp)
@@ -407,6 +425,18 @@ contains
         self%in_singular = .false.
         if (allocated(self%singular)) deallocate (self%singular)
     end subroutine monitor_reset
+
+    !> The rate at which the stabilization forgets a constraint residual: gamma of
+    !! g' + gamma g = 0 (gamma0 = 0: index 2, or a first-order problem), else the real part
+    !! of the slower root of s^2 + gamma1 s + gamma0 (index 3).
+    pure real(wp) function forgetting_rate(gamma0, gamma1) result(rate)
+        real(wp), intent(in) :: gamma0, gamma1
+        if (gamma0 > 0.0_wp) then
+            rate = 0.5_wp*gamma1 - sqrt(max(0.25_wp*gamma1**2 - gamma0, 0.0_wp))
+        else
+            rate = gamma1
+        end if
+    end function forgetting_rate
 
     pure real(wp) function monitor_motion_time(self) result(time)
         class(solution_monitor), intent(in) :: self

@@ -12,7 +12,7 @@ contains
     ! The resolution check at a sample (the model's last evaluation is at (t, z)):
     ! the memory of sigma_G, and R on the approach to a layer (module doc).
     module procedure resolution_sample
-        real(wp) :: sigma, sigma_g, rate, ratio, disc
+        real(wp) :: sigma, sigma_g, rate, ratio
         integer :: i
         if (model%m == 0 .or. model%order > 2 .or. model%method == method_baumgarte) return
         if (present(row_norm_min)) then
@@ -27,8 +27,7 @@ contains
         if (model%order == 1) then
             rate = model%w(1)
         else   ! the slower root of s^2 + gamma1 s + gamma0: its real part
-            disc = 0.25_wp*model%w(2)**2 - model%w(1)
-            rate = 0.5_wp*model%w(2) - sqrt(max(disc, 0.0_wp))
+            rate = forgetting_rate(model%w(1), model%w(2))
         end if
         if (self%memory < 0.0_wp .or. .not. (t > self%t_memory)) then
             self%memory = max(self%memory, sigma_g)

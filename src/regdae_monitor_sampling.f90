@@ -36,6 +36,9 @@ contains
             end if
         end if
         if (self%invariant_tol > 0.0_wp) invariant = model%invariant_value(t, z, invariant_stat)
+        self%fold_rate = 0.0_wp   ! (order >= 3: the Taylor weights; no projection)
+        if (model%order == 1 .and. model%method /= method_baumgarte) self%fold_rate = forgetting_rate(0.0_wp, model%w(1))
+        if (model%order == 2 .and. model%method /= method_baumgarte) self%fold_rate = forgetting_rate(model%w(1), model%w(2))
         drift = 0.0_wp
         if (self%np > 0) drift = model%position_drift(t, z, stat)
         if (self%np > 0) then
@@ -122,6 +125,7 @@ contains
             self%in_singular = .false.
         end if
         if (present(z)) call checkpoint_sample(self, t, z)
+        call fold_sample(self, t, sigma)
         ! the secant of sigma over the last two samples: for a convex decrease (sigma_min
         ! ~ distance^2 at a rank-one singular configuration) it reaches threshold/2 at
         ! most halfway to the minimum, so the landing sample does not jump over it
@@ -148,6 +152,36 @@ contains
             call regular_sample(self, t, v, a, was_in_layer)
         call settle_alarm(self)
     end procedure monitor_sample_values
+
+    ! A fold's residual ahead of the next fold: once sigma_min(GB) has risen fold_factor times
+    ! above the minimum of a dip to below threshold/fold_factor^2 (a fold passed) and fallen to
+    ! half its peak since (towards another fold) while the stabilization has forgotten less than
+    ! e^-fold_memory of what that fold's layer left in the constraints, project_due (the front
+    ! projects the state).
+    subroutine fold_sample(self, t, sigma)
+        type(solution_monitor), intent(inout) :: self
+        real(wp), intent(in) :: t, sigma
+        if (.not. (sigma == sigma)) return
+        if (sigma < self%threshold .and. sigma <= self%fold_low) then
+            self%fold_low = sigma
+            self%t_fold = t
+            self%fold_peak = 0.0_wp
+        end if
+        if (self%fold_low == huge(1.0_wp) .or. .not. (self%fold_rate > 0.0_wp)) return
+        if ((t - self%t_fold)*self%fold_rate > fold_memory) then   ! forgotten
+            self%fold_low = huge(1.0_wp)
+            return
+        end if
+        if (sigma > fold_factor*self%fold_low .and. fold_factor**2*self%fold_low < self%threshold) &
+            self%fold_peak = max(self%fold_peak, sigma)
+        if (sigma < 0.5_wp*self%fold_peak) then
+            if (self%project_on) then
+                self%project_due = .true.
+                self%projections = self%projections + 1
+            end if
+            self%fold_low = huge(1.0_wp)
+        end if
+    end subroutine fold_sample
 
     ! The invariant at t: the first sample sets I(t0).
     subroutine invariant_sample(self, t, val, stat)

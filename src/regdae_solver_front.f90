@@ -456,6 +456,7 @@ contains
             ! searched for roots (regdae_events); a stopping root ends the advance there.
             stop_user = core%opts%stop_at_output
             taken = 0
+            core%monitor%project_on = .not. driving
             if (events) then
                 self%ev%found = 0
                 self%ev%t_step_end = -huge(1.0_wp)   ! (a restart since may have replaced the state)
@@ -494,6 +495,10 @@ contains
                         return
                     end if
                 end if
+                if (core%monitor%project_due .and. .not. driving .and. stepper%time() <= tout) then
+                    ! the last step ended before tout (its outputs are given): project there
+                    if (.not. projected_at(stepper%time())) return
+                end if
                 held = .false.
                 if (single) t_before = stepper%time()
                 if (driving .and. .not. single .and. core%stop_at_pass_end .and. core%started .and. &
@@ -528,6 +533,10 @@ contains
                     if (self%each_step .and. t_ask < tout .and. .not. (stepper%time() < tout)) cycle
                     exit
                 case (outcome_pass_end)
+                    if (core%monitor%project_due) then   ! (the integrator stopped for it)
+                        if (.not. projected_at(t_stop)) return
+                        if (.not. core%monitor%pass_ended .or. .not. core%stop_at_pass_end) cycle
+                    end if
                     t_reached = t_stop
                     exit
                 case (outcome_stiff, outcome_nonstiff)
@@ -600,6 +609,26 @@ contains
         end if
         call record_done()
     contains
+        ! Another fold ahead within the stabilization's memory of the last one (the monitor's
+        ! project_due, doc/methods.md "The residual a fold leaves"): the state at t_at, the
+        ! integrator's step end, projected onto g = 0 and G v + g_t = 0 and the integrator
+        ! started again from it; false (recorded) on a failure.
+        logical function projected_at(t_at) result(ok)
+            real(wp), intent(in) :: t_at
+            real(wp), allocatable :: zs(:)
+            core%monitor%project_due = .false.
+            allocate (zs(self%state_size()))
+            stepper => active_integrator(core)
+            call stepper%interpolate(t_at, stat)   ! the state at the step's end (not at the last output)
+            if (stat == regdae_success) then
+                call self%state(zs)
+                call self%project_start(t_at, zs)
+                call self%restart_at(t_at, zs, stat)
+            end if
+            ok = (stat == regdae_success)
+            if (.not. ok) call fail(stat, 'the projection before the next fold at t = '//format_real(t_at)//' failed')
+        end function projected_at
+
         ! The sizes of the outputs and tout; false (recorded) if one does not fit.
         logical function outputs_fit() result(ok)
             ok = .false.

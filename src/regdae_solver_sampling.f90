@@ -10,12 +10,13 @@ module regdae_solver_sampling
     use, intrinsic :: iso_c_binding, only: c_double
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success
-    use regdae_options, only: resolved_work_tol, method_direct
+    use regdae_options, only: resolved_work_tol, method_direct, method_baumgarte
     use regdae_augmented_system, only: augmented_system
     use regdae_auto_rules, only: baumgarte_weights
     use regdae_work_energy, only: kinetic_energy_and_power
     use regdae_augmented_rules, only: mass_diagonal, augmented_motion_scales
     use regdae_solver_core, only: solver_core
+    use regdae_monitor, only: forgetting_rate
     use regdae_mechanical_problem, only: mechanical_problem
     implicit none
     private
@@ -170,6 +171,10 @@ contains
                     if (core%monitor%observe_scales(t, gb, g, maxval(abs(q)), sigma)) sys%eps = core%monitor%scales%eps
                 end if
                 if (core%opts%invariant_tol > 0.0_wp) call sys%problem%invariant(t, q, v, invariant, istat)
+            end if
+            if (associated(sys)) then
+                core%monitor%fold_rate = 0.0_wp
+                if (core%opts%method /= method_baumgarte) core%monitor%fold_rate = forgetting_rate(sys%gamma0, sys%gamma1)
             end if
             call core%monitor%sample_values(t, drift, sigma, invariant, istat, v, a, z)
             if (core%monitor%weights_due(t)) call follow_weights_augmented(core, t, q, v, a)
