@@ -8,10 +8,11 @@ submodule (regdae_monitor) regdae_monitor_work
 contains
 
     module procedure monitor_sample_work
-        real(wp) :: defect, h, quadratic, allowed, estimate, refined, refined_error
+        real(wp) :: defect, h, quadratic, allowed, estimate, refined, refined_error, kinetic_before
         integer :: rstat
         logical :: refine, step_end
         if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
+        kinetic_before = self%kinetic_last
         self%kinetic_last = kinetic
         refine = present(problem) .and. present(z) .and. present(dz) .and. allocated(self%work_z)
         if (refine) refine = size(self%work_z) == size(z)
@@ -41,7 +42,8 @@ contains
                            self%work_samples >= 2, h*self%work_rate > 0.3_wp, quadratic, estimate)
         ! an interval whose estimate is not small against the allowance: Boole's rule on the
         ! integrator's motion inside it (the Hermite interpolant of the ends), with its own estimate
-        if (refine .and. estimate > work_refine*self%work_tol*self%work_scale) then
+        if (refine .and. (estimate > work_refine*self%work_tol*self%work_scale .or. (.not. self%in_layer .and. &
+                          abs(kinetic - kinetic_before - quadratic) > work_refine*self%work_tol*self%work_scale))) then
             rstat = -1
             if (step_end) then   ! step_energy's of this interval
                 refined = self%step_work
