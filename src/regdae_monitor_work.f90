@@ -40,8 +40,10 @@ contains
         if (step_end) step_end = all(self%step_z == z)   ! step_energy looked at this interval
         call parabola_work(h, self%t_work - self%t_before, self%power_before, self%power_last, power, &
                            self%work_samples >= 2, h*self%work_rate > 0.3_wp, quadratic, estimate)
-        ! an interval whose estimate is not small against the allowance: Boole's rule on the
-        ! integrator's motion inside it (the Hermite interpolant of the ends), with its own estimate
+        ! an interval whose estimate is not small against the allowance, or (outside the layers)
+        ! whose own balance T - T_last - W is not: Boole's rule on the integrator's motion inside
+        ! it (the Hermite interpolant of the ends), with its own estimate (the ends' estimate
+        ! cannot see a power that vanishes at both: a quarter period from rest to the peak of T)
         if (refine .and. (estimate > work_refine*self%work_tol*self%work_scale .or. (.not. self%in_layer .and. &
                           abs(kinetic - kinetic_before - quadratic) > work_refine*self%work_tol*self%work_scale))) then
             rstat = -1
