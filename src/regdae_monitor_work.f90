@@ -8,7 +8,8 @@ submodule (regdae_monitor) regdae_monitor_work
 contains
 
     module procedure monitor_sample_work
-        real(wp) :: defect, h, quadratic, allowed, estimate, refined, refined_error, kinetic_before
+        real(wp) :: defect, h, quadratic, allowed, estimate, refined, refined_error, kinetic_before, &
+                    thresh, interval_defect
         integer :: rstat
         logical :: refine, step_end
         if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
@@ -40,12 +41,15 @@ contains
         if (step_end) step_end = all(self%step_z == z)   ! step_energy looked at this interval
         call parabola_work(h, self%t_work - self%t_before, self%power_before, self%power_last, power, &
                            self%work_samples >= 2, h*self%work_rate > 0.3_wp, quadratic, estimate)
-        ! an interval whose estimate is not small against the allowance, or (outside the layers)
-        ! whose own balance T - T_last - W is not: Boole's rule on the integrator's motion inside
-        ! it (the Hermite interpolant of the ends), with its own estimate (the ends' estimate
-        ! cannot see a power that vanishes at both: a quarter period from rest to the peak of T)
-        if (refine .and. (estimate > work_refine*self%work_tol*self%work_scale .or. (.not. self%in_layer .and. &
-                          abs(kinetic - kinetic_before - quadratic) > work_refine*self%work_tol*self%work_scale))) then
+        ! an interval whose estimate is not small against the allowance: Boole's rule on the
+        ! integrator's motion inside it (the Hermite interpolant of the ends), with its own estimate;
+        ! also (outside the layers) one whose own balance T - T_last - W is not small, where the
+        ! ends' estimate cannot see a power that vanishes at both (a quarter period from rest to
+        ! the peak of T): its refinement is taken only where it closes that balance, estimate
+        ! included (else its estimate would widen the allowance where the energy did move)
+        thresh = work_refine*self%work_tol*self%work_scale
+        interval_defect = abs(kinetic - kinetic_before - quadratic)
+        if (refine .and. (estimate > thresh .or. (.not. self%in_layer .and. interval_defect > thresh))) then
             rstat = -1
             if (step_end) then   ! step_energy's of this interval
                 refined = self%step_work
@@ -54,6 +58,9 @@ contains
             end if
             if (rstat /= 0) call interval_work(problem, self%t_work, self%work_z, self%work_dz, self%power_last, t, z, &
                                                dz, power, refined, refined_error, rstat, pattern, constant)
+            if (rstat == 0 .and. .not. (estimate > thresh)) then
+                if (.not. (abs(kinetic - kinetic_before - refined) + refined_error < interval_defect)) rstat = -1
+            end if
             if (rstat == 0) then
                 quadratic = refined
                 estimate = refined_error
