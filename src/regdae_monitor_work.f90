@@ -8,10 +8,12 @@ submodule (regdae_monitor) regdae_monitor_work
 contains
 
     module procedure monitor_sample_work
-        real(wp) :: defect, h, quadratic, allowed, estimate, refined, refined_error
+        real(wp) :: defect, h, quadratic, allowed, estimate, refined, refined_error, kinetic_before, &
+                    thresh, interval_defect
         integer :: rstat
         logical :: refine, step_end
         if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
+        kinetic_before = self%kinetic_last
         self%kinetic_last = kinetic
         refine = present(problem) .and. present(z) .and. present(dz) .and. allocated(self%work_z)
         if (refine) refine = size(self%work_z) == size(z)
@@ -40,8 +42,14 @@ contains
         call parabola_work(h, self%t_work - self%t_before, self%power_before, self%power_last, power, &
                            self%work_samples >= 2, h*self%work_rate > 0.3_wp, quadratic, estimate)
         ! an interval whose estimate is not small against the allowance: Boole's rule on the
-        ! integrator's motion inside it (the Hermite interpolant of the ends), with its own estimate
-        if (refine .and. estimate > work_refine*self%work_tol*self%work_scale) then
+        ! integrator's motion inside it (the Hermite interpolant of the ends), with its own estimate;
+        ! also (outside the layers) one whose own balance T - T_last - W is not small, where the
+        ! ends' estimate cannot see a power that vanishes at both (a quarter period from rest to
+        ! the peak of T): its refinement is taken only where it closes that balance, estimate
+        ! included (else its estimate would widen the allowance where the energy did move)
+        thresh = work_refine*self%work_tol*self%work_scale
+        interval_defect = abs(kinetic - kinetic_before - quadratic)
+        if (refine .and. (estimate > thresh .or. (.not. self%in_layer .and. interval_defect > thresh))) then
             rstat = -1
             if (step_end) then   ! step_energy's of this interval
                 refined = self%step_work
@@ -50,6 +58,9 @@ contains
             end if
             if (rstat /= 0) call interval_work(problem, self%t_work, self%work_z, self%work_dz, self%power_last, t, z, &
                                                dz, power, refined, refined_error, rstat, pattern, constant)
+            if (rstat == 0 .and. .not. (estimate > thresh)) then
+                if (.not. (abs(kinetic - kinetic_before - refined) + refined_error < interval_defect)) rstat = -1
+            end if
             if (rstat == 0) then
                 quadratic = refined
                 estimate = refined_error
