@@ -3,6 +3,7 @@
 !! last call, the events log, the options in force, the resolved formulation, linear
 !! solver and least-squares method, the last sigma_min(GB) and the singular intervals.
 submodule (regdae_solver_front) regdae_solver_reports
+    use regdae_format, only: text_length
     implicit none
 
 contains
@@ -54,12 +55,22 @@ contains
         end if
     end procedure solver_message
 
-    module procedure solver_events
-        text = ''
-        if (associated(self%core)) then
-            if (allocated(self%core%events)) text = self%core%events
+    module procedure message_length
+        if (allocated(self%last_message)) then
+            message_length = len(self%last_message)
+        else
+            message_length = len(status_message(self%last_stat))
         end if
+    end procedure message_length
+
+    module procedure solver_events
+        if (len(text) > 0) text = self%core%events
     end procedure solver_events
+
+    module procedure events_length
+        events_length = 0
+        if (associated(self%core)) events_length = text_length(self%core%events)
+    end procedure events_length
 
     module procedure solver_options_in_force
         if (.not. associated(self%core)) return
