@@ -56,11 +56,7 @@ contains
     end procedure solver_message
 
     module procedure message_length
-        if (allocated(self%last_message)) then
-            message_length = len(self%last_message)
-        else
-            message_length = len(status_message(self%last_stat))
-        end if
+        message_length = reported_length(self%last_message, self%last_stat)
     end procedure message_length
 
     module procedure solver_events

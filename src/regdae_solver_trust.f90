@@ -495,11 +495,7 @@ contains
 
     pure integer function trust_message_length(self) result(length)
         class(regdae_solver), intent(in) :: self
-        if (allocated(self%last_message)) then
-            length = len(self%last_message)
-        else
-            length = len(status_message(self%last_stat))
-        end if
+        length = reported_length(self%last_message, self%last_stat)
     end function trust_message_length
 
     function trust_events(self) result(text)
