@@ -305,6 +305,7 @@ contains
         integer, intent(out) :: stat
         character(len=:), allocatable, intent(out) :: msg
         real(wp) :: w, scaled, biggest, sumsq, norm
+        character(len=:), allocatable :: weights
         integer :: i, worst
         stat = regdae_success
         msg = ''
@@ -341,16 +342,17 @@ contains
             msg = msg//'atol = '//format_real(core%atol_z(worst))//' is too small (the weighted norms square the '// &
                   'weights, up to 1/atol, which overflow for atol below about 1e-150)'
         else
-            msg = msg//'the initial slope is huge; '//weights_text(core)//' magnifies the rounding error of '// &
+            call weights_text(core, weights)
+            msg = msg//'the initial slope is huge; '//weights//' magnifies the rounding error of '// &
                   'the constraint at the initial point (max |g| = '//format_real(maxval(abs(core%model%g), 1))// &
                   ') into the multiplier, or f(x0, t0) itself is that large'
         end if
     end subroutine check_first_step
 
     ! The Baumgarte weights in use, for messages.
-    function weights_text(core) result(text)
+    subroutine weights_text(core, text)
         type(solver_core), intent(in) :: core
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
         if (core%model%order == 2) then
             text = 'the weight gamma0 = '//format_real(core%opts%gamma0)//' (or gamma1 = '// &
                    format_real(core%opts%gamma1)//')'
@@ -359,7 +361,7 @@ contains
         else
             text = 'the weight gamma = '//format_real(core%opts%gamma)
         end if
-    end function weights_text
+    end subroutine weights_text
 
     ! max_i (GB)_ii at the model's last evaluation (the scale of GB).
     pure real(wp) function gb_scale(model) result(s)

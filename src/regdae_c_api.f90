@@ -287,11 +287,11 @@ contains
         if (s%kind == kind_none) then
             problem_msg = 'no problem: call regdae_set_first_order, regdae_set_second_order or regdae_set_mechanical first'
         else
-            problem_msg = array_problem(x0, nx0, s%n, 'x0')
+            call array_problem(x0, nx0, s%n, 'x0', problem_msg)
         end if
         if (len(problem_msg) == 0) then
             if (s%kind /= kind_first_order) then
-                problem_msg = array_problem(v0, nv0, s%n, 'v0')
+                call array_problem(v0, nv0, s%n, 'v0', problem_msg)
             else if (c_associated(v0) .or. nv0 /= 0) then
                 problem_msg = 'v0 is for second-order and mechanical problems: pass NULL and 0 for a first-order one'
             end if
@@ -347,13 +347,13 @@ contains
         end if
         want_y = c_associated(y) .or. ny /= 0
         want_v = c_associated(v) .or. nv /= 0
-        problem_msg = array_problem(x, nx, s%n, 'x')
-        if (len(problem_msg) == 0 .and. want_y) problem_msg = array_problem(y, ny, s%m, 'y')
+        call array_problem(x, nx, s%n, 'x', problem_msg)
+        if (len(problem_msg) == 0 .and. want_y) call array_problem(y, ny, s%m, 'y', problem_msg)
         if (len(problem_msg) == 0 .and. want_v) then
             if (s%kind == kind_first_order) then
                 problem_msg = 'v is for second-order and mechanical problems: pass NULL and 0 for a first-order one'
             else
-                problem_msg = array_problem(v, nv, s%n, 'v')
+                call array_problem(v, nv, s%n, 'v', problem_msg)
             end if
         end if
         if (len(problem_msg) > 0) then
@@ -419,19 +419,19 @@ contains
 
     ! What is wrong with the array argument `name` (address p, length given) that
     ! must have length `expected`; '' if nothing.
-    function array_problem(p, given, expected, name) result(text)
+    subroutine array_problem(p, given, expected, name, text)
         type(c_ptr), intent(in) :: p
         integer(c_int), intent(in) :: given
         integer, intent(in) :: expected
         character(len=*), intent(in) :: name
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
         text = ''
         if (.not. c_associated(p)) then
             text = name//' is NULL'
         else if (given /= expected) then
             text = name//' has length '//format_int(given)//'; the problem needs '//format_int(expected)
         end if
-    end function array_problem
+    end subroutine array_problem
 
     ! Set the problem of a handle: its kind, sizes, required callbacks (`fns`: the
     ! four required ones and g_t, which may be NULL) and user data.
@@ -453,7 +453,7 @@ contains
         end if
         do k = 1, 4
             if (.not. c_associated(fns(k))) then
-                status = refuse(s, who//': the callback '//callback_argument(kind, k)//' is NULL (only gt may be)')
+                status = refuse(s, who//': the callback '//trim(callback_argument(kind, k))//' is NULL (only gt may be)')
                 return
             end if
         end do
@@ -469,16 +469,16 @@ contains
         status = record(s, regdae_success, '')
     end function set_problem
 
-    ! The name of the k-th callback argument of regdae_set_<kind>.
+    ! The name of the k-th callback argument of regdae_set_<kind>, padded with blanks.
     pure function callback_argument(kind, k) result(name)
         integer, intent(in) :: kind, k
-        character(len=:), allocatable :: name
+        character(len=6) :: name
         character(len=6), parameter :: first(4) = [character(len=6) :: 'f', 'b', 'g', 'gx']
         character(len=6), parameter :: mechanical(4) = [character(len=6) :: 'mass', 'forces', 'g', 'gx']
         if (kind == kind_mechanical) then
-            name = trim(mechanical(k))
+            name = mechanical(k)
         else
-            name = trim(first(k))
+            name = first(k)
         end if
     end function callback_argument
 

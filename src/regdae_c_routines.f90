@@ -99,7 +99,7 @@ contains
             call c_f_procpointer(self%callbacks(which), point)
             stat = int(point(t, x, val, self%user_data))
         end if
-        if (stat /= 0) self%failure = 'the callback '//routine_name(which)//' returned '//format_int(stat)// &
+        if (stat /= 0) self%failure = 'the callback '//trim(routine_name(which))//' returned '//format_int(stat)// &
                                       ' at t = '//format_real(t)
     end subroutine c_evaluate
 

@@ -212,11 +212,13 @@ contains
         integer, intent(in) :: iwork(liw)
         character(len=*), intent(out) :: msg
         type(dassl_session), pointer :: s
+        character(len=:), allocatable :: text
         if (liw < min_liw) then
             msg = 'DREGDAEMSG: an IWORK of LIW = '//format_int(liw)//' holds no regdae solver (LIW >= '// &
                   format_int(min_liw)//' is needed: a call with this LIW is refused for that)'
         else if (iwork(iwork_refusal) >= refused_no_solver .and. iwork(iwork_refusal) <= refused_info1) then
-            msg = refusal_text(iwork(iwork_refusal))   ! the last call found no session to keep its message
+            call refusal_text(iwork(iwork_refusal), text)   ! the last call found no session to keep its message
+            msg = text
         else if (session_in(iwork, liw, s)) then
             msg = s%message
         else
@@ -301,9 +303,9 @@ contains
                     msg = 'INFO(1) = 1 but IWORK holds another problem ('//trim(merge('DREGDAE ', 'DREGDAEM', &
                           s%kind == kind_first_order))//', N = '//format_int(s%n)//', M = '//format_int(s%m)//')'
             else if (info(info_start) == -1) then
-                msg = refusal_text(refused_after_failure)
+                call refusal_text(refused_after_failure, msg)
             else
-                msg = info1_text(info(info_start))
+                call info1_text(info(info_start), msg)
             end if
             if (len(msg) == 0) call check_call(t, tout, info, rwork, lrw, msg)
         else
@@ -311,8 +313,8 @@ contains
             refusal = refused_info1
             if (info(info_start) == 1) refusal = refused_no_solver
             if (info(info_start) == -1) refusal = refused_after_failure
-            msg = refusal_text(refusal)
-            if (refusal == refused_info1) msg = info1_text(info(info_start))
+            call refusal_text(refusal, msg)
+            if (refusal == refused_info1) call info1_text(info(info_start), msg)
         end if
         if (liw >= min_liw) iwork(iwork_refusal) = refusal
         ok = (len(msg) == 0)
@@ -375,9 +377,9 @@ contains
     end subroutine check_call
 
     ! The message of a refused INFO(1) (also what DREGDAEMSG says for IWORK(10)).
-    pure function refusal_text(reason) result(text)
+    pure subroutine refusal_text(reason, text)
         integer, intent(in) :: reason
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
         select case (reason)
         case (refused_no_solver)
             text = 'INFO(1) = 1 but IWORK holds no solver: start a problem with INFO(1) = 0 (IWORK must not '// &
@@ -387,14 +389,14 @@ contains
         case default
             text = 'INFO(1) was neither 0 (start) nor 1 (continue)'
         end select
-    end function refusal_text
+    end subroutine refusal_text
 
     ! The message of an INFO(1) that is neither 0, 1 nor -1.
-    pure function info1_text(value) result(text)
+    pure subroutine info1_text(value, text)
         integer, intent(in) :: value
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
         text = 'INFO(1) = '//format_int(value)//' must be 0 (start) or 1 (continue)'
-    end function info1_text
+    end subroutine info1_text
 
     ! After the solver's call: T, the counters, IDID, INFO(1) and the message (the
     ! user's routines named as DREGDAE's argument list names them); a start whose
@@ -441,7 +443,7 @@ contains
         rwork(rwork_estimate) = st%error_estimate
         rwork(rwork_pass_error) = st%pass_error
         s%message = ''
-        if (stat /= regdae_success) s%message = in_dassl_words(s%solver%message(), s%routines)
+        if (stat /= regdae_success) call in_dassl_words(s%solver%message(), s%routines, s%message)
         select case (stat)
         case (regdae_success)
             idid = merge(idid_exact, idid_interpolated, s%exact_stops)
@@ -481,10 +483,10 @@ contains
     ! <name> reported failure (stat = <k>)" becomes what the user's routine did, e.g.
     ! "G returned IRES = -2", from the door's record of its last failure (which the
     ! message states too, with T, when it names no routine).
-    function in_dassl_words(message, routines) result(text)
+    subroutine in_dassl_words(message, routines, text)
         character(len=*), intent(in) :: message
         type(f77_routines), intent(in) :: routines
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
         character(len=*), parameter :: opening = 'user routine ', closing = ' reported failure (stat = '
         character(len=*), parameter :: g_check = 'check_jacobians: constraint_jacobian disagrees with the '// &
                                                  'difference quotient of the constraint'
@@ -508,7 +510,7 @@ contains
             named = .true.
         end do
         if (.not. named) text = text//' ('//routines%failure//')'
-    end function in_dassl_words
+    end subroutine in_dassl_words
 
     ! The options from INFO, RTOL, ATOL and RWORK; msg names the first bad entry.
     subroutine options_from(kind, n, m, info, rtol, atol, rwork, maxord, with_jac, opts, msg)
@@ -519,6 +521,7 @@ contains
         logical, intent(in) :: with_jac ! DREGDAEJ or DREGDAEMJ: INFO(5) = 1 may ask for JAC
         type(solver_options), intent(out) :: opts
         character(len=:), allocatable, intent(inout) :: msg
+        character(len=:), allocatable :: feature
         integer :: i, stat, n_tol
 
         n_tol = merge(n, 2*n, kind == kind_first_order)   ! the tolerance vectors' length (INFO(2) = 1)
@@ -540,8 +543,10 @@ contains
         end do
         do i = 3, 15
             if (len(msg) > 0) exit
-            if (info(i) /= 0 .and. any(i == [5, 6, 12, 13, 14, 15]) .and. .not. (i == info_jac .and. with_jac)) &
-                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//dassl_feature(i, kind)
+            if (info(i) /= 0 .and. any(i == [5, 6, 12, 13, 14, 15]) .and. .not. (i == info_jac .and. with_jac)) then
+                call dassl_feature(i, kind, feature)
+                msg = 'INFO('//format_int(i)//') = '//format_int(info(i))//' asks for '//feature
+            end if
         end do
         if (len(msg) > 0) return
         if (info(info_method) < 0 .or. info(info_method) > method_direct) then
@@ -621,10 +626,10 @@ contains
 
     ! What DASSL's (and DDASPK's) INFO(i) asks for, why DREGDAE does not have it, and
     ! what to do instead.
-    pure function dassl_feature(i, kind) result(text)
+    pure subroutine dassl_feature(i, kind, text)
         integer, intent(in) :: i
         integer, intent(in) :: kind   ! kind_first_order (DREGDAE) or kind_mechanical (DREGDAEM)
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
         select case (i)
         case (5)
             text = 'a JAC routine, which '//trim(merge('DREGDAE ', 'DREGDAEM', kind == kind_first_order))// &
@@ -646,7 +651,7 @@ contains
             text = 'the initial values alone (DDASPK''s INFO(14)), which DREGDAE does not stop at (it checks '// &
                    'g(x0, t0) = 0 and computes y(t0) at every start, then integrates): set INFO(14) = 0'
         end select
-    end function dassl_feature
+    end subroutine dassl_feature
 
     ! Print a message on the unit of INFO(20) (0: the error unit; -1: none).
     subroutine report(info, kind, msg)

@@ -166,11 +166,13 @@ contains
         integer, intent(in) :: iwork(liw)
         character(len=*), intent(out) :: msg
         type(ddaskr_session), pointer :: s
+        character(len=:), allocatable :: text
         if (liw < min_liw) then
             msg = 'DREGDASKRMSG: an IWORK of LIW = '//format_int(liw)//' holds no solver (LIW >= '// &
                   format_int(min_liw)//' is needed)'
         else if (iwork(iwork_refusal) >= refused_no_solver .and. iwork(iwork_refusal) <= refused_start) then
-            msg = refusal_text(iwork(iwork_refusal))
+            call refusal_text(iwork(iwork_refusal), text)
+            msg = text
         else if (session_in(iwork, liw, s)) then
             msg = s%message
         else
@@ -235,15 +237,16 @@ contains
                     format_int(s%neq)//', NRT = '//format_int(s%nrt)//')'
                 if (len(msg) == 0) call check_call(neq, t, tout, info, rwork, lrw, msg)
             else if (info(info_start) == -1) then
-                msg = refusal_text(refused_after_failure)
+                call refusal_text(refused_after_failure, msg)
             else
-                msg = refusal_text(refused_info1)//' (INFO(1) = '//format_int(info(info_start))//')'
+                call refusal_text(refused_info1, msg)
+                msg = msg//' (INFO(1) = '//format_int(info(info_start))//')'
             end if
         else
             refusal = refused_info1
             if (info(info_start) == 1) refusal = refused_no_solver
             if (info(info_start) == -1) refusal = refused_after_failure
-            msg = refusal_text(refusal)
+            call refusal_text(refusal, msg)
         end if
         ok = (len(msg) == 0)
         if (liw >= min_liw) iwork(iwork_refusal) = 0
@@ -373,9 +376,9 @@ contains
     end function failure_idid
 
     ! The text of a refusal whose code IWORK(10) keeps.
-    pure function refusal_text(reason) result(text)
+    pure subroutine refusal_text(reason, text)
         integer, intent(in) :: reason
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
         select case (reason)
         case (refused_no_solver)
             text = 'INFO(1) = 1 but IWORK holds no solver: start a problem with INFO(1) = 0 (IWORK must not '// &
@@ -388,7 +391,7 @@ contains
             text = 'the last start (INFO(1) = 0) was refused: its input was invalid (the message was printed '// &
                    'on the unit of INFO(20)); nothing was allocated'
         end select
-    end function refusal_text
+    end subroutine refusal_text
 
     ! Print a message on the unit of INFO(20) (0: the error unit; -1: none).
     subroutine report(info, msg)

@@ -184,7 +184,7 @@ contains
         end select
         if (ires == 0) return
         stat = merge(1, -abs(ires), ires == -1)
-        self%said = f77_routine_name(which)//' returned IRES = '//format_int(ires)
+        self%said = trim(f77_routine_name(which))//' returned IRES = '//format_int(ires)
         self%failure = self%said//' at T = '//format_real(t)
     end subroutine f77_evaluate
 
@@ -301,10 +301,11 @@ contains
         if (allocated(self%failure)) deallocate (self%failure)
     end subroutine f77_forget_failure
 
-    ! The name of a routine as DREGDAE's argument list has it: F, B, G, GX, GT, MASS, FORCES.
+    ! The name of a routine as DREGDAE's argument list has it: F, B, G, GX, GT, MASS, FORCES
+    ! (padded with blanks).
     pure function f77_routine_name(which) result(name)
         integer, intent(in) :: which
-        character(len=:), allocatable :: name
+        character(len=len(routine_name(1))) :: name
         integer :: k
         if (which > n_routines) then
             name = 'JAC'

@@ -129,14 +129,15 @@ module regdae_foreign_problems
 contains
 
     !> The name of a routine code, as the C interface's arguments have it (the
-    !! FORTRAN 77 door upper-cases it).
+    !! FORTRAN 77 door upper-cases it), padded with blanks (a fixed-length result:
+    !! doc/methods.md, "No global state").
     pure function routine_name(which) result(name)
         integer, intent(in) :: which   !! a routine code
-        character(len=:), allocatable :: name
+        character(len=11) :: name
         character(len=11), parameter :: names(n_routines) = [character(len=11) :: 'f', 'b', 'g', 'gx', 'gt', &
             'curvature', 'invariant', 'mass', 'forces', 'mass_values', 'gx_values']
         name = '?'
-        if (which >= 1 .and. which <= n_routines) name = trim(names(which))
+        if (which >= 1 .and. which <= n_routines) name = names(which)
     end function routine_name
 
     ! --- first order -----------------------------------------------------------------

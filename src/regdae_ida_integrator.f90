@@ -22,7 +22,7 @@ module regdae_ida_integrator
     use regdae_augmented_system, only: augmented_system
     use regdae_solver_core, only: solver_core
     use regdae_switching_policy, only: spectral_radius
-    use regdae_implicit_steps, only: implicit_stepper
+    use regdae_implicit_steps, only: implicit_stepper, name_len
     implicit none
     private
 
@@ -141,7 +141,7 @@ contains
 
     function ida_name(self) result(who)
         class(ida_integrator), intent(in) :: self
-        character(len=:), allocatable :: who
+        character(len=name_len) :: who
         who = 'IDA'
     end function ida_name
 
@@ -242,10 +242,10 @@ contains
         call self%ida%forget_interpolation()
     end subroutine ida_state_written
 
+    ! prefix//text, or '' for an empty text.
     pure function merge_text(prefix, text) result(s)
         character(len=*), intent(in) :: prefix, text
-        character(len=:), allocatable :: s
-        s = ''
+        character(len=merge(len(prefix) + len(text), 0, len(text) > 0)) :: s
         if (len(text) > 0) s = prefix//text
     end function merge_text
 

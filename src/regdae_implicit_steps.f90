@@ -22,6 +22,9 @@ module regdae_implicit_steps
     implicit none
     private
 
+    !> The length of a stepper's name (blank-padded).
+    integer, parameter, public :: name_len = 8
+
     !> An implicit integrator of the core's model, stepping under the loop of
     !! `advance` (written here once) through the deferred one-step primitives.
     type, abstract, extends(integrator), public :: implicit_stepper
@@ -41,7 +44,8 @@ module regdae_implicit_steps
         procedure(stepper_step), deferred :: step_towards
         !> state() and slope() at the end of the last step, time().
         procedure(stepper_step_end), deferred :: to_step_end
-        !> The method's name in messages ('IDA', 'Radau').
+        !> The method's name in messages ('IDA', 'Radau'), padded with blanks to name_len
+        !! (a fixed length: doc/methods.md, "No global state").
         procedure(stepper_name), deferred :: name
     end type implicit_stepper
 
@@ -61,9 +65,9 @@ module regdae_implicit_steps
         end subroutine stepper_step_end
 
         function stepper_name(self) result(who)
-            import :: implicit_stepper
+            import :: implicit_stepper, name_len
             class(implicit_stepper), intent(in) :: self
-            character(len=:), allocatable :: who
+            character(len=name_len) :: who
         end function stepper_name
     end interface
 
@@ -113,7 +117,7 @@ contains
             if (istat /= regdae_success) then
                 outcome = outcome_broken
                 stat = regdae_err_integration
-                msg = self%name()//' could not interpolate at t = '//format_real(tout)
+                msg = trim(self%name())//' could not interpolate at t = '//format_real(tout)
                 return
             end if
             if (sampled_alarm(core, tout, t_stop, outcome)) return
@@ -139,7 +143,7 @@ contains
         t_stop = t_now
         outcome = outcome_exhausted
         stat = regdae_err_integration
-        msg = self%name()//' took max_steps = '//format_int(self%core%opts%max_steps)//' steps without reaching tout = '// &
+        msg = trim(self%name())//' took max_steps = '//format_int(self%core%opts%max_steps)//' steps without reaching tout = '// &
               format_real(tout)//' (t = '//format_real(t_now)//')'
     end function budget_spent
 

@@ -135,6 +135,15 @@ module regdae_options
     public :: set_option, validate_options, method_name, formulation_name, lsq_name, exclusion_name, excluded_name, &
               integrator_name, linear_solver_name
 
+    ! The names of the codes, in the order of their values (method_name and the like).
+    character(len=12), parameter :: method_names(3) = [character(len=12) :: 'baumgarte', 'trust_region', 'direct']
+    character(len=12), parameter :: formulation_names(4) = [character(len=12) :: 'auto', 'multiplier', 'eliminated', 'augmented']
+    character(len=12), parameter :: lsq_names(4) = [character(len=12) :: 'auto', 'normal', 'stacked', 'checked']
+    character(len=12), parameter :: exclusion_names(3) = [character(len=12) :: 'suppress', 'weights', 'off']
+    character(len=12), parameter :: linear_solver_names(4) = [character(len=12) :: 'auto', 'dense', 'band', 'sparse']
+    character(len=12), parameter :: integrator_names(4) = [character(len=12) :: 'auto', 'ida', 'dopri5', 'radau']
+    character(len=12), parameter :: excluded_names(2) = [character(len=12) :: 'y', 'vy']
+
 contains
 
     !> Set one option from its `key` and textual `value`.
@@ -346,107 +355,90 @@ contains
     end function resolved_work_tol
 
     !> A real option as text: its value, or 'auto'.
-    function option_text(x) result(text)
+    pure function option_text(x) result(text)
         real(wp), intent(in) :: x
-        character(len=:), allocatable :: text
-        if (x == option_auto) then
-            text = 'auto'
-        else
-            text = format_real(x, 4)
-        end if
+        character(len=len_trim(option_padded(x))) :: text
+        text = option_padded(x)
     end function option_text
+
+    pure function option_padded(x) result(text)
+        real(wp), intent(in) :: x
+        character(len=40) :: text
+        text = 'auto'
+        if (x /= option_auto) text = format_real(x, 4)
+    end function option_padded
+
+    ! The names of the codes: automatic-length results, no `character(len=:), allocatable`
+    ! one (doc/methods.md, "No global state").
 
     !> Name of a method code, as accepted by `set_option`.
     pure function method_name(code) result(name)
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
-        select case (code)
-        case (method_baumgarte); name = 'baumgarte'
-        case (method_trust_region); name = 'trust_region'
-        case (method_direct); name = 'direct'
-        case default; name = 'unknown'
-        end select
+        character(len=len_trim(code_name(code, method_names, 1))) :: name
+        name = code_name(code, method_names, 1)
     end function method_name
 
     !> Name of a formulation code.
     pure function formulation_name(code) result(name)
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
-        select case (code)
-        case (formulation_auto); name = 'auto'
-        case (formulation_multiplier); name = 'multiplier'
-        case (formulation_eliminated); name = 'eliminated'
-        case (formulation_augmented); name = 'augmented'
-        case default; name = 'unknown'
-        end select
+        character(len=len_trim(code_name(code, formulation_names, 0))) :: name
+        name = code_name(code, formulation_names, 0)
     end function formulation_name
 
     !> Name of a least-squares solver code.
     pure function lsq_name(code) result(name)
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
-        select case (code)
-        case (lsq_auto); name = 'auto'
-        case (lsq_normal); name = 'normal'
-        case (lsq_stacked); name = 'stacked'
-        case (lsq_checked); name = 'checked'
-        case default; name = 'unknown'
-        end select
+        character(len=len_trim(code_name(code, lsq_names, 0))) :: name
+        name = code_name(code, lsq_names, 0)
     end function lsq_name
 
     !> Name of an error-test exclusion code.
     pure function exclusion_name(code) result(name)
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
-        select case (code)
-        case (exclusion_suppress); name = 'suppress'
-        case (exclusion_weights); name = 'weights'
-        case (exclusion_off); name = 'off'
-        case default; name = 'unknown'
-        end select
+        character(len=len_trim(code_name(code, exclusion_names, 1))) :: name
+        name = code_name(code, exclusion_names, 1)
     end function exclusion_name
 
     !> Name of a linear-solver code.
     pure function linear_solver_name(code) result(name)
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
-        select case (code)
-        case (linear_solver_auto); name = 'auto'
-        case (linear_solver_dense); name = 'dense'
-        case (linear_solver_band); name = 'band'
-        case (linear_solver_sparse); name = 'sparse'
-        case default; name = 'unknown'
-        end select
+        character(len=len_trim(code_name(code, linear_solver_names, 0))) :: name
+        name = code_name(code, linear_solver_names, 0)
     end function linear_solver_name
 
     !> Name of an integrator code.
     pure function integrator_name(code) result(name)
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
-        select case (code)
-        case (integrator_auto); name = 'auto'
-        case (integrator_ida); name = 'ida'
-        case (integrator_dopri5); name = 'dopri5'
-        case (integrator_radau); name = 'radau'
-        case default; name = 'unknown'
-        end select
+        character(len=len_trim(code_name(code, integrator_names, 0))) :: name
+        name = code_name(code, integrator_names, 0)
     end function integrator_name
 
     !> Name of an error-test set code (index 3).
     pure function excluded_name(code) result(name)
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
-        select case (code)
-        case (excluded_y); name = 'y'
-        case (excluded_vy); name = 'vy'
-        case default; name = 'unknown'
-        end select
+        character(len=len_trim(code_name(code, excluded_names, 1))) :: name
+        name = code_name(code, excluded_names, 1)
     end function excluded_name
+
+    ! names(code - first + 1), or 'unknown' for a code outside the table; padded with blanks.
+    pure function code_name(code, names, first) result(name)
+        integer, intent(in) :: code, first
+        character(len=*), intent(in) :: names(:)
+        character(len=12) :: name
+        name = 'unknown'
+        if (code >= first .and. code - first < size(names)) name = names(code - first + 1)
+    end function code_name
 
     ! What a key's value looks like, for the message about a bad one.
     pure function expected_form(key) result(text)
         character(len=*), intent(in) :: key
-        character(len=:), allocatable :: text
+        character(len=len_trim(expected_padded(key))) :: text
+        text = expected_padded(key)
+    end function expected_form
+
+    pure function expected_padded(key) result(text)
+        character(len=*), intent(in) :: key
+        character(len=48) :: text
         select case (key)
         case ('method'); text = ' (baumgarte, trust_region or direct)'
         case ('formulation'); text = ' (auto, eliminated, multiplier or augmented)'
@@ -463,7 +455,7 @@ contains
             text = ' (a finite number, or auto)'
         case default; text = ' (a finite number, e.g. 1e-6, 2.5 or .5)'
         end select
-    end function expected_form
+    end function expected_padded
 
     ! Position of `value` in `names` (1-based), 0 if absent.
     pure subroutine lookup(value, names, code)

@@ -29,7 +29,7 @@ module regdae_radau_iia
     use regdae_kinds, only: wp
     use regdae_status, only: regdae_success, regdae_err_bad_input, regdae_err_integration, &
                              regdae_err_not_initialized, regdae_err_nonfinite, regdae_err_singular
-    use regdae_format, only: format_real, format_int
+    use regdae_format, only: format_real, format_int, text_length
     use regdae_radau_tableau, only: radau_coefficients, radau_iia_coefficients
     use regdae_radau_linear, only: radau_newton_matrices
     use regdae_radau_system, only: radau_system, radau_options, radau_stats, validate_options, difference_jacobian
@@ -768,8 +768,7 @@ contains
 
     function radau_message(self) result(msg)
         class(radau_integrator), intent(in) :: self
-        character(len=:), allocatable :: msg
-        msg = ''
+        character(len=text_length(self%msg)) :: msg
         if (allocated(self%msg)) msg = self%msg
     end function radau_message
 

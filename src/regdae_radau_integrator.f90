@@ -32,7 +32,7 @@ module regdae_radau_integrator
     use regdae_augmented_system, only: augmented_system
     use regdae_solver_core, only: solver_core
     use regdae_switching_policy, only: spectral_radius
-    use regdae_implicit_steps, only: implicit_stepper
+    use regdae_implicit_steps, only: implicit_stepper, name_len
     implicit none
     private
 
@@ -189,7 +189,7 @@ contains
 
     function radau_name(self) result(who)
         class(radau_adapter), intent(in) :: self
-        character(len=:), allocatable :: who
+        character(len=name_len) :: who
         who = 'Radau'
     end function radau_name
 

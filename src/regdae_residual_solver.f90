@@ -27,7 +27,7 @@ module regdae_residual_solver
     use fsunlinsol_band_mod
     use regdae_kinds, only: wp
     use regdae_status
-    use regdae_format, only: format_int, format_real
+    use regdae_format, only: format_int, format_real, text_length
     use regdae_c_strings, only: c_string
     use regdae_residual_problem, only: residual_problem
     use regdae_residual_options, only: residual_options, check_residual_options, initial_given, initial_algebraic
@@ -276,7 +276,8 @@ contains
                 self%msg = ''
             else
                 stat = failure_status(c, regdae_err_inconsistent_ic)
-                self%msg = 'consistent initial values (IDACalcIC) failed: '//failure_text(c)
+                call failure_text(c, self%msg)
+                self%msg = 'consistent initial values (IDACalcIC) failed: '//self%msg
             end if
         end associate
     end subroutine solver_initial_values
@@ -319,7 +320,7 @@ contains
             end if
             if (stat == regdae_success .and. how == reached_root) stat = regdae_root_found
             self%msg = ''
-            if (stat /= regdae_success .and. stat /= regdae_root_found) self%msg = failure_text(c)
+            if (stat /= regdae_success .and. stat /= regdae_root_found) call failure_text(c, self%msg)
         end associate
         if (present(reached)) reached = how
     end subroutine solver_advance
@@ -457,9 +458,9 @@ contains
     end function failure_status
 
     ! What failed: the user's routine by its name, IDA's message.
-    function failure_text(c) result(text)
+    subroutine failure_text(c, text)
         type(residual_core), intent(in) :: c
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
         integer :: code
         text = ''
         if (c%weight_component > 0) then
@@ -474,7 +475,7 @@ contains
         end if
         if (c%flag /= 0) text = text//'IDA flag '//format_int(c%flag)
         if (len(c%ida_message) > 0) text = text//' ('//c%ida_message//')'
-    end function failure_text
+    end subroutine failure_text
 
     function solver_statistics(self) result(st)
         class(residual_solver), intent(in) :: self
@@ -514,8 +515,7 @@ contains
 
     function solver_message(self) result(msg)
         class(residual_solver), intent(in) :: self
-        character(len=:), allocatable :: msg
-        msg = ''
+        character(len=text_length(self%msg)) :: msg
         if (allocated(self%msg)) msg = self%msg
     end function solver_message
 

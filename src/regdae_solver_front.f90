@@ -53,7 +53,7 @@ module regdae_solver_front
     implicit none
     private
 
-    public :: solver_stats, event_functions
+    public :: solver_stats, event_functions, events_length
 
     !> A regularized DAE solver on IDA (see the module documentation).
     type, public :: solver_engine
@@ -167,15 +167,25 @@ module regdae_solver_front
 
     ! The queries and the monitor's alarm as a status (submodule regdae_solver_reports).
     interface
+        ! (message and events have automatic-length results: doc/methods.md, "No global state")
         module function solver_message(self) result(msg)
             class(solver_engine), intent(in) :: self
-            character(len=:), allocatable :: msg
+            character(len=message_length(self)) :: msg
         end function solver_message
 
         module function solver_events(self) result(text)
             class(solver_engine), intent(in) :: self
-            character(len=:), allocatable :: text
+            character(len=events_length(self)) :: text
         end function solver_events
+
+        pure module integer function message_length(self)
+            class(solver_engine), intent(in) :: self
+        end function message_length
+
+        !> The length of the events log (`events`).
+        pure module integer function events_length(self)
+            class(solver_engine), intent(in) :: self
+        end function events_length
 
         module function solver_options_in_force(self) result(opts)
             class(solver_engine), intent(in) :: self

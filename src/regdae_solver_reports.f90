@@ -3,6 +3,7 @@
 !! last call, the events log, the options in force, the resolved formulation, linear
 !! solver and least-squares method, the last sigma_min(GB) and the singular intervals.
 submodule (regdae_solver_front) regdae_solver_reports
+    use regdae_format, only: text_length
     implicit none
 
 contains
@@ -54,12 +55,18 @@ contains
         end if
     end procedure solver_message
 
+    module procedure message_length
+        message_length = reported_length(self%last_message, self%last_stat)
+    end procedure message_length
+
     module procedure solver_events
-        text = ''
-        if (associated(self%core)) then
-            if (allocated(self%core%events)) text = self%core%events
-        end if
+        if (len(text) > 0) text = self%core%events
     end procedure solver_events
+
+    module procedure events_length
+        events_length = 0
+        if (associated(self%core)) events_length = text_length(self%core%events)
+    end procedure events_length
 
     module procedure solver_options_in_force
         if (.not. associated(self%core)) return

@@ -34,7 +34,7 @@ module regdae_solver_trust
     use regdae_problem, only: dae_problem
     use regdae_second_order_problem, only: second_order_problem
     use regdae_higher_order_problem, only: higher_order_problem
-    use regdae_solver_front, only: solver_engine, solver_stats
+    use regdae_solver_front, only: solver_engine, solver_stats, events_length
     use regdae_events, only: event_functions
     use regdae_format, only: format_real, format_int
     implicit none
@@ -482,9 +482,10 @@ contains
         end if
     end function trust_error_estimate
 
-    recursive function trust_message(self) result(msg)
+    ! message and events have automatic-length results (doc/methods.md, "No global state").
+    function trust_message(self) result(msg)
         class(regdae_solver), intent(in) :: self
-        character(len=:), allocatable :: msg
+        character(len=trust_message_length(self)) :: msg
         if (allocated(self%last_message)) then
             msg = self%last_message
         else
@@ -492,12 +493,22 @@ contains
         end if
     end function trust_message
 
+    pure integer function trust_message_length(self) result(length)
+        class(regdae_solver), intent(in) :: self
+        length = reported_length(self%last_message, self%last_stat)
+    end function trust_message_length
+
     function trust_events(self) result(text)
         class(regdae_solver), intent(in) :: self
-        character(len=:), allocatable :: text
-        text = ''
-        if (associated(self%main)) text = self%main%events()
+        character(len=trust_events_length(self)) :: text
+        if (len(text) > 0) text = self%main%events()
     end function trust_events
+
+    pure integer function trust_events_length(self) result(length)
+        class(regdae_solver), intent(in) :: self
+        length = 0
+        if (associated(self%main)) length = events_length(self%main)
+    end function trust_events_length
 
     function trust_options(self) result(opts)
         class(regdae_solver), intent(in) :: self

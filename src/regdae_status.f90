@@ -34,7 +34,7 @@ module regdae_status
     integer, parameter, public :: regdae_err_work = -117             !! the work-energy balance of a mechanical problem failed
     integer, parameter, public :: regdae_err_memory = -118           !! the system refused an allocation
 
-    public :: status_message
+    public :: status_message, reported_length
 
     !> The length of an entry of `status_texts` (the longest text, its NUL and a spare).
     integer, parameter, public :: status_text_len = 106
@@ -79,13 +79,33 @@ contains
     !! which quantity, at what time); `unknown status code (not a regdae status)`
     !! for a code that is none of `status_codes`.
     pure function status_message(code) result(msg)
-        integer, intent(in) :: code          !! a regdae status code
-        character(len=:), allocatable :: msg !! its description
-        integer :: k
-        msg = unknown_status_text(:len(unknown_status_text) - 1)
-        do k = 1, size(status_codes)
-            if (status_codes(k) == code) msg = status_texts(k)(:index(status_texts(k), achar(0)) - 1)
-        end do
+        integer, intent(in) :: code                                     !! a regdae status code
+        character(len=index(status_text(code), achar(0)) - 1) :: msg   !! its description
+        msg = status_text(code)   ! up to the NUL
     end function status_message
+
+    !> The length of `message` where it is allocated, else of `status_message(code)`: the
+    !! length of a solver's `message()`, which says one or the other.
+    pure integer function reported_length(message, code)
+        character(len=:), allocatable, intent(in) :: message
+        integer, intent(in) :: code
+        if (allocated(message)) then
+            reported_length = len(message)
+        else
+            reported_length = len(status_message(code))
+        end if
+    end function reported_length
+
+    ! The NUL-terminated description of a code, padded with blanks (status_message's
+    ! result has this automatic length, not a deferred one: doc/methods.md, "No global state").
+    pure function status_text(code) result(text)
+        integer, intent(in) :: code
+        character(len=max(status_text_len, len(unknown_status_text))) :: text
+        integer :: k
+        text = unknown_status_text
+        do k = 1, size(status_codes)
+            if (status_codes(k) == code) text = status_texts(k)
+        end do
+    end function status_text
 
 end module regdae_status
