@@ -163,7 +163,22 @@ EOF
     echo "wrote $out/crank_err.png $out/crank_class.png"
 fi
 
-# The other families: the class per cell over (case, R).
+# family_map DAT PNG MAPS TITLE: a family's heat map over (case, R) from DAT's 'case R value'
+# rows (ncols, ymax and xtics of the family in force), the colours set by MAPS
+family_map() {
+    gnuplot <<EOF
+set terminal pngcairo size 1400,600 font ',9'
+set output '$2'
+$3
+set title '$4'
+set xrange [0.5:$((ncols)).5]; set yrange [2.5:$ymax.5]
+set xtics ($xtics) rotate by 60 right
+set ylabel '-log10(R)'
+plot '$1' using 1:2:3 with image notitle
+EOF
+}
+
+# The other families: the class per cell over (case, R), and log10(err/bound).
 for fam in chain chain_long fourbar linear; do
     [ -f "$out/$fam.txt" ] || continue
     # FAMILY.dat: case ordinal (in order of first appearance), -log10(R), class code, sorted
@@ -175,16 +190,7 @@ for fam in chain chain_long fourbar linear; do
     ncols=$(wc -l < "$out/$fam.labels")
     ymax=$(awk 'NR == 1 || $2 > m { m = $2 } END { print m + 0 }' "$out/$fam.dat")
     xtics=$(awk '{ printf "%s\"%s\" %d", (NR > 1 ? ", " : ""), $2, $1 }' "$out/$fam.labels")
-    gnuplot <<EOF
-set terminal pngcairo size 1400,600 font ',9'
-set output '$out/${fam}_class.png'
-$palette
-set title '$fam: class per cell'
-set xrange [0.5:$((ncols)).5]; set yrange [2.5:$ymax.5]
-set xtics ($xtics) rotate by 60 right
-set ylabel '-log10(R)'
-plot '$out/$fam.dat' using 1:2:3 with image notitle
-EOF
+    family_map "$out/$fam.dat" "$out/${fam}_class.png" "$palette" "$fam: class per cell"
     # FAMILY_err.dat: the same cells' log10(err/bound) in [-3, 6] (NaN, no colour, where a cell has no
     # error or no bound: refused, no reference)
     awk '$1 ~ /^[0-9]+$/ { key = $3 " " $4; if (!(key in col)) col[key] = ++n
@@ -192,16 +198,8 @@ EOF
             else { e = ($9 > 0) ? log($9 / $11) / log(10) : -3; if (e < -3) e = -3; if (e > 6) e = 6 }
             printf "%d %d %s\n", col[key], -log($6) / log(10) + 0.5, e }' "$out/$fam.txt" |
         sort -n -k1,1 -k2,2 > "$out/${fam}_err.dat"
-    gnuplot <<EOF
-set terminal pngcairo size 1400,600 font ',9'
-set output '$out/${fam}_err.png'
-set palette defined (-3 '#1a9850', 0 '#ffffbf', 0.001 '#fdae61', 3 '#d73027', 6 '#67001f')
-set cbrange [-3:6]; set cblabel 'log10(err/bound)'
-set title '$fam: log10(err / bound) per cell (> 0: beyond the bound)'
-set xrange [0.5:$((ncols)).5]; set yrange [2.5:$ymax.5]
-set xtics ($xtics) rotate by 60 right
-set ylabel '-log10(R)'
-plot '$out/${fam}_err.dat' using 1:2:3 with image notitle
-EOF
+    family_map "$out/${fam}_err.dat" "$out/${fam}_err.png" "set palette defined (-3 '#1a9850', 0 '#ffffbf', \
+0.001 '#fdae61', 3 '#d73027', 6 '#67001f'); set cbrange [-3:6]; set cblabel 'log10(err/bound)'" \
+        "$fam: log10(err / bound) per cell (> 0: beyond the bound)"
     echo "wrote $out/${fam}_class.png $out/${fam}_err.png"
 done
