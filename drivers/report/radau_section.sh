@@ -64,6 +64,11 @@ run)
     ;;
 report)
     raw=${2:?RAWDIR}
+    # med(key): the median of the seconds sec[key, 1 .. cnt[key]] of a key's runs
+    runs_awk='function med(key,   i, j, t, a, n) { n = cnt[key]; for (i = 1; i <= n; i++) a[i] = sec[key, i] + 0
+             for (i = 2; i <= n; i++) { t = a[i]; for (j = i - 1; j >= 1 && a[j] > t; j--) a[j + 1] = a[j]; a[j + 1] = t }
+             return a[int((n + 1) / 2)] }
+         '
     # shellcheck disable=SC2016
     cat <<'TXT'
 ## Radau IIA
@@ -249,13 +254,10 @@ change max |E - E(0)| at the outputs (not available for the peer).
 | R | radau: steps, s, energy change | peer: steps, s | ratio |
 |---|---|---|---|
 TXT
-    awk '{ delete f; for (i = 1; i <= NF; i++) if (split($i, kv, "=") == 2 && !(kv[1] in f)) f[kv[1]] = kv[2]
+    awk "$runs_awk"'{ delete f; for (i = 1; i <= NF; i++) if (split($i, kv, "=") == 2 && !(kv[1] in f)) f[kv[1]] = kv[2]
            key = f["config"] " " f["tol"]; cnt[key]++; sec[key, cnt[key]] = f["seconds"]; steps[key] = f["steps"]
            en[key] = f["energy_change"]; stat[key] = f["status"]
            if (!(f["tol"] in seen)) { seen[f["tol"]] = 1; tols[++nt] = f["tol"] } }
-         function med(key,   i, j, t, a, n) { n = cnt[key]; for (i = 1; i <= n; i++) a[i] = sec[key, i] + 0
-             for (i = 2; i <= n; i++) { t = a[i]; for (j = i - 1; j >= 1 && a[j] > t; j--) a[j + 1] = a[j]; a[j + 1] = t }
-             return a[int((n + 1) / 2)] }
          END { hi = 0
                for (i = 1; i <= nt; i++) { r = tols[i]; a = med("radau " r); b = med("peer " r)
                    printf "| %s | %s, %.3f, %.1e%s | %s, %.3f | %.1f |\n", r, steps["radau " r], a, en["radau " r],
@@ -283,13 +285,10 @@ nearest slope beyond it).
 | R | paper's start: error, s, switches | th1 = pi/2, w1 = 1: error, s, switches | ratio at this R | ratio at matched accuracy |
 |---|---|---|---|---|
 TXT
-    awk '{ delete f; for (i = 1; i <= NF; i++) if (split($i, kv, "=") == 2 && !(kv[1] in f)) f[kv[1]] = kv[2]
+    awk "$runs_awk"'{ delete f; for (i = 1; i <= NF; i++) if (split($i, kv, "=") == 2 && !(kv[1] in f)) f[kv[1]] = kv[2]
            key = f["start"] " " f["tol"]; cnt[key]++; sec[key, cnt[key]] = f["seconds"]; err[key] = f["max_err_th"]
            sw[key] = f["switches"]; stat[key] = f["status"]
            if (!(f["tol"] in seen)) { seen[f["tol"]] = 1; tols[++nt] = f["tol"] } }
-         function med(key,   i, j, t, a, n) { n = cnt[key]; for (i = 1; i <= n; i++) a[i] = sec[key, i] + 0
-             for (i = 2; i <= n; i++) { t = a[i]; for (j = i - 1; j >= 1 && a[j] > t; j--) a[j + 1] = a[j]; a[j + 1] = t }
-             return a[int((n + 1) / 2)] }
          # seconds of the paper start at error e: first crossing along decreasing R, log-log
          function at_error(e,   i, lo, hi, x0, x1) {
              for (i = 1; i < nt; i++) { x0 = err["paper " tols[i]] + 0; x1 = err["paper " tols[i + 1]] + 0
