@@ -13,11 +13,10 @@ contains
         integer :: rstat
         logical :: refine, step_end
         if (.not. (self%work_tol > 0.0_wp) .or. stat /= 0) return
-        kinetic_before = self%kinetic_last
-        self%kinetic_last = kinetic
         refine = present(problem) .and. present(z) .and. present(dz) .and. allocated(self%work_z)
         if (refine) refine = size(self%work_z) == size(z)
         if (.not. self%have_work) then
+            self%kinetic_last = kinetic
             self%kinetic0 = kinetic
             self%tolerance_energy = 0.0_wp
             self%work = 0.0_wp
@@ -36,6 +35,9 @@ contains
         end if
         h = t - self%t_work
         if (.not. (h > 0.0_wp)) return
+        ! T at t_work: a sample inside the last interval (an output inside a step) leaves it
+        kinetic_before = self%kinetic_last
+        self%kinetic_last = kinetic
         step_end = t == self%step_t .and. self%t_work == self%step_from .and. allocated(self%step_z) .and. present(z)
         if (step_end) step_end = size(self%step_z) == size(z)
         if (step_end) step_end = all(self%step_z == z)   ! step_energy looked at this interval

@@ -467,6 +467,7 @@ contains
             stop_user = core%opts%stop_at_output
             taken = 0
             core%monitor%project_on = .not. driving
+            if (driving) core%monitor%project_due = .false.   ! a pending one too (events or single steps now)
             if (events) then
                 self%ev%found = 0
                 self%ev%t_step_end = -huge(1.0_wp)   ! (a restart since may have replaced the state)
