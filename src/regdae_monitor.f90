@@ -139,7 +139,6 @@ module regdae_monitor
         logical :: pass_ended = .false.          !! a singular interval ended at the last sample (cleared by the caller)
         logical :: project_on = .false.          !! the front projects the solution where `project_due` (the integrators stop)
         logical :: project_due = .false.         !! another fold lies ahead inside the singular interval: project the state
-        integer :: projections = 0               !! projections asked for so far
         real(wp) :: fold_rate = 0.0_wp           !! the rate at which the stabilization forgets a constraint residual
         real(wp), private :: fold_low = huge(1.0_wp)   ! the smallest sigma_min(GB) of the last fold's dip
         real(wp), private :: t_fold = 0.0_wp             ! its time
@@ -414,7 +413,6 @@ contains
         self%slope_before = 0.0_wp
         self%land_by = huge(1.0_wp)
         self%project_due = .false.
-        self%projections = 0
         self%fold_low = huge(1.0_wp)
         self%fold_peak = 0.0_wp
         if (allocated(self%v_regular)) deallocate (self%v_regular, self%a_regular)

@@ -175,10 +175,7 @@ contains
         if (sigma > fold_factor*self%fold_low .and. fold_factor**2*self%fold_low < self%threshold) &
             self%fold_peak = max(self%fold_peak, sigma)
         if (sigma < 0.5_wp*self%fold_peak) then
-            if (self%project_on) then
-                self%project_due = .true.
-                self%projections = self%projections + 1
-            end if
+            if (self%project_on) self%project_due = .true.
             self%fold_low = huge(1.0_wp)
         end if
     end subroutine fold_sample
